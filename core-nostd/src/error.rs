@@ -66,7 +66,16 @@ pub enum Error {
         /// The kind byte.
         kind: u8,
     },
-    /// The postcard payload does not decode to the message its kind announces.
+    /// The header's message kind is a valid one, but not the one the caller expects (e.g. an
+    /// error reply where a plan was awaited).
+    UnexpectedKind {
+        /// The kind byte in the header.
+        got: u8,
+        /// The kind the caller asked for.
+        expected: u8,
+    },
+    /// The postcard payload does not decode to the message its kind announces (or has bytes
+    /// left over); when encoding, postcard cannot serialize the message.
     Payload,
 }
 
@@ -120,10 +129,19 @@ impl fmt::Display for Error {
             Error::Cobs => f.write_str("malformed COBS encoding"),
             Error::Truncated => f.write_str("frame shorter than header + CRC"),
             Error::Crc { got, expected } => {
-                write!(f, "CRC mismatch: frame carries {got:#06x}, contents give {expected:#06x}")
+                write!(
+                    f,
+                    "CRC mismatch: frame carries {got:#06x}, contents give {expected:#06x}"
+                )
             }
             Error::Version { got } => write!(f, "unsupported protocol version {got}"),
             Error::UnknownKind { kind } => write!(f, "unknown message kind {kind:#04x}"),
+            Error::UnexpectedKind { got, expected } => {
+                write!(
+                    f,
+                    "unexpected message kind {got:#04x} (expected {expected:#04x})"
+                )
+            }
             Error::Payload => f.write_str("payload does not decode to the announced message"),
         }
     }

@@ -4,15 +4,7 @@ use core::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
 
 use crate::{Error, Result, Scalar};
 
-macro_rules! serde_defmt {
-    ($($item:item)*) => {$(
-        #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-        #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-        $item
-    )*};
-}
-
-serde_defmt! {
+wire_type! {
     /// A 2D vector (ant world: x east, y north).
     #[derive(Clone, Copy, Debug, Default, PartialEq)]
     pub struct Vec2<S> {
@@ -89,7 +81,13 @@ impl<S: Scalar> Vec2<S> {
     #[inline]
     pub fn normalized(self) -> Option<Self> {
         let l = self.length();
-        if l > S::ZERO { Some(self * (S::ONE / l)) } else { None }
+        // Divide each component (not multiply by 1/l): for fixed point 1/l saturates when l is
+        // a few ulps, which would leave a non-unit result.
+        if l > S::ZERO {
+            Some(Vec2::new(self.x / l, self.y / l))
+        } else {
+            None
+        }
     }
     /// Rotated counter-clockwise by 90°.
     #[inline]
@@ -182,7 +180,13 @@ impl<S: Scalar> Vec3<S> {
     #[inline]
     pub fn normalized(self) -> Option<Self> {
         let l = self.length();
-        if l > S::ZERO { Some(self * (S::ONE / l)) } else { None }
+        // Divide each component (not multiply by 1/l): for fixed point 1/l saturates when l is
+        // a few ulps, which would leave a non-unit result.
+        if l > S::ZERO {
+            Some(Vec3::new(self.x / l, self.y / l, self.z / l))
+        } else {
+            None
+        }
     }
     /// `Err(NonFinite(field))` if a component is NaN or infinite.
     #[inline]
@@ -286,6 +290,11 @@ mod tests {
             use crate::Fx;
             let v = Vec2::<Fx>::from_f32(3000.0, 4000.0);
             assert!((v.length().to_f32() - 5000.0).abs() < 0.01);
+            // A vector of a few ulps still normalises to unit length.
+            let tiny = Vec2::<Fx>::new(Fx::EPS, Fx::EPS + Fx::EPS)
+                .normalized()
+                .unwrap();
+            assert!((tiny.length().to_f32() - 1.0).abs() < 1e-3);
             let w = Vec3::<Fx>::from_f32(-2000.0, 0.0, 0.0);
             assert!((w.length().to_f32() - 2000.0).abs() < 0.01);
         }

@@ -43,9 +43,22 @@
 #![warn(missing_docs)]
 
 #[cfg(all(feature = "libm", feature = "micromath"))]
-compile_error!("features `libm` and `micromath` are exclusive: pick one f32 math backend (use `default-features = false, features = [\"micromath\"]`)");
+compile_error!(
+    "features `libm` and `micromath` are exclusive: pick one f32 math backend (use `default-features = false, features = [\"micromath\"]`)"
+);
 #[cfg(not(any(feature = "libm", feature = "micromath")))]
-compile_error!("swarm-core needs an f32 math backend: enable feature `libm` (default) or `micromath`");
+compile_error!(
+    "swarm-core needs an f32 math backend: enable feature `libm` (default) or `micromath`"
+);
+
+/// Adds the wire derives (`serde`, `defmt`) that every public data type of the crate carries.
+macro_rules! wire_type {
+    ($($item:item)*) => {$(
+        #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+        #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+        $item
+    )*};
+}
 
 pub mod ant;
 pub mod bee;

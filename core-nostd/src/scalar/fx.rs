@@ -75,7 +75,11 @@ impl Fx {
     }
     /// Sine of a reduced angle in `[0, 2π)` (raw units).
     fn sin_reduced(a: i32) -> Fx {
-        let (a, neg) = if a >= PI_RAW { (a - PI_RAW, true) } else { (a, false) };
+        let (a, neg) = if a >= PI_RAW {
+            (a - PI_RAW, true)
+        } else {
+            (a, false)
+        };
         let a = if a > HALF_PI_RAW { PI_RAW - a } else { a };
         let s = Fx::sin_quadrant(a);
         if neg { -s } else { s }
@@ -355,7 +359,10 @@ mod tests {
         while x < 32000.0 {
             let v = fx(x as f32);
             let r = v.sqrt().to_f32() as f64;
-            assert!((r - (v.to_f32() as f64).sqrt()).abs() <= 2.0 / 65536.0, "sqrt({x})");
+            assert!(
+                (r - (v.to_f32() as f64).sqrt()).abs() <= 2.0 / 65536.0,
+                "sqrt({x})"
+            );
             x = x * 1.37 + 0.001;
         }
         let mut x = -12.0f64;
@@ -379,7 +386,10 @@ mod tests {
                 let got = y.atan2(x).to_f32() as f64;
                 let d = (got - want).abs();
                 let d = d.min((d - 2.0 * core::f64::consts::PI).abs());
-                assert!(d < 6e-4 / r.min(1.0).max(0.05), "atan2({y},{x}) = {got}, want {want}");
+                assert!(
+                    d < 6e-4 / r.min(1.0).max(0.05),
+                    "atan2({y},{x}) = {got}, want {want}"
+                );
             }
         }
         assert_eq!(Fx::ZERO.atan2(Fx::ZERO), Fx::ZERO);

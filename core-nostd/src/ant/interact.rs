@@ -1,0 +1,165 @@
+//! Interactions (xiang2018 §4.2): information transfer with neighbours (Table 1) and the
+//! environment with priority obstacles > disturbance > food = nest (Fig. 4b).
+
+use super::frame::{AntNeighbor, AntObject};
+use super::params::AntParams;
+use super::state::{AntState, Label};
+use crate::rand::{self, stream};
+use crate::{Scalar, StepCtx, Vec2};
+
+/// Whether neighbour `j` can tell ant `i` about `i`'s destination (Table 1, §4.2.1):
+///
+/// | S_c^i   | S_c^j | transfer                                       |
+/// |---------|-------|------------------------------------------------|
+/// | Nothing | Food  | situation 1: the food source j comes from      |
+/// | Nest    | Food  | situation 2: the food source j comes from      |
+/// | Food    | Nest  | situation 3: the nest j comes from — only if it is *i's own* nest |
+///
+/// Every other pair transfers nothing.
+pub fn transfers<S: Scalar>(i: &AntState<S>, j: &AntNeighbor<S>) -> bool {
+    match (i.label, j.label) {
+        (Label::Nothing | Label::Nest, Label::Food) => true,
+        (Label::Food, Label::Nest) => j.nest == i.nest,
+        _ => false,
+    }
+}
+
+/// Algorithm 2: among the neighbours in contact range that transfer information, the nearest
+/// (ties: the lower id) — returns its latest arrival position, the point ant `i` turns toward
+/// (Fig. 6).
+pub fn informer<S: Scalar>(
+    i: &AntState<S>,
+    neighbours: &[AntNeighbor<S>],
+    params: &AntParams<S>,
+) -> Option<Vec2<S>> {
+    let range2 = params.contact_range * params.contact_range;
+    let mut best: Option<(S, u32, Vec2<S>)> = None;
+    for j in neighbours.iter().filter(|j| transfers(i, j)) {
+        let d2 = (j.pos - i.pos).length_sq();
+        if d2 > range2 {
+            continue;
+        }
+        let better = match best {
+            None => true,
+            Some((bd, bid, _)) => d2 < bd || (d2 == bd && j.id < bid),
+        };
+        if better {
+            best = Some((d2, j.id, j.arrival));
+        }
+    }
+    best.map(|(_, _, arrival)| arrival)
+}
+
+/// What the environment makes the ant do this tick (at most one thing, by priority).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum EnvAction<S> {
+    /// Nothing in the environment concerns the ant.
+    None,
+    /// Avoiding: turn to this heading, perpendicular to the ant-obstacle line (Fig. 5b).
+    Avoid(Vec2<S>),
+    /// Escaping: run along this heading, away from the disturbance centre (Fig. 5c).
+    Escape(Vec2<S>),
+    /// Arrived unladen at food source `id`: stop and collect (§4.1 stop 2).
+    Collect(u16),
+    /// Arrived laden at its own nest `id`: stop and drop the food (§4.1 stop 3).
+    Drop(u16),
+    /// Arrived at its own nest: S_nothing becomes S_nest without stopping, and an S_nest ant
+    /// refreshes its latest arrival position (§4.2.2).
+    AtNest,
+}
+
+/// The environment interaction of §4.2.2 for an ant at `s.pos` heading `s.heading`.
+///
+/// * Obstacle: one whose closest point lies ahead (positive projection on the heading) within
+///   `avoid_range`; the nearest such. The new heading is perpendicular to the ant-obstacle line,
+///   on the side of the current heading (the smaller turn; a random side if exactly head-on).
+/// * Disturbance: the ant is inside the dangerous circle; runs away from the centre (nearest
+///   centre if several; a random direction if exactly on the centre).
+/// * Food / nest: the ant is inside the circle of a food source (unladen) or of its own nest.
+pub fn environment<S: Scalar>(
+    s: &AntState<S>,
+    objects: &[AntObject<S>],
+    params: &AntParams<S>,
+    ctx: StepCtx,
+) -> EnvAction<S> {
+    if let Some(h) = avoid_obstacle(s, objects, params, ctx) {
+        return EnvAction::Avoid(h);
+    }
+    if let Some(h) = escape_disturbance(s, objects, ctx) {
+        return EnvAction::Escape(h);
+    }
+    for o in objects {
+        match *o {
+            AntObject::Food { id, center, radius }
+                if s.label != Label::Food && inside(s.pos, center, radius) =>
+            {
+                return EnvAction::Collect(id);
+            }
+            AntObject::Nest { id, center, radius }
+                if id == s.nest && inside(s.pos, center, radius) =>
+            {
+                return if s.label == Label::Food {
+                    EnvAction::Drop(id)
+                } else {
+                    EnvAction::AtNest
+                };
+            }
+            _ => {}
+        }
+    }
+    EnvAction::None
+}
+
+fn inside<S: Scalar>(p: Vec2<S>, center: Vec2<S>, radius: S) -> bool {
+    (p - center).length() <= radius
+}
+
+fn avoid_obstacle<S: Scalar>(
+    s: &AntState<S>,
+    objects: &[AntObject<S>],
+    params: &AntParams<S>,
+    ctx: StepCtx,
+) -> Option<Vec2<S>> {
+    let mut nearest: Option<(S, Vec2<S>)> = None;
+    for o in objects {
+        if let AntObject::Obstacle { closest } = *o {
+            let d = closest - s.pos;
+            let dist = d.length();
+            let ahead = d.dot(s.heading) > S::ZERO;
+            if ahead && dist <= params.avoid_range && nearest.is_none_or(|(bd, _)| dist < bd) {
+                nearest = Some((dist, d));
+            }
+        }
+    }
+    let (_, d) = nearest?;
+    let perp = d.normalized()?.perp();
+    let side = perp.dot(s.heading);
+    let flip = if side == S::ZERO {
+        rand::rand(ctx.seed, ctx.agent, ctx.step, stream::ANT_FALLBACK) & 1 == 1
+    } else {
+        side < S::ZERO
+    };
+    Some(if flip { -perp } else { perp })
+}
+
+fn escape_disturbance<S: Scalar>(
+    s: &AntState<S>,
+    objects: &[AntObject<S>],
+    ctx: StepCtx,
+) -> Option<Vec2<S>> {
+    let mut nearest: Option<(S, Vec2<S>)> = None;
+    for o in objects {
+        if let AntObject::Disturbance { center, radius } = *o {
+            let away = s.pos - center;
+            let dist = away.length();
+            if dist < radius && nearest.is_none_or(|(bd, _)| dist < bd) {
+                nearest = Some((dist, away));
+            }
+        }
+    }
+    let (_, away) = nearest?;
+    Some(away.normalized().unwrap_or_else(|| {
+        let a = rand::angle(ctx, stream::ANT_FALLBACK, crate::scalar::pi::<S>());
+        Vec2::from_angle(a)
+    }))
+}

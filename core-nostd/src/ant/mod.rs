@@ -1,0 +1,29 @@
+//! The ant foraging controller of Xiang et al. 2018, *Biologically inspired ant colony
+//! simulation* (sections 3-4).
+//!
+//! A tick is two calls, because the collision avoidance of eq. 2-4 needs every neighbour's
+//! *predicted* position:
+//!
+//! 1. [`plan`]: stop / basic movement / interactions (§4.1-4.2) → preferred orientation O* and
+//!    predicted position p* (eq. 1). A robot broadcasts p* to its neighbours.
+//! 2. [`resolve`]: with the neighbours' predictions, the final orientation (eq. 2-4) and
+//!    position (eq. 5).
+//!
+//! Both are pure functions of their arguments; randomness comes from [`crate::rand`] keyed by
+//! the [`StepCtx`](crate::StepCtx).
+
+mod frame;
+mod interact;
+mod params;
+mod plan;
+mod resolve;
+mod state;
+#[cfg(test)]
+mod tests;
+
+pub use frame::{AntNeighbor, AntObject, PlanFrame, ResolveFrame};
+pub use interact::{EnvAction, environment, informer, transfers};
+pub use params::AntParams;
+pub use plan::{AntPlan, plan, predict};
+pub use resolve::{repulsion, resolve};
+pub use state::{AntState, COORD_LIMIT, Label, MotionState, StopReason, StopTimer};

@@ -1,0 +1,127 @@
+//! Ant controller parameters (xiang2018 §4), defaulting to the paper's values where it gives
+//! them.
+
+use crate::scalar::pi;
+use crate::{Error, Result, Scalar};
+
+wire_type! {
+    /// The parameters of the ant controller.
+    ///
+    /// The paper fixes θ = π/6 (§4.1), the casual-stop probability 0.005 (§4.1) and Δt = 1 s
+    /// (eq. 1). It leaves the speed, ranges, stop durations and the constants w0, C, k of
+    /// eq. 2-3 open; our defaults for those are marked "ours" and are in body lengths (one ant
+    /// is 1 unit long) and ticks.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct AntParams<S> {
+        /// Moving speed v (units/s), shared by all ants (§3). Ours: 1.
+        pub speed: S,
+        /// Time step Δt (s). Paper: 1 (eq. 1).
+        pub dt: S,
+        /// Critical deviation angle θ of the random turn (rad). Paper: π/6 (§4.1).
+        pub theta: S,
+        /// Casual-stop probability per tick. Paper: 0.005 (§4.1).
+        pub p_stop: S,
+        /// Length of a casual stop (ticks). Ours: 5.
+        pub casual_stop_ticks: u16,
+        /// Time to collect food at a food source (ticks). Ours: 10.
+        pub collect_ticks: u16,
+        /// Time to drop food at the nest (ticks). Ours: 10.
+        pub drop_ticks: u16,
+        /// Radius within which two ants touch and transfer information (§4.2.1). Ours: 2.
+        pub contact_range: S,
+        /// Distance at which an obstacle ahead triggers avoidance (§4.2.2). Ours: 2.
+        pub avoid_range: S,
+        /// Predicted distance below which another ant "could collide" (n_c of eq. 3). Ours: 1.5.
+        pub collision_range: S,
+        /// w0: weight of the preferred orientation O* in eq. 2. Ours: 0.6.
+        pub w0: S,
+        /// C of the repulsion weight w_d = C/‖p_d* − p*‖^k (eq. 3). Ours: 1.
+        pub c: S,
+        /// k of the repulsion weight (eq. 3), a small integer power. Ours: 2.
+        pub k: u8,
+    }
+}
+
+impl<S: Scalar> Default for AntParams<S> {
+    fn default() -> Self {
+        AntParams {
+            speed: S::ONE,
+            dt: S::ONE,
+            theta: pi::<S>() / S::from_i32(6),
+            p_stop: S::from_f32(0.005),
+            casual_stop_ticks: 5,
+            collect_ticks: 10,
+            drop_ticks: 10,
+            contact_range: S::from_i32(2),
+            avoid_range: S::from_i32(2),
+            collision_range: S::from_f32(1.5),
+            w0: S::from_f32(0.6),
+            c: S::ONE,
+            k: 2,
+        }
+    }
+}
+
+impl<S: Scalar> AntParams<S> {
+    /// The same parameters in another scalar type (through `f32`).
+    pub fn cast<T: Scalar>(&self) -> AntParams<T> {
+        let c = |v: S| T::from_f32(v.to_f32());
+        AntParams {
+            speed: c(self.speed),
+            dt: c(self.dt),
+            theta: c(self.theta),
+            p_stop: c(self.p_stop),
+            casual_stop_ticks: self.casual_stop_ticks,
+            collect_ticks: self.collect_ticks,
+            drop_ticks: self.drop_ticks,
+            contact_range: c(self.contact_range),
+            avoid_range: c(self.avoid_range),
+            collision_range: c(self.collision_range),
+            w0: c(self.w0),
+            c: c(self.c),
+            k: self.k,
+        }
+    }
+
+    /// Checks every parameter; the error names the first bad one.
+    pub fn validate(&self) -> Result<()> {
+        let pos = |v: S, hi: f32, field: &'static str| {
+            if v.is_finite() && v > S::ZERO && v <= S::from_f32(hi) {
+                Ok(())
+            } else {
+                Err(Error::BadParam { field })
+            }
+        };
+        let unit = |v: S, field: &'static str| {
+            if v.is_finite() && v >= S::ZERO && v <= S::ONE {
+                Ok(())
+            } else {
+                Err(Error::BadParam { field })
+            }
+        };
+        pos(self.speed, 100.0, "speed")?;
+        pos(self.dt, 100.0, "dt")?;
+        pos(self.theta, core::f32::consts::PI, "theta")?;
+        unit(self.p_stop, "p_stop")?;
+        pos(self.contact_range, 1000.0, "contact_range")?;
+        pos(self.avoid_range, 1000.0, "avoid_range")?;
+        pos(self.collision_range, 1000.0, "collision_range")?;
+        unit(self.w0, "w0")?;
+        if !(self.c.is_finite() && self.c >= S::ZERO && self.c <= S::from_i32(1000)) {
+            return Err(Error::BadParam { field: "c" });
+        }
+        if self.k > 8 {
+            return Err(Error::BadParam { field: "k" });
+        }
+        for (t, field) in [
+            (self.casual_stop_ticks, "casual_stop_ticks"),
+            (self.collect_ticks, "collect_ticks"),
+            (self.drop_ticks, "drop_ticks"),
+        ] {
+            if t == 0 {
+                return Err(Error::BadParam { field });
+            }
+        }
+        Ok(())
+    }
+}

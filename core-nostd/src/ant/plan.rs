@@ -1,0 +1,161 @@
+//! Phase 1 of a tick: steps (1)-(3) of xiang2018 §4 and the predicted position of eq. 1.
+
+use super::frame::PlanFrame;
+use super::interact::{EnvAction, environment, informer};
+use super::params::AntParams;
+use super::state::{AntState, Label, MotionState, StopReason, StopTimer, check_point};
+use crate::rand::{self, stream};
+use crate::{Rect, Result, Scalar, StepCtx, Vec2};
+
+wire_type! {
+    /// The outcome of [`plan`]: the ant's state after the local exploration, with its preferred
+    /// orientation O*(t+1) as `state.heading`, and its predicted position p*(t+1) (eq. 1), which
+    /// the ant broadcasts to its neighbours before [`resolve`](super::resolve).
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct AntPlan<S> {
+        /// State after steps (1)-(3): label, timers and motion updated, heading = O*(t+1),
+        /// position still p(t).
+        pub state: AntState<S>,
+        /// p*(t+1) = p(t) + v·O*(t+1)·Δt, boundary-checked (eq. 1, §4.3).
+        pub predicted: Vec2<S>,
+    }
+}
+
+/// Phase 1 of the ant tick (xiang2018 §4, Algorithm 1 lines 2-3 and Algorithm 2):
+///
+/// 1. **Stop** (§4.1): a stopped ant counts down its timer and stays; when a collecting
+///    (dropping) stop runs out, S_c becomes S_food (S_nest), the latest arrival position is
+///    recorded and the ant turns back the way it came. An active ant stops casually with
+///    probability `p_stop`.
+/// 2. **Basic movement** (§4.1): turn by a uniform random angle in (−θ, θ).
+/// 3. **Interactions** (§4.2): a neighbour that can inform the ant (Table 1, nearest first)
+///    turns it toward that neighbour's latest arrival position; then the environment, which
+///    takes priority over neighbours, with obstacles > disturbance > food = nest.
+/// 4. **Prediction** (eq. 1) and boundary check (§4.3): p* = p + v·O*·Δt; a prediction that
+///    leaves the arena reflects O* off the wall(s) it crosses.
+///
+/// Pure: the same inputs give the same bits. Bad input returns an error and nothing else.
+pub fn plan<S: Scalar, const N: usize, const O: usize>(
+    state: &AntState<S>,
+    frame: &PlanFrame<S, N, O>,
+    params: &AntParams<S>,
+    ctx: StepCtx,
+) -> Result<AntPlan<S>> {
+    params.validate()?;
+    state.validate()?;
+    frame.validate(ctx.agent)?;
+    let mut s = *state;
+
+    // (1) The stop state.
+    if let Some(mut timer) = s.stop {
+        timer.remaining -= 1; // validated ≥ 1
+        if timer.remaining > 0 {
+            s.stop = Some(timer);
+            return Ok(stay(s));
+        }
+        s.stop = None;
+        finish_stop(&mut s, timer);
+    } else if rand::chance(ctx, stream::ANT_STOP, params.p_stop) {
+        return Ok(stop(s, StopReason::Casual, params.casual_stop_ticks, 0));
+    }
+
+    // (2) Basic movement.
+    let turn = rand::angle(ctx, stream::ANT_TURN, params.theta);
+    s.heading = s.heading.rotated(turn).normalized().unwrap_or(s.heading);
+    s.motion = MotionState::BasicMovement;
+
+    // (3) Interactions with neighbours (Table 1) ...
+    if let Some(target) = informer(&s, &frame.neighbours, params) {
+        if let Some(h) = (target - s.pos).normalized() {
+            s.heading = h;
+            s.motion = MotionState::InteractNeighbors;
+        }
+    }
+    // ... and with the environment, which the ant prefers (§4, Fig. 4a).
+    match environment(&s, &frame.objects, params, ctx) {
+        EnvAction::None => {}
+        EnvAction::Avoid(h) | EnvAction::Escape(h) => {
+            s.heading = h;
+            s.motion = MotionState::InteractEnvironment;
+        }
+        EnvAction::Collect(food) => {
+            return Ok(stop(
+                s,
+                StopReason::CollectingFood,
+                params.collect_ticks,
+                food,
+            ));
+        }
+        EnvAction::Drop(nest) => {
+            return Ok(stop(s, StopReason::DroppingFood, params.drop_ticks, nest));
+        }
+        EnvAction::AtNest => {
+            s.label = Label::Nest;
+            s.origin = s.nest;
+            s.arrival = s.pos;
+            s.motion = MotionState::InteractEnvironment;
+        }
+    }
+
+    // (4) Eq. 1 with the boundary check.
+    let (heading, predicted) = predict(s.pos, s.heading, frame.bounds, params);
+    s.heading = heading;
+    check_point(predicted, "predicted")?;
+    Ok(AntPlan {
+        state: s,
+        predicted,
+    })
+}
+
+/// Eq. 1, p* = p + v·O*·Δt, with the boundary check of §4.3: a component of O* that would take
+/// p* across a wall is reflected, and p* is kept inside the arena.
+pub fn predict<S: Scalar>(
+    pos: Vec2<S>,
+    heading: Vec2<S>,
+    bounds: Rect<S>,
+    params: &AntParams<S>,
+) -> (Vec2<S>, Vec2<S>) {
+    let step = params.speed * params.dt;
+    let mut h = heading;
+    let p = pos + h * step;
+    if (p.x < bounds.min.x && h.x < S::ZERO) || (p.x > bounds.max.x && h.x > S::ZERO) {
+        h.x = -h.x;
+    }
+    if (p.y < bounds.min.y && h.y < S::ZERO) || (p.y > bounds.max.y && h.y > S::ZERO) {
+        h.y = -h.y;
+    }
+    (h, bounds.clamp(pos + h * step))
+}
+
+/// The ant stays where it is this tick (p* = p).
+fn stay<S: Scalar>(mut s: AntState<S>) -> AntPlan<S> {
+    s.motion = MotionState::Stop;
+    AntPlan {
+        predicted: s.pos,
+        state: s,
+    }
+}
+
+fn stop<S: Scalar>(mut s: AntState<S>, reason: StopReason, ticks: u16, place: u16) -> AntPlan<S> {
+    s.stop = Some(StopTimer {
+        reason,
+        remaining: ticks,
+        place,
+    });
+    stay(s)
+}
+
+/// The end of a stop (§4.1): collecting makes S_c = S_food, dropping makes S_c = S_nest; the
+/// ant records where it arrived and heads back the way it came (ours: the paper only says it
+/// "starts to move toward the nest / back to the food").
+fn finish_stop<S: Scalar>(s: &mut AntState<S>, timer: StopTimer) {
+    let label = match timer.reason {
+        StopReason::Casual => return,
+        StopReason::CollectingFood => Label::Food,
+        StopReason::DroppingFood => Label::Nest,
+    };
+    s.label = label;
+    s.origin = timer.place;
+    s.arrival = s.pos;
+    s.heading = -s.heading;
+}

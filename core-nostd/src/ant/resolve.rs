@@ -1,0 +1,60 @@
+//! Phase 2 of a tick: collision avoidance (xiang2018 eq. 2-4) and the move (eq. 5).
+
+use super::frame::ResolveFrame;
+use super::params::AntParams;
+use super::plan::AntPlan;
+use super::state::{AntState, check_point};
+use crate::{Result, Scalar, Vec2};
+
+/// The repulsion sum R_d(t+1) of eq. 3 for an ant predicted at `me`, from the predicted
+/// positions `others` of its neighbours:
+///
+/// R_d = Σ_d w_d·R_d*,  w_d = C / ‖p_d* − p*‖^k,  R_d* the unit vector between the two
+/// predictions (eq. 4), over the n_c ants closer than `collision_range`.
+///
+/// Eq. 4 as printed, (p_d* − p*)/‖p_d* − p*‖, points from the current ant *to* the d-th one,
+/// while the text defines R_d* as "the unit vector pointing from the d-th colliding ant to the
+/// current ant" — a repulsion. We follow the text: R_d* = (p* − p_d*)/‖p* − p_d*‖. A neighbour
+/// predicted exactly at p* gives no direction and is skipped. Terms are summed in frame order.
+pub fn repulsion<S: Scalar>(me: Vec2<S>, others: &[Vec2<S>], params: &AntParams<S>) -> Vec2<S> {
+    let mut sum = Vec2::zero();
+    for &p in others {
+        let away = me - p;
+        let dist = away.length();
+        if dist == S::ZERO || dist >= params.collision_range {
+            continue;
+        }
+        let w = params.c / dist.powi(params.k);
+        sum += away * (w / dist);
+    }
+    sum
+}
+
+/// Phase 2 of the ant tick (xiang2018 §4.3, Algorithm 1 lines 4-5):
+///
+/// * eq. 2: O(t+1) = w0·O*(t+1) + (1 − w0)·R_d(t+1) (see [`repulsion`] for eq. 3-4), normalised
+///   to a unit orientation (O* if the sum vanishes);
+/// * eq. 5: p(t+1) = p(t) + v·O(t+1)·Δt, kept inside the arena.
+///
+/// A stopped ant does not move. Returns the ant's state for the next tick.
+pub fn resolve<S: Scalar, const N: usize>(
+    plan: &AntPlan<S>,
+    frame: &ResolveFrame<S, N>,
+    params: &AntParams<S>,
+) -> Result<AntState<S>> {
+    params.validate()?;
+    plan.state.validate()?;
+    check_point(plan.predicted, "plan.predicted")?;
+    frame.validate()?;
+    let mut s = plan.state;
+    if s.is_stopped() {
+        return Ok(s);
+    }
+    let r = repulsion(plan.predicted, &frame.neighbours, params);
+    let o = s.heading * params.w0 + r * (S::ONE - params.w0);
+    s.heading = o.normalized().unwrap_or(s.heading);
+    s.pos = frame
+        .bounds
+        .clamp(s.pos + s.heading * (params.speed * params.dt));
+    Ok(s)
+}

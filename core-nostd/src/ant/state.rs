@@ -1,0 +1,163 @@
+//! The ant's own state (xiang2018 §4): position, orientation, label S_c, motion state, timers.
+
+use crate::{Error, Result, Scalar, Vec2};
+
+/// Largest absolute coordinate accepted from outside: keeps every intermediate value inside the
+/// range of [`Fx`](crate::Fx) (±32768) so both scalar types compute the same thing.
+pub const COORD_LIMIT: f32 = 16_384.0;
+
+wire_type! {
+    /// The status label S_c (xiang2018 §4): where the ant comes from, hence what it can tell.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+    pub enum Label {
+        /// S_nothing: has visited neither a food source nor its nest.
+        #[default]
+        Nothing,
+        /// S_food: has visited a food source and is laden with food.
+        Food,
+        /// S_nest: has visited its nest (and looks for food).
+        Nest,
+    }
+
+    /// The four motion states of xiang2018 §4 (Fig. 4a): what the ant did this tick.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+    pub enum MotionState {
+        /// Stays at its position and holds its orientation (§4.1).
+        Stop,
+        /// Random exploration: a turn within (−θ, θ) (§4.1).
+        #[default]
+        BasicMovement,
+        /// Turned by information from a neighbour (§4.2.1, Table 1).
+        InteractNeighbors,
+        /// Turned or relabelled by the environment (§4.2.2).
+        InteractEnvironment,
+    }
+
+    /// Why an ant is stopped (§4.1, the three ways into the stop state).
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+    pub enum StopReason {
+        /// 1) Casual stop: a rest, probability `p_stop` per tick.
+        Casual,
+        /// 2) Collecting food at a food source; S_c becomes S_food when the time runs out.
+        CollectingFood,
+        /// 3) Dropping food at the nest; S_c becomes S_nest when the time runs out.
+        DroppingFood,
+    }
+
+    /// A running stop (§4.1).
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+    pub struct StopTimer {
+        /// Why the ant stopped.
+        pub reason: StopReason,
+        /// Ticks left, ≥ 1 (the ant stays still this many more ticks, including this one).
+        pub remaining: u16,
+        /// The food source (collecting) or nest (dropping) id; unused for a casual stop.
+        pub place: u16,
+    }
+
+    /// Everything an ant carries from one tick to the next.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct AntState<S> {
+        /// Position p(t).
+        pub pos: Vec2<S>,
+        /// Moving orientation O(t), a unit vector.
+        pub heading: Vec2<S>,
+        /// Status label S_c.
+        pub label: Label,
+        /// Id of the ant's own (belonging) nest.
+        pub nest: u16,
+        /// Id of the place the label refers to: the food source for `Food`, the nest for
+        /// `Nest` (then equal to `nest`); ignored for `Nothing`.
+        pub origin: u16,
+        /// Where the ant last arrived at its label's place (food collected / nest reached): the
+        /// "latest arrival position" a neighbour turns toward (§4.2.1, Fig. 6).
+        pub arrival: Vec2<S>,
+        /// What the ant did in the last tick.
+        pub motion: MotionState,
+        /// The running stop, if the ant is stopped (`motion == Stop` exactly when `Some`).
+        pub stop: Option<StopTimer>,
+    }
+}
+
+impl<S: Scalar> AntState<S> {
+    /// An ant leaving its nest `nest` at `pos` (the paper's initialisation, §4: p0 at the nest,
+    /// S_c = S_nest, a given orientation). `heading` is normalised (zero → +x).
+    pub fn at_nest(nest: u16, pos: Vec2<S>, heading: Vec2<S>) -> Self {
+        AntState {
+            pos,
+            heading: heading.normalized().unwrap_or(Vec2::new(S::ONE, S::ZERO)),
+            label: Label::Nest,
+            nest,
+            origin: nest,
+            arrival: pos,
+            motion: MotionState::BasicMovement,
+            stop: None,
+        }
+    }
+
+    /// An ant that has seen nothing yet (S_nothing), e.g. one spawned away from its nest.
+    pub fn exploring(nest: u16, pos: Vec2<S>, heading: Vec2<S>) -> Self {
+        AntState {
+            label: Label::Nothing,
+            ..AntState::at_nest(nest, pos, heading)
+        }
+    }
+
+    /// Whether the ant stands still this tick.
+    pub fn is_stopped(&self) -> bool {
+        self.stop.is_some()
+    }
+
+    /// Checks the state read from outside: finite coordinates inside [`COORD_LIMIT`], a unit
+    /// heading (±1 %), consistent label/origin and stop fields.
+    pub fn validate(&self) -> Result<()> {
+        check_point(self.pos, "state.pos")?;
+        check_point(self.arrival, "state.arrival")?;
+        self.heading.check("state.heading")?;
+        let len = self.heading.length();
+        if !(len > S::from_f32(0.99) && len < S::from_f32(1.01)) {
+            return Err(Error::out_of_range("state.heading"));
+        }
+        if self.label == Label::Nest && self.origin != self.nest {
+            return Err(Error::inconsistent("state.origin"));
+        }
+        match (self.motion, self.stop) {
+            (MotionState::Stop, Some(t)) if t.remaining == 0 => {
+                Err(Error::out_of_range("state.stop.remaining"))
+            }
+            (MotionState::Stop, Some(t)) => match (t.reason, self.label) {
+                (StopReason::CollectingFood, Label::Food) => {
+                    Err(Error::inconsistent("state.stop.reason"))
+                }
+                (StopReason::DroppingFood, l) if l != Label::Food || t.place != self.nest => {
+                    Err(Error::inconsistent("state.stop.reason"))
+                }
+                _ => Ok(()),
+            },
+            (MotionState::Stop, None) | (_, Some(_)) => Err(Error::inconsistent("state.stop")),
+            _ => Ok(()),
+        }
+    }
+}
+
+/// `Err` unless `p` is finite and inside ±[`COORD_LIMIT`].
+pub(crate) fn check_point<S: Scalar>(p: Vec2<S>, field: &'static str) -> Result<Vec2<S>> {
+    p.check(field)?;
+    let lim = S::from_f32(COORD_LIMIT);
+    if p.x.abs() <= lim && p.y.abs() <= lim {
+        Ok(p)
+    } else {
+        Err(Error::out_of_range(field))
+    }
+}
+
+/// `Err` unless `v` is finite and within `[lo, hi]`.
+pub(crate) fn check_range<S: Scalar>(v: S, lo: S, hi: S, field: &'static str) -> Result<S> {
+    if !v.is_finite() {
+        return Err(Error::non_finite(field));
+    }
+    if v < lo || v > hi {
+        return Err(Error::out_of_range(field));
+    }
+    Ok(v)
+}

@@ -1,0 +1,239 @@
+//! The SPH repulsion between bees and toward target particles (chen §V-B, eq. 10-11).
+//!
+//! Bees are capsules of radius r: kernels are evaluated at the gap s = |r_i − r_j| − 2r
+//! (clamped to ≥ 0). Kernels are written on q = s/h with their constants divided by h one
+//! factor at a time, so no h³, h⁴ or h⁹ is ever formed (fixed-point range).
+
+use super::frame::BeeNeighbor;
+use super::params::BeeParams;
+use crate::scalar::pi;
+use crate::{Scalar, Vec3};
+
+/// The capsule gap s = |r_i − r_j| − 2r of eq. 10, clamped to ≥ 0.
+pub fn gap<S: Scalar>(dist: S, radius: S) -> S {
+    (dist - radius - radius).max(S::ZERO)
+}
+
+/// Müller's poly6 kernel (eq. 10, [61]): W(s, h) = 315/(64π h³)·(1 − q²)³ for q = s/h < 1,
+/// else 0 (s ≥ 0).
+pub fn poly6<S: Scalar>(s: S, h: S) -> S {
+    let q = s / h;
+    if q >= S::ONE || q < S::ZERO {
+        return S::ZERO;
+    }
+    let c = S::from_f32(315.0) / (S::from_i32(64) * pi::<S>()) / h / h / h;
+    let w = S::ONE - q * q;
+    c * w * w * w
+}
+
+/// Magnitude of Desbrun's spiky-kernel gradient (eq. 11, [61]):
+/// |∇W_spiky(s, h)| = 45/(π h⁴)·(1 − q)² for q = s/h < 1, else 0 (s ≥ 0).
+pub fn spiky_grad<S: Scalar>(s: S, h: S) -> S {
+    let q = s / h;
+    if q >= S::ONE || q < S::ZERO {
+        return S::ZERO;
+    }
+    let c = S::from_i32(45) / pi::<S>() / h / h / h / h;
+    let w = S::ONE - q;
+    c * w * w
+}
+
+/// Pressure from density (§V-B: "use the density to update the pressure"):
+/// p = k·max(ρ − ρ0, 0). Clamped at zero so that the force only repels.
+pub fn pressure<S: Scalar>(rho: S, p: &BeeParams<S>) -> S {
+    p.stiffness * (rho - p.rest_density).max(S::ZERO)
+}
+
+/// The density of eq. 10: ρ_i = Σ_j m_j W_poly6(|r_i − r_j| − 2r, h) over the neighbours and the
+/// target particles (each of mass m), the bee itself excluded.
+pub fn density<S: Scalar>(
+    pos: Vec3<S>,
+    neighbours: &[BeeNeighbor<S>],
+    targets: &[Vec3<S>],
+    p: &BeeParams<S>,
+) -> S {
+    let others = neighbours
+        .iter()
+        .map(|n| n.pos)
+        .chain(targets.iter().copied());
+    others.fold(S::ZERO, |rho, r_j| {
+        rho + p.mass * poly6(gap((pos - r_j).length(), p.radius), p.h)
+    })
+}
+
+/// The repulsion force on bee i (eq. 11), given its new density `rho_i`.
+///
+/// The printed eq. 11, Σ_j (p_i − p_j)/(2ρ_j) ∇W_spiky, vanishes between two bees of equal
+/// pressure (e.g. any isolated pair) and so cannot give the repulsion §V-B describes. We use
+/// the symmetric pressure force of Müller et al. 2003 (the paper's [61], which §V-B says it
+/// extends):
+///
+/// F_i = Σ_j m_j·(p_i + p_j)/(2ρ_j)·|∇W_spiky(s_ij, h)|·r̂_ji,
+///
+/// with r̂_ji the unit vector from r_j to r_i (repulsive). It is antisymmetric for equal
+/// densities (F_ij = −F_ji).
+///
+/// A neighbour's ρ_j is the density it broadcast, p_j = k·max(ρ_j − ρ0, 0); a neighbour with
+/// ρ_j = 0 contributes nothing. Target particles carry no density of their own: they mirror
+/// the bee's (ρ_j = ρ_i, p_j = p_i), as in Akinci et al.'s boundary handling. Coincident
+/// positions have no direction and are skipped.
+pub fn repulsion<S: Scalar>(
+    pos: Vec3<S>,
+    rho_i: S,
+    neighbours: &[BeeNeighbor<S>],
+    targets: &[Vec3<S>],
+    p: &BeeParams<S>,
+) -> Vec3<S> {
+    let p_i = pressure(rho_i, p);
+    let from_bees = neighbours
+        .iter()
+        .map(|n| pair_force(pos, n.pos, p_i, pressure(n.density, p), n.density, p));
+    let from_targets = targets
+        .iter()
+        .map(|&t| pair_force(pos, t, p_i, p_i, rho_i, p));
+    from_bees
+        .chain(from_targets)
+        .fold(Vec3::zero(), |f, t| f + t)
+}
+
+/// One term of [`repulsion`]: m·(p_i + p_j)/(2ρ_j)·|∇W_spiky|·r̂_ji.
+fn pair_force<S: Scalar>(
+    r_i: Vec3<S>,
+    r_j: Vec3<S>,
+    p_i: S,
+    p_j: S,
+    rho_j: S,
+    p: &BeeParams<S>,
+) -> Vec3<S> {
+    if rho_j <= S::ZERO {
+        return Vec3::zero();
+    }
+    let diff = r_i - r_j;
+    let dist = diff.length();
+    let grad = spiky_grad(gap(dist, p.radius), p.h);
+    if dist <= S::ZERO || grad <= S::ZERO {
+        return Vec3::zero();
+    }
+    let dir = Vec3::new(diff.x / dist, diff.y / dist, diff.z / dist);
+    dir * (p.mass * grad * ((p_i + p_j) / (rho_j + rho_j)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Fx;
+
+    #[test]
+    fn kernels_match_the_unnormalized_formulas() {
+        let h = 3.0f64;
+        for s in [0.0f64, 0.5, 1.0, 2.0, 2.9] {
+            let w = 315.0 / (64.0 * core::f64::consts::PI * h.powi(9)) * (h * h - s * s).powi(3);
+            let g = 45.0 / (core::f64::consts::PI * h.powi(6)) * (h - s).powi(2);
+            assert!((poly6(s as f32, h as f32) as f64 - w).abs() < 1e-6 * w.max(1.0));
+            assert!((spiky_grad(s as f32, h as f32) as f64 - g).abs() < 1e-6 * g.max(1.0));
+            let wf = poly6(Fx::from_f32(s as f32), Fx::from_f32(3.0)).to_f32() as f64;
+            let gf = spiky_grad(Fx::from_f32(s as f32), Fx::from_f32(3.0)).to_f32() as f64;
+            assert!(
+                (wf - w).abs() < 2e-4 && (gf - g).abs() < 2e-4,
+                "Fx kernels at {s}"
+            );
+        }
+        assert_eq!(poly6(3.0f32, 3.0), 0.0);
+        assert_eq!(spiky_grad(7.0f32, 3.0), 0.0);
+        // Tiny h in fixed point saturates instead of overflowing.
+        let _ = poly6(Fx::ZERO, Fx::from_f32(0.01));
+    }
+
+    fn pair_case<S: Scalar>(tol: f32) {
+        let p = BeeParams::<S>::default();
+        let (a, b) = (
+            Vec3::<S>::from_f32(0.3, 1.0, -0.2),
+            Vec3::<S>::from_f32(1.1, 1.4, 0.5),
+        );
+        let rho_a = density(
+            a,
+            &[BeeNeighbor {
+                pos: b,
+                vel: Vec3::zero(),
+                density: S::ZERO,
+            }],
+            &[],
+            &p,
+        );
+        let rho_b = density(
+            b,
+            &[BeeNeighbor {
+                pos: a,
+                vel: Vec3::zero(),
+                density: S::ZERO,
+            }],
+            &[],
+            &p,
+        );
+        assert_eq!(rho_a, rho_b);
+        assert!(rho_a > S::ZERO);
+        let f_a = repulsion(
+            a,
+            rho_a,
+            &[BeeNeighbor {
+                pos: b,
+                vel: Vec3::zero(),
+                density: rho_b,
+            }],
+            &[],
+            &p,
+        );
+        let f_b = repulsion(
+            b,
+            rho_b,
+            &[BeeNeighbor {
+                pos: a,
+                vel: Vec3::zero(),
+                density: rho_a,
+            }],
+            &[],
+            &p,
+        );
+        assert!(
+            (f_a + f_b).to_f32().length() <= tol,
+            "F_A = {f_a:?}, F_B = {f_b:?}"
+        );
+        // Pushes them apart: F_A points from B to A.
+        assert!(f_a.dot(a - b) > S::ZERO && f_b.dot(b - a) > S::ZERO);
+    }
+
+    #[test]
+    fn two_bees_repel_equal_and_opposite() {
+        pair_case::<f32>(1e-6);
+        pair_case::<Fx>(1e-4);
+    }
+
+    #[test]
+    fn targets_repel_and_degenerate_terms_are_skipped() {
+        let p = BeeParams::<f32>::default();
+        let me = Vec3::new(0.0, 0.0, 0.0);
+        let target = [Vec3::new(1.0, 0.0, 0.0)];
+        let rho = density(me, &[], &target, &p);
+        let f = repulsion(me, rho, &[], &target, &p);
+        assert!(f.x < 0.0 && f.y == 0.0 && f.z == 0.0);
+        // Coincident, silent (ρ_j = 0) and out-of-range neighbours give nothing.
+        let nb = |x: f32, density: f32| BeeNeighbor {
+            pos: Vec3::new(x, 0.0, 0.0),
+            vel: Vec3::zero(),
+            density,
+        };
+        assert_eq!(
+            repulsion(
+                me,
+                1.0,
+                &[nb(0.0, 1.0), nb(1.0, 0.0), nb(3.6, 1.0)],
+                &[],
+                &p
+            ),
+            Vec3::zero()
+        );
+        assert_eq!(density(me, &[nb(3.6, 1.0)], &[], &p), 0.0);
+        // Overlapping capsules: gap clamped to 0, maximum kernel.
+        assert_eq!(density(me, &[nb(0.4, 1.0)], &[], &p), poly6(0.0, 3.0));
+    }
+}

@@ -1,0 +1,487 @@
+//! The controller entry point: one step of chen eq. 1.
+
+use super::frame::{BeeDecision, BeeFrame, BeeState};
+use super::oscillation::{forward_axis, oscillation_force, pitch_deg, roll_deg};
+use super::params::BeeParams;
+use super::vision::{Sighting, avoidance_roll_deg, sense, tune_velocity};
+use super::{curl, sph};
+use crate::scalar::deg;
+use crate::{Error, Result, Scalar, Vec3};
+
+/// One step of the bee controller.
+///
+/// 1. Validate the parameters and every input field (typed `Err` naming the field, and the
+///    index for list entries; the state is only read, so nothing changes on error).
+/// 2. Body frame: forward axis o ([`forward_axis`]); vision (§IV-B): avoidance is active iff
+///    the obstacle is within ±45° of o and closer than d0.
+/// 3. Angles: θ_pitch from eq. 3; θ_roll from eq. 6 when avoiding, else eq. 4.
+/// 4. Forces: F_o (eq. 2, with the roll of step 3), F_curl (eq. 8-9), ρ_i (eq. 10) and
+///    F_repul (eq. 11, symmetric form, see [`sph::repulsion`]).
+/// 5. Eq. 1: F = κ1 F_o + κ2 F_curl + κ3 F_repul, a = F/m, u = u_p + aΔt (§III).
+/// 6. When avoiding, eq. 5 tunes u (u_0 = the velocity when this avoidance began); the result
+///    is limited to the maximum speed: u*. The new position is r + u*Δt.
+///
+/// The decision and the next state are returned; with `f32`, inputs so extreme that a result
+/// overflows give `Err(NonFinite)` naming the output (`Fx` saturates instead).
+pub fn step<S: Scalar, const N: usize, const P: usize>(
+    state: &BeeState<S>,
+    frame: &BeeFrame<S, N, P>,
+    params: &BeeParams<S>,
+) -> Result<(BeeDecision<S>, BeeState<S>)> {
+    params.validate()?;
+    state.validate()?;
+    frame.validate()?;
+
+    let o = forward_axis(state.pos, state.vel, state.forward, frame.goal);
+    let sight = frame
+        .obstacle
+        .and_then(|ob| sense(state.pos, o, &ob, params.d0));
+    let pitch = pitch_deg(frame.t);
+    let roll = match &sight {
+        Some(s) => avoidance_roll_deg(o, s.r_e, s.d, params.d0),
+        None => roll_deg(frame.t),
+    };
+
+    let rho = sph::density(state.pos, &frame.neighbours, &frame.targets, params);
+    let force = oscillation_force(params, o, state.vel.length(), pitch, roll) * params.kappa1
+        + curl::curl_force(state.pos, params.grid_edge, params.epsilon) * params.kappa2
+        + sph::repulsion(state.pos, rho, &frame.neighbours, &frame.targets, params) * params.kappa3;
+    let accel = div(force, params.mass);
+
+    let u = state.vel + accel * params.dt;
+    let (u, u0) = match &sight {
+        Some(s) => avoid(u, state, s, params.d0),
+        None => (u, Vec3::zero()),
+    };
+    let velocity = limit_speed(u, params.max_speed);
+
+    let decision = BeeDecision {
+        accel,
+        velocity,
+        roll: deg(roll),
+        pitch: deg(pitch),
+        avoiding: sight.is_some(),
+        density: rho,
+    };
+    let next = BeeState {
+        pos: state.pos + velocity * params.dt,
+        vel: velocity,
+        forward: o,
+        density: rho,
+        avoiding: decision.avoiding,
+        u0,
+        roll: decision.roll,
+        pitch: decision.pitch,
+    };
+    check_outputs(&decision, &next)?;
+    Ok((decision, next))
+}
+
+/// Eq. 5 with u_0 kept from the step where this avoidance began (or this step's u_p when it
+/// begins now). Returns (u*, u_0).
+fn avoid<S: Scalar>(u: Vec3<S>, state: &BeeState<S>, s: &Sighting<S>, d0: S) -> (Vec3<S>, Vec3<S>) {
+    let u0 = if state.avoiding { state.u0 } else { state.vel };
+    (tune_velocity(u, u0, s.normal, s.d, d0), u0)
+}
+
+/// `v / k` component-wise (one rounding per component in fixed point).
+fn div<S: Scalar>(v: Vec3<S>, k: S) -> Vec3<S> {
+    Vec3::new(v.x / k, v.y / k, v.z / k)
+}
+
+/// `u` scaled down to length `max` if longer.
+fn limit_speed<S: Scalar>(u: Vec3<S>, max: S) -> Vec3<S> {
+    let len = u.length();
+    if len > max {
+        Vec3::new(u.x / len * max, u.y / len * max, u.z / len * max)
+    } else {
+        u
+    }
+}
+
+/// Guards `f32` overflow (possible only with extreme inputs and parameters): every output
+/// finite. Range limits are not re-checked here; the next step validates the state it gets.
+fn check_outputs<S: Scalar>(d: &BeeDecision<S>, next: &BeeState<S>) -> Result<()> {
+    d.accel.check("decision.accel")?;
+    d.velocity.check("decision.velocity")?;
+    next.pos.check("decision.pos")?;
+    if d.density.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::non_finite("decision.density"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Fx;
+    use crate::bee::frame::{BeeNeighbor, ObstacleSense};
+    use proptest::prelude::*;
+
+    type Frame<S> = BeeFrame<S, 4, 4>;
+
+    fn v<S: Scalar>(x: f32, y: f32, z: f32) -> Vec3<S> {
+        Vec3::from_f32(x, y, z)
+    }
+
+    /// A frame with two neighbours, a target, a goal and (optionally) an obstacle.
+    fn scene<S: Scalar>(t: f32, obstacle: bool) -> Frame<S> {
+        let mut f = Frame::new(S::from_f32(t));
+        for (p, rho) in [((1.5, 0.2, 0.3), 0.05f32), ((-1.0, -0.5, 2.0), 0.02)] {
+            let nb = BeeNeighbor {
+                pos: v(p.0, p.1, p.2),
+                vel: v(0.5, 0.0, 0.0),
+                density: S::from_f32(rho),
+            };
+            f.neighbours.push(nb).unwrap();
+        }
+        f.targets.push(v(6.0, 0.0, 0.5)).unwrap();
+        f.goal = Some(v(8.0, 1.0, 0.0));
+        if obstacle {
+            f.obstacle = Some(ObstacleSense {
+                point: v(1.2, 0.0, -0.6),
+                normal: v(-1.0, 0.0, 0.0),
+            });
+        }
+        f
+    }
+
+    fn bee<S: Scalar>() -> BeeState<S> {
+        BeeState::new(v(0.0, 0.0, 0.0), v(1.0, 0.1, 0.0))
+    }
+
+    #[test]
+    fn a_plain_step_moves_and_reports() {
+        let p = BeeParams::<f32>::default();
+        let s = bee::<f32>();
+        let (d, next) = step(&s, &scene::<f32>(1.0, false), &p).unwrap();
+        assert!(!d.avoiding);
+        assert!(d.density > 0.0 && d.density == next.density);
+        assert!(d.velocity.length() <= p.max_speed * 1.0001);
+        assert_eq!(next.pos, s.pos + d.velocity * p.dt);
+        assert_eq!(next.forward, Vec3::new(1.0, 0.0, 0.0));
+        assert!((d.pitch - deg(pitch_deg(1.0f32))).abs() < 1e-6);
+        assert!((d.roll - deg(roll_deg(1.0f32))).abs() < 1e-6);
+        assert_eq!(next.u0, Vec3::zero());
+        // The velocity follows eq. 1 exactly when no limit or avoidance applies.
+        assert_eq!(d.velocity, s.vel + d.accel * p.dt);
+    }
+
+    #[test]
+    fn avoidance_starts_keeps_u0_and_uses_eq6_roll() {
+        let p = BeeParams::<f32>::default();
+        let s = bee::<f32>();
+        let f = scene::<f32>(0.5, true);
+        let (d, next) = step(&s, &f, &p).unwrap();
+        assert!(d.avoiding && next.avoiding);
+        assert_eq!(next.u0, s.vel);
+        // The obstacle is on the left (−z): roll right, positive, as eq. 6 gives.
+        let r_e = v::<f32>(1.2, 0.0, -0.6);
+        let want = deg(avoidance_roll_deg(
+            Vec3::new(1.0, 0.0, 0.0),
+            r_e,
+            r_e.length(),
+            2.0,
+        ));
+        assert!(d.roll > 0.0 && (d.roll - want).abs() < 1e-6);
+        // Next step: u_0 is kept, not replaced by the new velocity.
+        let (_, after) = step(&next, &f, &p).unwrap();
+        assert_eq!(after.u0, s.vel);
+        // The obstacle behind the bee: no avoidance, u_0 cleared.
+        let mut behind = f.clone();
+        behind.obstacle = Some(ObstacleSense {
+            point: v(-1.0, 0.0, 0.0),
+            normal: v(1.0, 0.0, 0.0),
+        });
+        let (d, n) = step(&next, &behind, &p).unwrap();
+        assert!(!d.avoiding && n.u0 == Vec3::zero());
+    }
+
+    #[test]
+    fn two_bees_step_symmetrically_apart() {
+        let mut p = BeeParams::<f32>::default();
+        (p.kappa1, p.kappa2) = (0.0, 0.0);
+        let (a, b) = (v::<f32>(0.0, 0.0, 0.0), v::<f32>(0.8, 0.0, 0.0));
+        let frame = |other: Vec3<f32>| {
+            let mut f = Frame::<f32>::new(0.0);
+            let rho = sph::poly6(sph::gap(0.8, p.radius), p.h);
+            f.neighbours
+                .push(BeeNeighbor {
+                    pos: other,
+                    vel: Vec3::zero(),
+                    density: rho,
+                })
+                .unwrap();
+            f
+        };
+        let (da, _) = step(&BeeState::new(a, Vec3::zero()), &frame(b), &p).unwrap();
+        let (db, _) = step(&BeeState::new(b, Vec3::zero()), &frame(a), &p).unwrap();
+        assert!((da.accel + db.accel).length() < 1e-6);
+        assert!(da.accel.x < 0.0 && db.accel.x > 0.0);
+    }
+
+    fn nan_cases() -> [(fn(&mut BeeState<f32>, &mut Frame<f32>), Error); 16] {
+        let nf = |field| Error::NonFinite { field, index: None };
+        let nfi = |field, i| Error::NonFinite {
+            field,
+            index: Some(i),
+        };
+        let oor = |field| Error::OutOfRange { field, index: None };
+        [
+            (|s, _| s.pos.x = f32::NAN, nf("state.pos")),
+            (|s, _| s.vel.z = f32::INFINITY, nf("state.vel")),
+            (|s, _| s.forward.y = f32::NAN, nf("state.forward")),
+            (|s, _| s.density = f32::NAN, nf("state.density")),
+            (|s, _| s.u0.x = f32::NEG_INFINITY, nf("state.u0")),
+            (|s, _| s.roll = f32::NAN, nf("state.roll")),
+            (|s, _| s.pitch = f32::NAN, nf("state.pitch")),
+            (|_, f| f.t = f32::NAN, nf("frame.t")),
+            (
+                |_, f| f.neighbours[1].pos.y = f32::NAN,
+                nfi("frame.neighbours.pos", 1),
+            ),
+            (
+                |_, f| f.neighbours[0].vel.x = f32::NAN,
+                nfi("frame.neighbours.vel", 0),
+            ),
+            (
+                |_, f| f.neighbours[1].density = f32::NAN,
+                nfi("frame.neighbours.density", 1),
+            ),
+            (|_, f| f.targets[0].z = f32::NAN, nfi("frame.targets", 0)),
+            (
+                |_, f| f.goal = Some(Vec3::new(f32::NAN, 0.0, 0.0)),
+                nf("frame.goal"),
+            ),
+            (
+                |_, f| f.obstacle.as_mut().unwrap().point.x = f32::NAN,
+                nf("frame.obstacle.point"),
+            ),
+            (
+                |_, f| f.obstacle.as_mut().unwrap().normal.y = f32::NAN,
+                nf("frame.obstacle.normal"),
+            ),
+            (|s, _| s.pos.x = 16_001.0, oor("state.pos")),
+        ]
+    }
+
+    #[test]
+    fn invalid_inputs_are_named_and_leave_the_state_alone() {
+        let p = BeeParams::<f32>::default();
+        for (break_it, err) in nan_cases() {
+            let (mut s, mut f) = (bee::<f32>(), scene::<f32>(0.0, true));
+            break_it(&mut s, &mut f);
+            let before = format!("{s:?}");
+            assert_eq!(step(&s, &f, &p), Err(err));
+            assert_eq!(format!("{s:?}"), before);
+        }
+        let oor = |field, index| Error::OutOfRange { field, index };
+        let mut f = scene::<f32>(0.0, true);
+        f.obstacle.as_mut().unwrap().normal = v(0.0, 0.0, 0.9);
+        assert_eq!(
+            step(&bee(), &f, &p),
+            Err(oor("frame.obstacle.normal", None))
+        );
+        let mut f = scene::<f32>(0.0, false);
+        f.neighbours[1].density = -0.1;
+        assert_eq!(
+            step(&bee(), &f, &p),
+            Err(oor("frame.neighbours.density", Some(1)))
+        );
+        let mut s = bee::<f32>();
+        s.density = -1.0;
+        assert_eq!(
+            step(&s, &scene(0.0, false), &p),
+            Err(oor("state.density", None))
+        );
+        assert_eq!(
+            step(&bee(), &scene(-1.0, false), &p),
+            Err(oor("frame.t", None))
+        );
+        let mut bad = p;
+        bad.dt = 0.0;
+        assert_eq!(
+            step(&bee(), &scene(0.0, false), &bad),
+            Err(Error::BadParam { field: "dt" })
+        );
+        // Fixed point: out-of-range positions, negative densities, non-unit normals.
+        let pf = BeeParams::<Fx>::default();
+        let mut s = bee::<Fx>();
+        s.pos.y = Fx::from_f32(-20_000.0);
+        assert_eq!(
+            step(&s, &scene::<Fx>(0.0, true), &pf),
+            Err(oor("state.pos", None))
+        );
+        let mut f = scene::<Fx>(0.0, true);
+        f.obstacle.as_mut().unwrap().normal = v(0.0, 2.0, 0.0);
+        assert_eq!(
+            step(&bee(), &f, &pf),
+            Err(oor("frame.obstacle.normal", None))
+        );
+        f.neighbours[0].density = Fx::from_f32(-0.5);
+        assert_eq!(
+            step(&bee(), &f, &pf),
+            Err(oor("frame.neighbours.density", Some(0)))
+        );
+    }
+
+    /// f32 and Fx agree on each of a handful of frames (Fx starting from the f32 state cast to
+    /// fixed point, with and without an obstacle). Tolerances: |Δa| ≤ 1e-2 (|a| ≈ 4-7; observed
+    /// ≤ 1.5e-3), |Δu*| ≤ 5e-4, roll and pitch within 5e-4 rad, density within 1e-4 (observed
+    /// ≤ 1e-4, 1e-4 rad, 2.5e-5). Fx repeats bit for bit.
+    #[test]
+    fn f32_and_fixed_point_agree_and_fixed_point_repeats_bit_for_bit() {
+        let (pf, px) = (BeeParams::<f32>::default(), BeeParams::<Fx>::default());
+        let mut sf = bee::<f32>();
+        for i in 0..8 {
+            let t = i as f32 * 0.05;
+            let (ff, fx) = (scene::<f32>(t, i >= 4), scene::<Fx>(t, i >= 4));
+            let sx = sf.cast::<Fx>();
+            let (df, nf) = step(&sf, &ff, &pf).unwrap();
+            let (dx, nx) = step(&sx, &fx, &px).unwrap();
+            assert_eq!(step(&sx, &fx, &px), Ok((dx, nx)), "Fx not repeatable");
+            let a = dx.accel.to_f32() - df.accel;
+            assert!(a.length() < 1e-2, "step {i}: {dx:?} vs {df:?}");
+            assert!(
+                (dx.velocity.to_f32() - df.velocity).length() < 5e-4,
+                "step {i}: {dx:?} vs {df:?}"
+            );
+            assert!(
+                (dx.roll.to_f32() - df.roll).abs() < 5e-4
+                    && (dx.pitch.to_f32() - df.pitch).abs() < 5e-4
+            );
+            assert!((dx.density.to_f32() - df.density).abs() < 1e-4);
+            assert_eq!(dx.avoiding, df.avoiding);
+            sf = nf;
+        }
+    }
+
+    const CAP: usize = 3;
+
+    const SPECIAL: [f32; 10] = [
+        0.0,
+        -0.0,
+        1.0,
+        f32::NAN,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        1e30,
+        -1e30,
+        16_000.0,
+        -16_000.0,
+    ];
+
+    /// Mostly ordinary numbers in `normal` (so that about 40 % of the cases pass validation
+    /// and run the whole model), else anything: NaN, ±inf, huge, subnormal, negative.
+    fn mostly(normal: core::ops::Range<f32>) -> impl Strategy<Value = f32> {
+        prop_oneof![
+            30 => normal,
+            1 => proptest::num::f32::ANY,
+            1 => prop::sample::select(SPECIAL.to_vec()),
+        ]
+    }
+
+    fn any_f32() -> impl Strategy<Value = f32> {
+        mostly(-20.0..20.0)
+    }
+
+    /// Times and densities: mostly non-negative.
+    fn any_nonneg() -> impl Strategy<Value = f32> {
+        mostly(0.0..2.0)
+    }
+
+    fn any_vec() -> impl Strategy<Value = [f32; 3]> {
+        [any_f32(), any_f32(), any_f32()]
+    }
+
+    fn to_vec<S: Scalar>(a: [f32; 3]) -> Vec3<S> {
+        Vec3::from_f32(a[0], a[1], a[2])
+    }
+
+    #[derive(Clone, Debug)]
+    struct Raw {
+        state: ([f32; 3], [f32; 3], [f32; 3], f32, bool, [f32; 3], f32, f32),
+        t: f32,
+        neighbours: Vec<([f32; 3], [f32; 3], f32)>,
+        targets: Vec<[f32; 3]>,
+        goal: Option<[f32; 3]>,
+        obstacle: Option<([f32; 3], [f32; 3])>,
+    }
+
+    fn raw() -> impl Strategy<Value = Raw> {
+        let state = (
+            any_vec(),
+            any_vec(),
+            any_vec(),
+            any_nonneg(),
+            any::<bool>(),
+            any_vec(),
+            any_f32(),
+            any_f32(),
+        );
+        (
+            state,
+            any_nonneg(),
+            prop::collection::vec((any_vec(), any_vec(), any_nonneg()), 0..=CAP),
+            prop::collection::vec(any_vec(), 0..=CAP),
+            prop::option::of(any_vec()),
+            prop::option::of((any_vec(), prop_oneof![1 => any_vec(), 4 => Just([0.0, 0.0, -1.0]), 4 => Just([0.6, 0.0, 0.8])])),
+        )
+            .prop_map(|(state, t, neighbours, targets, goal, obstacle)| Raw { state, t, neighbours, targets, goal, obstacle })
+    }
+
+    fn build<S: Scalar>(r: &Raw) -> (BeeState<S>, BeeFrame<S, CAP, CAP>) {
+        let c = S::from_f32;
+        let (pos, vel, fwd, rho, avoiding, u0, roll, pitch) = r.state;
+        let state = BeeState {
+            pos: to_vec(pos),
+            vel: to_vec(vel),
+            forward: to_vec(fwd),
+            density: c(rho),
+            avoiding,
+            u0: to_vec(u0),
+            roll: c(roll),
+            pitch: c(pitch),
+        };
+        let mut f = BeeFrame::new(c(r.t));
+        for &(p, v, d) in &r.neighbours {
+            f.neighbours
+                .push(BeeNeighbor {
+                    pos: to_vec(p),
+                    vel: to_vec(v),
+                    density: c(d),
+                })
+                .unwrap();
+        }
+        for &p in &r.targets {
+            f.targets.push(to_vec(p)).unwrap();
+        }
+        f.goal = r.goal.map(to_vec);
+        f.obstacle = r.obstacle.map(|(p, n)| ObstacleSense {
+            point: to_vec(p),
+            normal: to_vec(n),
+        });
+        (state, f)
+    }
+
+    fn total<S: Scalar>(r: &Raw) {
+        let (state, frame) = build::<S>(r);
+        let before = format!("{state:?}");
+        if let Ok((d, next)) = step(&state, &frame, &BeeParams::default()) {
+            assert!(d.velocity.length().to_f32() <= 4.0 * 1.001 + 1e-3);
+            assert!(d.density >= S::ZERO);
+            assert_eq!(next.vel, d.velocity);
+        }
+        assert_eq!(format!("{state:?}"), before);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(512))]
+        #[test]
+        fn any_input_gives_ok_or_err_never_a_panic(r in raw()) {
+            total::<f32>(&r);
+            total::<Fx>(&r);
+        }
+    }
+}

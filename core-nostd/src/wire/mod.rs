@@ -1,0 +1,84 @@
+//! The wire codec shared by firmware and host (feature `serde`).
+//!
+//! A frame on the line is
+//!
+//! ```text
+//! COBS( version:u8 ‖ kind:u8 ‖ seq:u16 LE ‖ postcard payload ‖ CRC-16 LE ) ‖ 0x00
+//! ```
+//!
+//! * the 4-byte [`Header`] says which protocol version, which message ([`Message::KIND`]) and
+//!   which request ([`Header::seq`]);
+//! * the payload is the message in [postcard](https://postcard.jamesmunns.com/) encoding;
+//! * [`CRC16`] (CRC-16/IBM-3740, a.k.a. CCITT-FALSE) covers header and payload;
+//! * COBS removes every `0x00`, so `0x00` only ever ends a frame, and a receiver that lost
+//!   track resynchronises at the next one.
+//!
+//! Overhead: 8 bytes for payloads up to 248 bytes (4 header + 2 CRC + 1 COBS + 1 delimiter),
+//! see [`max_frame_len`]. `docs/protocol.md` specifies every byte, with worked examples that
+//! the tests pin.
+//!
+//! Sending: [`encode_message`] (or [`encode_frame`] for any `Serialize` payload) writes a whole
+//! frame into a slice. Receiving: [`Accumulator`] eats bytes in chunks of any size and reports
+//! one [`Event`] per frame, good or dropped, with [`Stats`]; [`decode_frame`] checks a single
+//! frame that is already delimited. Nothing here allocates or panics on any input.
+//!
+//! ```
+//! use serde::{Deserialize, Serialize};
+//! use swarm_core::wire::{self, Accumulator, Event, Message};
+//!
+//! #[derive(Serialize, Deserialize, Debug, PartialEq)]
+//! struct Ping {
+//!     nonce: u32,
+//! }
+//! impl Message for Ping {
+//!     const KIND: u8 = 0x70;
+//! }
+//!
+//! let mut line = [0u8; 32];
+//! let n = wire::encode_message(1, &Ping { nonce: 42 }, &mut line).unwrap();
+//!
+//! let mut rx = Accumulator::<32>::new();
+//! let (event, _rest) = rx.feed(&line[..n]).unwrap();
+//! let Event::Frame(frame) = event else { panic!("dropped: {event:?}") };
+//! assert_eq!(frame.header.seq, 1);
+//! assert_eq!(frame.message::<Ping>(), Ok(Ping { nonce: 42 }));
+//! ```
+//!
+//! The session protocol on top of the frames (handshake, request/reply pipelining) comes in a
+//! later issue.
+
+mod accumulator;
+mod frame;
+mod header;
+
+pub use accumulator::{Accumulator, Event, Stats};
+pub use frame::{
+    CRC_LEN, CRC16, Frame, MIN_RAW_LEN, decode_frame, decode_payload, encode_frame, max_frame_len,
+};
+pub use header::{HEADER_LEN, Header, PROTOCOL_VERSION};
+
+use crate::Result;
+
+/// A message type of the protocol: a postcard-serializable value with its own kind byte.
+///
+/// Every message type has a distinct [`KIND`](Message::KIND); it travels in the frame header,
+/// so a receiver knows what the payload is before decoding it.
+pub trait Message: serde::Serialize + serde::de::DeserializeOwned {
+    /// The header kind byte of this message type.
+    const KIND: u8;
+}
+
+/// Encodes `msg` as a complete frame (kind `M::KIND`, sequence number `seq`) into `out` and
+/// returns the frame's length, trailing `0x00` included. See [`encode_frame`].
+pub fn encode_message<M: Message>(seq: u16, msg: &M, out: &mut [u8]) -> Result<usize> {
+    encode_frame(M::KIND, seq, msg, out)
+}
+
+/// Decodes one delimited frame (the bytes between two `0x00`, decoded in place) as message
+/// `M`, returning its header too. Errors as [`decode_frame`], then
+/// [`Error::UnexpectedKind`](crate::Error::UnexpectedKind) and
+/// [`Error::Payload`](crate::Error::Payload) as [`Frame::message`].
+pub fn decode_message<M: Message>(frame: &mut [u8]) -> Result<(Header, M)> {
+    let frame = decode_frame(frame)?;
+    Ok((frame.header, frame.message()?))
+}

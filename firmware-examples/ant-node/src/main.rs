@@ -1,0 +1,11 @@
+//! ant-node, f32 (libm): replays the ant scenario on a Cortex-M3 and checks every decision
+//! word against the host's (see `fw-scenario` and `build.rs`).
+#![no_std]
+#![no_main]
+
+include!(concat!(env!("OUT_DIR"), "/expected_f32.rs"));
+
+#[cortex_m_rt::entry]
+fn main() -> ! {
+    fw_support::check("ant-node [f32/libm, cortex-m3]", &EXPECTED, |c| fw_scenario::ant::run::<f32>(c))
+}

@@ -1,0 +1,13 @@
+//! bee-node, fixed point (`Fx`, I16F16): replays the bee scenario on a Cortex-M4F and checks
+//! every decision word against the host's (see `fw-scenario` and `build.rs`).
+#![no_std]
+#![no_main]
+
+include!(concat!(env!("OUT_DIR"), "/expected_fixed.rs"));
+
+#[cortex_m_rt::entry]
+fn main() -> ! {
+    fw_support::check("bee-node-fixed [I16F16, cortex-m4f]", &EXPECTED, |c| {
+        fw_scenario::bee::run::<swarm_core::Fx>(c)
+    })
+}

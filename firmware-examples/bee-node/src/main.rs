@@ -1,0 +1,11 @@
+//! bee-node, f32 (libm): replays the bee scenario on a Cortex-M4F and checks every decision
+//! word against the host's (see `fw-scenario` and `build.rs`).
+#![no_std]
+#![no_main]
+
+include!(concat!(env!("OUT_DIR"), "/expected_f32.rs"));
+
+#[cortex_m_rt::entry]
+fn main() -> ! {
+    fw_support::check("bee-node [f32/libm, cortex-m4f]", &EXPECTED, |c| fw_scenario::bee::run::<f32>(c))
+}

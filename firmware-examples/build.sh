@@ -1,0 +1,199 @@
+#!/usr/bin/env bash
+# Builds the firmware self-check images and reports their sizes.
+#
+#   firmware-examples/build.sh [--offline] [--enforce-budgets] [--only ant|bee]
+#
+# Images (ELF, under firmware-examples/target/<triple>/release/):
+#   ant-node        thumbv7m-none-eabi      QEMU lm3s6965evb (Cortex-M3)   f32 (libm)
+#   ant-node-fixed  thumbv7m-none-eabi      QEMU lm3s6965evb (Cortex-M3)   Fx (I16F16)
+#   bee-node        thumbv7em-none-eabihf   QEMU mps2-an386  (Cortex-M4F)  f32 (libm)
+#   bee-node-fixed  thumbv7em-none-eabihf   QEMU mps2-an386  (Cortex-M4F)  Fx (I16F16)
+#
+# Toolchain, per target: rustup's cargo if `rustup target list --installed` has the target;
+# otherwise Debian's rustc/cargo (packages rustc-web cargo-web rust-web-src lld) with
+# RUSTC_BOOTSTRAP=1 -Z build-std=core, linked by ld.lld when rust-lld is not in that sysroot.
+# FW_TOOLCHAIN=rustup|debian forces one route.
+#
+# Sizes go to firmware-examples/target/sizes.json (and a table on stdout):
+#   flash      = .vector_table + .text + .rodata + .data (the initial values of .data live in flash)
+#   ram_static = .data + .bss + .uninit (the stack is not included; qemu-run.sh reports its peak)
+# Budgets (see README.md): ant-node-fixed <= 16 KiB flash / 4 KiB RAM; bee-node* <= 32 KiB / 8 KiB.
+# Over budget is a warning, or an error with --enforce-budgets (or FW_ENFORCE_BUDGETS=1).
+set -euo pipefail
+
+HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+cd "$HERE"
+
+OFFLINE=()
+ENFORCE=${FW_ENFORCE_BUDGETS:-0}
+ONLY=""
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --offline) OFFLINE=(--offline) ;;
+        --enforce-budgets) ENFORCE=1 ;;
+        --only) ONLY=${2:?--only needs ant or bee}; shift ;;
+        -h|--help) sed -n '2,26p' "$0"; exit 0 ;;
+        *) echo "build.sh: unknown argument '$1' (try --help)" >&2; exit 2 ;;
+    esac
+    shift
+done
+
+# A cargo/rustc environment inherited from a calling cargo (e.g. the top-level test suite) must
+# not leak into this separate workspace.
+unset CARGO_TARGET_DIR CARGO_BUILD_TARGET CARGO_BUILD_TARGET_DIR RUSTFLAGS CARGO_ENCODED_RUSTFLAGS \
+      RUSTDOCFLAGS RUSTC_WRAPPER RUSTC_WORKSPACE_WRAPPER CARGO_MAKEFLAGS MAKEFLAGS MFLAGS \
+      CARGO_MANIFEST_DIR CARGO_PKG_NAME CARGO_PRIMARY_PACKAGE CARGO OUT_DIR TARGET HOST \
+      CARGO_BUILD_RUSTC CARGO_BUILD_RUSTC_WRAPPER 2>/dev/null || true
+
+TARGET_DIR="$HERE/target"
+DEBIAN_RUSTC=/usr/bin/rustc
+DEBIAN_CARGO=/usr/bin/cargo
+
+die() { echo "build.sh: error: $*" >&2; exit 1; }
+
+rustup_has_target() {
+    command -v rustup >/dev/null 2>&1 || return 1
+    (cd "$HERE" && env -u RUSTC rustup target list --installed 2>/dev/null) | grep -qx "$1"
+}
+
+debian_usable() {
+    [ -x "$DEBIAN_RUSTC" ] && [ -x "$DEBIAN_CARGO" ] || return 1
+    local sysroot
+    sysroot=$("$DEBIAN_RUSTC" --print sysroot 2>/dev/null) || return 1
+    [ -f "$sysroot/lib/rustlib/src/rust/library/core/Cargo.toml" ]
+}
+
+# Prints the linker to use with the Debian rustc (empty: its default rust-lld exists).
+debian_linker() {
+    local sysroot host
+    sysroot=$("$DEBIAN_RUSTC" --print sysroot)
+    host=$("$DEBIAN_RUSTC" -vV | sed -n 's/^host: //p')
+    if [ -x "$sysroot/lib/rustlib/$host/bin/rust-lld" ]; then
+        echo ""
+    elif command -v ld.lld >/dev/null 2>&1; then
+        command -v ld.lld
+    else
+        return 1
+    fi
+}
+
+# build <package> <triple>
+build() {
+    local pkg=$1 triple=$2 route=${FW_TOOLCHAIN:-auto}
+    local var
+    var=CARGO_TARGET_$(echo "$triple" | tr 'a-z-' 'A-Z_')_LINKER
+    if [ "$route" = auto ]; then
+        if rustup_has_target "$triple"; then route=rustup
+        elif debian_usable; then route=debian
+        else
+            die "no toolchain can build $triple: either 'rustup target add $triple' (rustup's
+       cargo is then used), or install Debian's rustc-web cargo-web rust-web-src lld
+       (apt-get install rustc-web cargo-web rust-web-src lld) for the -Z build-std=core route."
+        fi
+    fi
+    echo "==> $pkg for $triple (toolchain: $route)"
+    case "$route" in
+        rustup)
+            cargo build --release "${OFFLINE[@]}" --target-dir "$TARGET_DIR" -p "$pkg" --target "$triple" \
+                || die "cargo (rustup) failed to build $pkg for $triple"
+            ;;
+        debian)
+            debian_usable || die "Debian toolchain incomplete: need $DEBIAN_RUSTC, $DEBIAN_CARGO and
+       rust-src in its sysroot (apt-get install rustc-web cargo-web rust-web-src)"
+            local linker
+            linker=$(debian_linker) || die "no linker for $triple: rust-lld is not in the Debian
+       sysroot and ld.lld is not installed (apt-get install lld)"
+            # rustup's proxies in ~/.cargo/bin must not shadow the Debian binaries.
+            env -u RUSTUP_TOOLCHAIN PATH="/usr/bin:/bin:$PATH" RUSTC="$DEBIAN_RUSTC" RUSTC_BOOTSTRAP=1 \
+                ${linker:+"$var=$linker"} \
+                "$DEBIAN_CARGO" build --release "${OFFLINE[@]}" --target-dir "$TARGET_DIR" \
+                -p "$pkg" --target "$triple" \
+                -Z build-std=core -Z build-std-features=compiler-builtins-mem \
+                || die "cargo (Debian, -Z build-std=core) failed to build $pkg for $triple"
+            ;;
+        *) die "FW_TOOLCHAIN must be rustup, debian or auto (got '$route')" ;;
+    esac
+}
+
+IMAGES=()
+if [ -z "$ONLY" ] || [ "$ONLY" = ant ]; then
+    build ant-node thumbv7m-none-eabi
+    IMAGES+=("ant-node thumbv7m-none-eabi lm3s6965evb f32 - -"
+             "ant-node-fixed thumbv7m-none-eabi lm3s6965evb I16F16 16384 4096")
+fi
+if [ -z "$ONLY" ] || [ "$ONLY" = bee ]; then
+    build bee-node thumbv7em-none-eabihf
+    IMAGES+=("bee-node thumbv7em-none-eabihf mps2-an386 f32 32768 8192"
+             "bee-node-fixed thumbv7em-none-eabihf mps2-an386 I16F16 32768 8192")
+fi
+
+# --- sizes ------------------------------------------------------------------------------------
+# Prints "name size" per allocated section of an ELF.
+sections() {
+    local elf=$1 tool
+    for tool in llvm-size rust-size arm-none-eabi-size; do
+        if command -v "$tool" >/dev/null 2>&1; then
+            "$tool" -A "$elf" | awk 'NR > 2 && $1 ~ /^\./ { print $1, $2 }'
+            return
+        fi
+    done
+    local readelf
+    readelf=$(command -v llvm-readelf || command -v readelf || command -v arm-none-eabi-readelf) \
+        || die "no size tool: install llvm (llvm-size), binutils-arm-none-eabi or binutils (readelf)"
+    # readelf -SW: [Nr] Name Type Address Off Size ...  (sizes in hex)
+    "$readelf" -SW "$elf" | sed 's/^ *\[ *[0-9]*\] *//' | awk '$1 ~ /^\./ { printf "%s %d\n", $1, strtonum("0x" $5) }'
+}
+
+SIZES="$TARGET_DIR/sizes.json"
+OVER=0
+{
+    echo "{"
+    echo "  \"flash\": \".vector_table + .text + .rodata + .data\","
+    echo "  \"ram_static\": \".data + .bss + .uninit (stack excluded)\","
+    echo "  \"images\": ["
+} > "$SIZES.tmp"
+printf '\n%-16s %-22s %-12s %-7s %8s %8s %8s %8s %8s %10s %10s\n' image target board scalar \
+    vectors text rodata data bss FLASH RAM
+first=1
+for spec in "${IMAGES[@]}"; do
+    read -r name triple board scalar bflash bram <<<"$spec"
+    elf="$TARGET_DIR/$triple/release/$name"
+    [ -f "$elf" ] || die "expected image $elf was not built"
+    declare -A s=([.vector_table]=0 [.text]=0 [.rodata]=0 [.data]=0 [.bss]=0 [.uninit]=0)
+    while read -r sec size; do
+        [ -n "${s[$sec]+x}" ] && s[$sec]=$size
+    done < <(sections "$elf")
+    flash=$(( s[.vector_table] + s[.text] + s[.rodata] + s[.data] ))
+    ram=$(( s[.data] + s[.bss] + s[.uninit] ))
+    verdict=""
+    if [ "$bflash" != - ] && { [ "$flash" -gt "$bflash" ] || [ "$ram" -gt "$bram" ]; }; then
+        verdict="  OVER BUDGET (flash <= $bflash, RAM <= $bram)"; OVER=1
+    elif [ "$bflash" != - ]; then
+        verdict="  (budget $((bflash / 1024)) KiB / $((bram / 1024)) KiB: ok)"
+    fi
+    printf '%-16s %-22s %-12s %-7s %8d %8d %8d %8d %8d %10d %10d%s\n' "$name" "$triple" "$board" \
+        "$scalar" "${s[.vector_table]}" "${s[.text]}" "${s[.rodata]}" "${s[.data]}" "${s[.bss]}" \
+        "$flash" "$ram" "$verdict"
+    [ $first = 1 ] || echo "," >> "$SIZES.tmp"
+    first=0
+    jb() { [ "$1" = - ] && echo null || echo "$1"; }
+    printf '    {"name": "%s", "target": "%s", "board": "%s", "scalar": "%s", "elf": "%s", "vector_table": %d, "text": %d, "rodata": %d, "data": %d, "bss": %d, "uninit": %d, "flash": %d, "ram_static": %d, "budget_flash": %s, "budget_ram": %s}' \
+        "$name" "$triple" "$board" "$scalar" "firmware-examples/target/$triple/release/$name" \
+        "${s[.vector_table]}" "${s[.text]}" "${s[.rodata]}" "${s[.data]}" "${s[.bss]}" "${s[.uninit]}" \
+        "$flash" "$ram" "$(jb "$bflash")" "$(jb "$bram")" >> "$SIZES.tmp"
+    unset s
+done
+printf '\n  ]\n}\n' >> "$SIZES.tmp"
+mv "$SIZES.tmp" "$SIZES"
+
+echo
+echo "Images:"
+for spec in "${IMAGES[@]}"; do
+    read -r name triple _ <<<"$spec"
+    echo "  $TARGET_DIR/$triple/release/$name"
+done
+echo "Sizes: $SIZES"
+if [ "$OVER" = 1 ]; then
+    if [ "$ENFORCE" = 1 ]; then die "an image is over its size budget (see the table above)"; fi
+    echo "build.sh: warning: an image is over its size budget (see the table above)" >&2
+fi
