@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the firmware self-check images and reports their sizes.
 #
-#   firmware-examples/build.sh [--offline] [--enforce-budgets] [--only ant|bee]
+#   firmware-examples/build.sh [--fetch] [--offline] [--enforce-budgets] [--only ant|bee]
 #
 # Images (ELF, under firmware-examples/target/<triple>/release/):
 #   ant-node        thumbv7m-none-eabi      QEMU lm3s6965evb (Cortex-M3)   f32 (libm)
@@ -14,6 +14,10 @@
 # RUSTC_BOOTSTRAP=1 -Z build-std=core, linked by ld.lld when rust-lld is not in that sysroot.
 # FW_TOOLCHAIN=rustup|debian forces one route.
 #
+# The first build needs crates.io (our crates, and for the Debian route the crates of the std
+# library workspace that -Z build-std resolves). `build.sh --fetch` downloads all of them and
+# exits; after that `build.sh --offline` (or plain build.sh) needs no network.
+#
 # Sizes go to firmware-examples/target/sizes.json (and a table on stdout):
 #   flash      = .vector_table + .text + .rodata + .data (the initial values of .data live in flash)
 #   ram_static = .data + .bss + .uninit (the stack is not included; qemu-run.sh reports its peak)
@@ -25,14 +29,16 @@ HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 cd "$HERE"
 
 OFFLINE=()
+FETCH=0
 ENFORCE=${FW_ENFORCE_BUDGETS:-0}
 ONLY=""
 while [ $# -gt 0 ]; do
     case "$1" in
         --offline) OFFLINE=(--offline) ;;
+        --fetch) FETCH=1 ;;
         --enforce-budgets) ENFORCE=1 ;;
         --only) ONLY=${2:?--only needs ant or bee}; shift ;;
-        -h|--help) sed -n '2,26p' "$0"; exit 0 ;;
+        -h|--help) sed -n '2,30p' "$0"; exit 0 ;;
         *) echo "build.sh: unknown argument '$1' (try --help)" >&2; exit 2 ;;
     esac
     shift
@@ -114,6 +120,21 @@ build() {
         *) die "FW_TOOLCHAIN must be rustup, debian or auto (got '$route')" ;;
     esac
 }
+
+if [ "$FETCH" = 1 ]; then
+    echo "==> fetching crates (workspace deps; std-library deps for -Z build-std)"
+    cargo_route=${FW_TOOLCHAIN:-auto}
+    if [ "$cargo_route" != debian ] && command -v rustup >/dev/null 2>&1; then
+        cargo fetch || die "cargo fetch failed"
+    fi
+    if [ "$cargo_route" != rustup ] && debian_usable; then
+        env -u RUSTUP_TOOLCHAIN PATH="/usr/bin:/bin:$PATH" RUSTC="$DEBIAN_RUSTC" RUSTC_BOOTSTRAP=1 \
+            "$DEBIAN_CARGO" fetch --target thumbv7m-none-eabi --target thumbv7em-none-eabihf \
+            -Z build-std=core || die "cargo fetch (Debian, -Z build-std=core) failed"
+    fi
+    echo "fetched: later builds work offline (build.sh --offline)"
+    exit 0
+fi
 
 IMAGES=()
 if [ -z "$ONLY" ] || [ "$ONLY" = ant ]; then

@@ -28,7 +28,7 @@ fn run<S: Scalar>(ants: usize, steps: u32) {
     );
     for _ in 0..steps {
         w.step();
-        if w.step % (steps / 10).max(1) == 0 {
+        if w.step.is_multiple_of((steps / 10).max(1)) {
             let [nothing, food, nest] = w.label_counts();
             println!(
                 "{:>6} {:>8} {:>6} {:>6} {:>10}",

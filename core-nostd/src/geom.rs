@@ -80,14 +80,15 @@ impl<S: Scalar> Vec2<S> {
     /// The unit vector along `self`, or `None` for a zero vector.
     #[inline]
     pub fn normalized(self) -> Option<Self> {
-        let l = self.length();
-        // Divide each component (not multiply by 1/l): for fixed point 1/l saturates when l is
-        // a few ulps, which would leave a non-unit result.
-        if l > S::ZERO {
-            Some(Vec2::new(self.x / l, self.y / l))
-        } else {
-            None
+        // Scale by the largest component first: exact for fixed-point vectors of a few ulps,
+        // whose length alone would be too coarse to divide by.
+        let m = self.x.abs().max(self.y.abs());
+        if m == S::ZERO {
+            return None;
         }
+        let s = Vec2::new(self.x / m, self.y / m);
+        let l = s.dot(s).sqrt();
+        Some(Vec2::new(s.x / l, s.y / l))
     }
     /// Rotated counter-clockwise by 90°.
     #[inline]
@@ -179,14 +180,14 @@ impl<S: Scalar> Vec3<S> {
     /// The unit vector along `self`, or `None` for a zero vector.
     #[inline]
     pub fn normalized(self) -> Option<Self> {
-        let l = self.length();
-        // Divide each component (not multiply by 1/l): for fixed point 1/l saturates when l is
-        // a few ulps, which would leave a non-unit result.
-        if l > S::ZERO {
-            Some(Vec3::new(self.x / l, self.y / l, self.z / l))
-        } else {
-            None
+        // Scale by the largest component first (see `Vec2::normalized`).
+        let m = self.x.abs().max(self.y.abs()).max(self.z.abs());
+        if m == S::ZERO {
+            return None;
         }
+        let s = Vec3::new(self.x / m, self.y / m, self.z / m);
+        let l = s.dot(s).sqrt();
+        Some(Vec3::new(s.x / l, s.y / l, s.z / l))
     }
     /// `Err(NonFinite(field))` if a component is NaN or infinite.
     #[inline]

@@ -51,6 +51,9 @@ fn stop() -> impl Strategy<Value = Option<StopTimer>> {
     )
 }
 
+/// A neighbour: id, position, label, nest, origin, latest arrival.
+type RawNeighbour = (u32, [f32; 2], Label, u16, u16, [f32; 2]);
+
 #[derive(Debug, Clone)]
 struct Input {
     pos: [f32; 2],
@@ -62,7 +65,7 @@ struct Input {
     motion: MotionState,
     stop: Option<StopTimer>,
     bounds: [f32; 4],
-    neighbours: Vec<(u32, [f32; 2], Label, u16, u16, [f32; 2])>,
+    neighbours: Vec<RawNeighbour>,
     objects: Vec<(u8, [f32; 2], f32, u16)>,
     predictions: Vec<[f32; 2]>,
     ctx: (u32, u32, u32),

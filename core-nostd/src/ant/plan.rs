@@ -65,11 +65,11 @@ pub fn plan<S: Scalar, const N: usize, const O: usize>(
     s.motion = MotionState::BasicMovement;
 
     // (3) Interactions with neighbours (Table 1) ...
-    if let Some(target) = informer(&s, &frame.neighbours, params) {
-        if let Some(h) = (target - s.pos).normalized() {
-            s.heading = h;
-            s.motion = MotionState::InteractNeighbors;
-        }
+    if let Some(h) =
+        informer(&s, &frame.neighbours, params).and_then(|target| (target - s.pos).normalized())
+    {
+        s.heading = h;
+        s.motion = MotionState::InteractNeighbors;
     }
     // ... and with the environment, which the ant prefers (§4, Fig. 4a).
     match environment(&s, &frame.objects, params, ctx) {

@@ -138,6 +138,29 @@ impl<S: Scalar, const N: usize, const P: usize> BeeFrame<S, N, P> {
         }
     }
 
+    /// The same frame in another scalar type (through `f32`).
+    pub fn cast<T: Scalar>(&self) -> BeeFrame<T, N, P> {
+        let mut f = BeeFrame::new(T::from_f32(self.t.to_f32()));
+        // Same capacities: no push can fail (and none could panic).
+        for n in &self.neighbours {
+            let density = T::from_f32(n.density.to_f32());
+            let _ = f.neighbours.push(BeeNeighbor {
+                pos: n.pos.cast(),
+                vel: n.vel.cast(),
+                density,
+            });
+        }
+        for p in &self.targets {
+            let _ = f.targets.push(p.cast());
+        }
+        f.goal = self.goal.map(Vec3::cast);
+        f.obstacle = self.obstacle.map(|o| ObstacleSense {
+            point: o.point.cast(),
+            normal: o.normal.cast(),
+        });
+        f
+    }
+
     /// Checks every field: finite numbers within ±[`LIMIT`], t ≥ 0, densities ≥ 0, a unit
     /// normal (±1 %). List errors carry the entry's index.
     pub fn validate(&self) -> Result<()> {
@@ -169,7 +192,7 @@ impl<S: Scalar, const N: usize, const P: usize> BeeFrame<S, N, P> {
 }
 
 /// `Err` unless `v` is finite and `|v| ≤ LIMIT`.
-pub(crate) fn check_num<S: Scalar>(v: S, field: &'static str) -> Result<()> {
+fn check_num<S: Scalar>(v: S, field: &'static str) -> Result<()> {
     if !v.is_finite() {
         Err(Error::non_finite(field))
     } else if v.abs() > S::from_f32(LIMIT) {
@@ -180,7 +203,7 @@ pub(crate) fn check_num<S: Scalar>(v: S, field: &'static str) -> Result<()> {
 }
 
 /// [`check_num`] on every component.
-pub(crate) fn check_vec<S: Scalar>(v: Vec3<S>, field: &'static str) -> Result<()> {
+fn check_vec<S: Scalar>(v: Vec3<S>, field: &'static str) -> Result<()> {
     v.check(field)?;
     [v.x, v.y, v.z]
         .into_iter()

@@ -17,7 +17,7 @@
 //! World axes: y is up. Angles in states and decisions are radians; eq. 3, 4 and 6 are
 //! evaluated in degrees as printed. Deviations from the printed paper (each documented where
 //! it applies): u_t of eq. 5 is the tangential part of u_0 ([`vision::tune_velocity`]); eq. 11
-//! uses the symmetric (p_i + p_j) pressure of its reference [61] ([`sph::repulsion`]); eq. 8
+//! uses the symmetric (p_i + p_j) pressure of its reference \[61\] ([`sph::repulsion`]); eq. 8
 //! is read as noise on a lattice of edge L ([`curl::potential`]).
 //!
 //! ## Example

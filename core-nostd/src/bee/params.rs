@@ -191,7 +191,8 @@ mod tests {
     #[test]
     fn validate_names_the_bad_parameter() {
         let ok = BeeParams::<f32>::default();
-        let cases: [(fn(&mut BeeParams<f32>), &str); 6] = [
+        type Breaker = fn(&mut BeeParams<f32>);
+        let cases: [(Breaker, &str); 6] = [
             (|p| p.h = 0.0, "h"),
             (|p| p.grid_edge = f32::NAN, "grid_edge"),
             (|p| p.mass = -1.0, "mass"),
@@ -204,8 +205,10 @@ mod tests {
             break_it(&mut p);
             assert_eq!(p.validate(), Err(Error::BadParam { field }));
         }
-        let mut p = BeeParams::<Fx>::default();
-        p.stiffness = Fx::MAX;
+        let p = BeeParams {
+            stiffness: Fx::MAX,
+            ..BeeParams::<Fx>::default()
+        };
         assert_eq!(p.validate(), Err(Error::BadParam { field: "stiffness" }));
     }
 }

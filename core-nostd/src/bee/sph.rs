@@ -14,7 +14,7 @@ pub fn gap<S: Scalar>(dist: S, radius: S) -> S {
     (dist - radius - radius).max(S::ZERO)
 }
 
-/// Müller's poly6 kernel (eq. 10, [61]): W(s, h) = 315/(64π h³)·(1 − q²)³ for q = s/h < 1,
+/// Müller's poly6 kernel (eq. 10, \[61\]): W(s, h) = 315/(64π h³)·(1 − q²)³ for q = s/h < 1,
 /// else 0 (s ≥ 0).
 pub fn poly6<S: Scalar>(s: S, h: S) -> S {
     let q = s / h;
@@ -26,7 +26,7 @@ pub fn poly6<S: Scalar>(s: S, h: S) -> S {
     c * w * w * w
 }
 
-/// Magnitude of Desbrun's spiky-kernel gradient (eq. 11, [61]):
+/// Magnitude of Desbrun's spiky-kernel gradient (eq. 11, \[61\]):
 /// |∇W_spiky(s, h)| = 45/(π h⁴)·(1 − q)² for q = s/h < 1, else 0 (s ≥ 0).
 pub fn spiky_grad<S: Scalar>(s: S, h: S) -> S {
     let q = s / h;
@@ -65,7 +65,7 @@ pub fn density<S: Scalar>(
 ///
 /// The printed eq. 11, Σ_j (p_i − p_j)/(2ρ_j) ∇W_spiky, vanishes between two bees of equal
 /// pressure (e.g. any isolated pair) and so cannot give the repulsion §V-B describes. We use
-/// the symmetric pressure force of Müller et al. 2003 (the paper's [61], which §V-B says it
+/// the symmetric pressure force of Müller et al. 2003 (the paper's \[61\], which §V-B says it
 /// extends):
 ///
 /// F_i = Σ_j m_j·(p_i + p_j)/(2ρ_j)·|∇W_spiky(s_ij, h)|·r̂_ji,

@@ -4,7 +4,7 @@
 use super::frame::ObstacleSense;
 use crate::{Scalar, Vec3};
 
-/// cos 45°: the half-angle of the bee's 90° field of view (§IV-B, [54]).
+/// cos 45°: the half-angle of the bee's 90° field of view (§IV-B, \[54\]).
 const COS_HALF_FOV: f32 = core::f32::consts::FRAC_1_SQRT_2;
 
 wire_type! {
@@ -65,7 +65,7 @@ pub fn ramp<S: Scalar>(x: S) -> S {
 /// (γ = 0, u = u_0) u* = n(n·u_0): the bee would fly straight along the normal, into or away
 /// from the obstacle, contradicting the bypass condition u·n = 0 the same paragraph states and
 /// the "slipping" it aims for. We use the tangential part u_t = u_0 − n(n·u_0) (the
-/// curl-noise boundary treatment of Bridson [16]): at d = 0 with u = u_0, u* = u_t and u*·n = 0.
+/// curl-noise boundary treatment of Bridson \[16\]): at d = 0 with u = u_0, u* = u_t and u*·n = 0.
 pub fn tune_velocity<S: Scalar>(u: Vec3<S>, u0: Vec3<S>, normal: Vec3<S>, d: S, d0: S) -> Vec3<S> {
     let gamma = ramp(d / d0).abs();
     let u_t = u0 - normal * normal.dot(u0);

@@ -387,7 +387,7 @@ mod tests {
                 let d = (got - want).abs();
                 let d = d.min((d - 2.0 * core::f64::consts::PI).abs());
                 assert!(
-                    d < 6e-4 / r.min(1.0).max(0.05),
+                    d < 6e-4 / r.clamp(0.05, 1.0),
                     "atan2({y},{x}) = {got}, want {want}"
                 );
             }

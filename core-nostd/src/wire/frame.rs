@@ -244,12 +244,12 @@ mod tests {
 
     #[test]
     fn vector_1_ping() {
-        // kind 0x01, seq 0, Ping { nonce: 0x12345678 }
-        // raw  = 01 01 00 00 | f8 ac d1 91 01 | crc 0x45e2 -> e2 45
-        let wire = enc(0x01, 0, &Ping { nonce: 0x1234_5678 });
-        assert_eq!(wire, hex("03 01 01 01 08 f8 ac d1 91 01 e2 45 00"));
+        // kind 0x81, seq 0, Ping { nonce: 0x12345678 }
+        // raw  = 01 81 00 00 | f8 ac d1 91 01 | crc 0xb863 -> 63 b8
+        let wire = enc(0x81, 0, &Ping { nonce: 0x1234_5678 });
+        assert_eq!(wire, hex("03 01 81 01 08 f8 ac d1 91 01 63 b8 00"));
         let (h, p) = dec(&wire).unwrap();
-        assert_eq!(h, Header::new(1, 0));
+        assert_eq!(h, Header::new(0x81, 0));
         assert_eq!(
             decode_payload::<Ping>(&p).unwrap(),
             Ping { nonce: 0x1234_5678 }
@@ -258,11 +258,11 @@ mod tests {
 
     #[test]
     fn vector_2_tuple() {
-        // kind 0x02, seq 0x1234, (7u8, -2i32, true): postcard 07 03 01
-        let wire = enc(0x02, 0x1234, &(7u8, -2i32, true));
-        assert_eq!(wire, hex("0a 01 02 34 12 07 03 01 2a 71 00"));
+        // kind 0x82, seq 0x1234, (7u8, -2i32, true): postcard 07 03 01
+        let wire = enc(0x82, 0x1234, &(7u8, -2i32, true));
+        assert_eq!(wire, hex("0a 01 82 34 12 07 03 01 0a a5 00"));
         let (h, p) = dec(&wire).unwrap();
-        assert_eq!((h.kind, h.seq), (2, 0x1234));
+        assert_eq!((h.kind, h.seq), (0x82, 0x1234));
         assert_eq!(
             decode_payload::<(u8, i32, bool)>(&p).unwrap(),
             (7, -2, true)
@@ -271,26 +271,26 @@ mod tests {
 
     #[test]
     fn vector_3_empty_payload() {
-        // kind 0x7f, seq 0xffff, () : the shortest frame, 8 bytes
-        let wire = enc(0x7f, 0xffff, &());
-        assert_eq!(wire, hex("07 01 7f ff ff 42 1b 00"));
+        // kind 0x83, seq 0xffff, () : the shortest frame, 8 bytes
+        let wire = enc(0x83, 0xffff, &());
+        assert_eq!(wire, hex("07 01 83 ff ff 71 8d 00"));
         assert_eq!(wire.len(), 8);
         decode_payload::<()>(&dec(&wire).unwrap().1).unwrap();
     }
 
     #[test]
     fn vector_4_f32_option_vec_fx() {
-        // kind 0x03, seq 1, (1.5f32, Some(300u16), heapless::Vec<i16, 4> [-1, 2], Fx 1.5,
+        // kind 0x84, seq 1, (1.5f32, Some(300u16), heapless::Vec<i16, 4> [-1, 2], Fx 1.5,
         // None::<u8>)
         use crate::Fx;
         let mut v: heapless::Vec<i16, 4> = heapless::Vec::new();
         v.extend_from_slice(&[-1, 2]).unwrap();
         let msg = (1.5f32, Some(300u16), v, Fx::from_bits(0x18000), None::<u8>);
-        let wire = enc(0x03, 1, &msg);
+        let wire = enc(0x84, 1, &msg);
         // payload: 00 00 c0 3f | 01 ac 02 | 02 01 04 | 80 80 0c | 00
         assert_eq!(
             wire,
-            hex("04 01 03 01 01 01 0c c0 3f 01 ac 02 02 01 04 80 80 0c 03 fa 6d 00")
+            hex("04 01 84 01 01 01 0c c0 3f 01 ac 02 02 01 04 80 80 0c 03 5c ef 00")
         );
         let (_, p) = dec(&wire).unwrap();
         assert_eq!(
@@ -302,22 +302,22 @@ mod tests {
 
     #[test]
     fn vector_5_long_run() {
-        // kind 0x10, seq 0x0101, heapless::Vec<u8, 250> of 250 x 0x11 (length prefix: varint
+        // kind 0x85, seq 0x0101, heapless::Vec<u8, 250> of 250 x 0x11 (length prefix: varint
         // fa 01). No zero anywhere in the raw frame: COBS needs a second code byte after the
         // first 254 bytes.
         let mut v: heapless::Vec<u8, 250> = heapless::Vec::new();
         v.extend_from_slice(&[0x11; 250]).unwrap();
-        let wire = enc(0x10, 0x0101, &v);
-        let mut expect = hex("ff 01 10 01 01 fa 01");
+        let wire = enc(0x85, 0x0101, &v);
+        let mut expect = hex("ff 01 85 01 01 fa 01");
         expect.extend_from_slice(&[0x11; 248]);
         expect.extend_from_slice(&hex("05 11 11"));
         let crc = CRC16.checksum(&{
-            let mut raw = hex("01 10 01 01 fa 01");
+            let mut raw = hex("01 85 01 01 fa 01");
             raw.extend_from_slice(&[0x11; 250]);
             raw
         });
-        assert_eq!(crc, 0x7a77);
-        expect.extend_from_slice(&hex("77 7a 00"));
+        assert_eq!(crc, 0x51b2);
+        expect.extend_from_slice(&hex("b2 51 00"));
         assert_eq!(wire, expect);
         assert_eq!(wire.len(), 252 + 4 + 2 + 2 + 1);
         let (_, p) = dec(&wire).unwrap();
@@ -369,13 +369,14 @@ mod tests {
 
     #[test]
     fn bad_crc() {
-        let mut wire = enc(1, 0, &Ping { nonce: 0x1234_5678 });
-        wire[6] ^= 0x01; // a payload byte (ac -> ad)
+        // Vector 1 with payload byte ac -> ad.
+        let mut wire = enc(0x81, 0, &Ping { nonce: 0x1234_5678 });
+        wire[6] ^= 0x01;
         assert_eq!(
             dec(&wire),
             Err(Error::Crc {
-                got: 0x45e2,
-                expected: CRC16.checksum(&hex("01 01 00 00 f8 ad d1 91 01"))
+                got: 0xb863,
+                expected: 0xced7
             })
         );
     }
@@ -394,22 +395,22 @@ mod tests {
     }
 
     impl crate::wire::Message for Ping {
-        const KIND: u8 = 0x01;
+        const KIND: u8 = 0x81;
     }
 
     #[test]
     fn unknown_or_unexpected_kind() {
-        let wire = enc(0x02, 5, &Ping { nonce: 3 });
+        let wire = enc(0x82, 5, &Ping { nonce: 3 });
         let mut body = wire[..wire.len() - 1].to_vec();
         let frame = decode_frame(&mut body).unwrap();
         assert_eq!(
             frame.message::<Ping>(),
             Err(Error::UnexpectedKind {
-                got: 2,
-                expected: 1
+                got: 0x82,
+                expected: 0x81
             })
         );
-        let wire = enc(0x01, 5, &Ping { nonce: 3 });
+        let wire = enc(0x81, 5, &Ping { nonce: 3 });
         let mut body = wire[..wire.len() - 1].to_vec();
         assert_eq!(
             decode_frame(&mut body).unwrap().message::<Ping>(),
@@ -465,9 +466,9 @@ mod tests {
     #[test]
     fn every_single_byte_corruption_is_detected_exhaustive() {
         let frames = [
-            enc(0x01, 0, &Ping { nonce: 0x1234_5678 }),
-            enc(0x02, 0x1234, &(7u8, -2i32, true)),
-            enc(0x7f, 0xffff, &()),
+            enc(0x81, 0, &Ping { nonce: 0x1234_5678 }),
+            enc(0x82, 0x1234, &(7u8, -2i32, true)),
+            enc(0x83, 0xffff, &()),
             enc(0x10, 0x0101, &Raw(&[0x11u8; 40])),
             enc(0x10, 0x0000, &(0u32, 0u64, [0u8; 20], 1u8)),
         ];

@@ -50,12 +50,18 @@
 mod accumulator;
 mod frame;
 mod header;
+mod message;
 
 pub use accumulator::{Accumulator, Event, Stats};
 pub use frame::{
     CRC_LEN, CRC16, Frame, MIN_RAW_LEN, decode_frame, decode_payload, encode_frame, max_frame_len,
 };
 pub use header::{HEADER_LEN, Header, PROTOCOL_VERSION};
+pub use message::{
+    AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, BeeStepReply, BeeStepRequest,
+    ErrorReply, MAX_FRAME, MAX_PAYLOAD, WIRE_ANT_NEIGHBOURS, WIRE_ANT_OBJECTS, WIRE_BEE_NEIGHBOURS,
+    WIRE_BEE_TARGETS, WireBeeFrame, WirePlanFrame, WireResolveFrame, kind,
+};
 
 use crate::Result;
 

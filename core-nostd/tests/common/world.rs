@@ -46,7 +46,7 @@ impl<S: Scalar> World<S> {
         let nest = (v(20.0, 50.0), S::from_f32(3.0));
         let ants = (0..n as u32)
             .map(|i| {
-                let a = rand(seed, i, u32::MAX, 0) as f32 / u32::MAX as f32 * 6.283_185;
+                let a = rand(seed, i, u32::MAX, 0) as f32 / u32::MAX as f32 * std::f32::consts::TAU;
                 AntState::at_nest(0, nest.0, v(a.cos(), a.sin()))
             })
             .collect();

@@ -1,0 +1,727 @@
+//! The controller messages: one request and one reply per controller call, for both scalars.
+//!
+//! The host sends a request, the device runs the controller on it ([`AntPlanRequest::run`]
+//! and friends) and answers with the reply of the same sequence number, or with an
+//! [`ErrorReply`] when the controller refused the input. Every message is generic over the
+//! scalar `S` (`f32` or [`Fx`](crate::Fx)); both ends must agree on it (the session handshake
+//! of a later issue checks that), since the kind byte does not say which.
+//!
+//! Sensor-frame capacities on the wire are fixed ([`WIRE_ANT_NEIGHBOURS`] and friends), so
+//! every message has a bounded size: [`MAX_PAYLOAD`] bytes at most, [`MAX_FRAME`] on the line.
+
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+
+use super::Message;
+use super::frame::max_frame_len;
+use crate::ant::{self, AntParams, AntPlan, AntState, PlanFrame, ResolveFrame};
+use crate::bee::{self, BeeDecision, BeeFrame, BeeParams, BeeState};
+use crate::{Error, Result, Scalar, StepCtx};
+
+/// Neighbours in an ant sensor frame on the wire (plan and resolve phases).
+pub const WIRE_ANT_NEIGHBOURS: usize = 8;
+/// Environment objects in an ant plan frame on the wire.
+pub const WIRE_ANT_OBJECTS: usize = 4;
+/// Neighbours in a bee sensor frame on the wire.
+pub const WIRE_BEE_NEIGHBOURS: usize = 16;
+/// Target particles in a bee sensor frame on the wire.
+pub const WIRE_BEE_TARGETS: usize = 16;
+
+/// The largest payload of any message of this module, for either scalar
+/// ([`BeeStepRequest<Fx>`](BeeStepRequest) with full lists; pinned by a test).
+pub const MAX_PAYLOAD: usize = 930;
+/// The longest frame of any message of this module, delimiter included: the size of a send
+/// buffer that always suffices, and an [`Accumulator`](super::Accumulator) capacity that
+/// always receives.
+pub const MAX_FRAME: usize = max_frame_len(MAX_PAYLOAD);
+
+/// The ant plan-phase sensor frame with the wire capacities.
+pub type WirePlanFrame<S> = PlanFrame<S, WIRE_ANT_NEIGHBOURS, WIRE_ANT_OBJECTS>;
+/// The ant resolve-phase sensor frame with the wire capacity.
+pub type WireResolveFrame<S> = ResolveFrame<S, WIRE_ANT_NEIGHBOURS>;
+/// The bee sensor frame with the wire capacities.
+pub type WireBeeFrame<S> = BeeFrame<S, WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS>;
+
+/// The message kinds (header byte 1).
+///
+/// | range       | use                                                      |
+/// |-------------|----------------------------------------------------------|
+/// | `0x00`      | never used                                               |
+/// | `0x01-0x0E` | reserved for the session protocol (handshake, later)     |
+/// | `0x0F`      | [`ErrorReply`]                                           |
+/// | `0x10-0x1F` | ant controller; a reply is its request's kind + 1        |
+/// | `0x20-0x2F` | bee controller; a reply is its request's kind + 1        |
+/// | `0x30-0x7F` | reserved                                                 |
+/// | `0x80-0xFF` | free for applications and tests; this crate sends none   |
+pub mod kind {
+    /// [`ErrorReply`](super::ErrorReply).
+    pub const ERROR_REPLY: u8 = 0x0F;
+    /// [`AntPlanRequest`](super::AntPlanRequest).
+    pub const ANT_PLAN_REQUEST: u8 = 0x10;
+    /// [`AntPlanReply`](super::AntPlanReply).
+    pub const ANT_PLAN_REPLY: u8 = 0x11;
+    /// [`AntResolveRequest`](super::AntResolveRequest).
+    pub const ANT_RESOLVE_REQUEST: u8 = 0x12;
+    /// [`AntResolveReply`](super::AntResolveReply).
+    pub const ANT_RESOLVE_REPLY: u8 = 0x13;
+    /// [`BeeStepRequest`](super::BeeStepRequest).
+    pub const BEE_STEP_REQUEST: u8 = 0x20;
+    /// [`BeeStepReply`](super::BeeStepReply).
+    pub const BEE_STEP_REPLY: u8 = 0x21;
+
+    /// The message's name, for logs and reports; `None` for a kind this build does not know.
+    pub const fn name(kind: u8) -> Option<&'static str> {
+        Some(match kind {
+            ERROR_REPLY => "ErrorReply",
+            ANT_PLAN_REQUEST => "AntPlanRequest",
+            ANT_PLAN_REPLY => "AntPlanReply",
+            ANT_RESOLVE_REQUEST => "AntResolveRequest",
+            ANT_RESOLVE_REPLY => "AntResolveReply",
+            BEE_STEP_REQUEST => "BeeStepRequest",
+            BEE_STEP_REPLY => "BeeStepReply",
+            _ => return None,
+        })
+    }
+}
+
+/// Request: run [`ant::plan`] (phase 1 of the ant tick).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct AntPlanRequest<S> {
+    /// The ant's state at the start of the tick.
+    pub state: AntState<S>,
+    /// What it senses.
+    pub frame: WirePlanFrame<S>,
+    /// Seed, agent id and step: the inputs of its random numbers.
+    pub ctx: StepCtx,
+}
+
+/// Reply to [`AntPlanRequest`]: the plan (the predicted position is what the ant broadcasts).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct AntPlanReply<S> {
+    /// The outcome of [`ant::plan`].
+    pub plan: AntPlan<S>,
+}
+
+/// Request: run [`ant::resolve`] (phase 2 of the ant tick).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct AntResolveRequest<S> {
+    /// The ant's own plan from phase 1.
+    pub plan: AntPlan<S>,
+    /// The neighbours' predicted positions.
+    pub frame: WireResolveFrame<S>,
+}
+
+/// Reply to [`AntResolveRequest`]: the ant's state for the next tick.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct AntResolveReply<S> {
+    /// The outcome of [`ant::resolve`].
+    pub state: AntState<S>,
+}
+
+/// Request: run [`bee::step()`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct BeeStepRequest<S> {
+    /// The bee's state.
+    pub state: BeeState<S>,
+    /// What it senses.
+    pub frame: WireBeeFrame<S>,
+}
+
+/// Reply to [`BeeStepRequest`]: the decision and the bee's next state.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct BeeStepReply<S> {
+    /// The set-points (and the density to broadcast).
+    pub decision: BeeDecision<S>,
+    /// The state for the next step.
+    pub state: BeeState<S>,
+}
+
+/// Reply to any request the device could not serve: which [`Error`] it hit, as a code.
+///
+/// The header's sequence number says which request failed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ErrorReply {
+    /// One of the associated constants ([`ErrorReply::NON_FINITE`], ...).
+    pub code: u8,
+}
+
+impl ErrorReply {
+    /// [`Error::NonFinite`]: a NaN or infinity in the input.
+    pub const NON_FINITE: u8 = 1;
+    /// [`Error::OutOfRange`].
+    pub const OUT_OF_RANGE: u8 = 2;
+    /// [`Error::Inconsistent`].
+    pub const INCONSISTENT: u8 = 3;
+    /// [`Error::BadParam`]: the device's parameters are invalid.
+    pub const BAD_PARAM: u8 = 4;
+    /// [`Error::BufferFull`]: the reply did not fit the device's send buffer.
+    pub const BUFFER_FULL: u8 = 5;
+    /// [`Error::Oversize`]: the request did not fit the device's receive buffer.
+    pub const OVERSIZE: u8 = 6;
+    /// [`Error::Cobs`].
+    pub const COBS: u8 = 7;
+    /// [`Error::Truncated`].
+    pub const TRUNCATED: u8 = 8;
+    /// [`Error::Crc`].
+    pub const CRC: u8 = 9;
+    /// [`Error::Version`]: the device speaks another protocol version.
+    pub const VERSION: u8 = 10;
+    /// [`Error::UnknownKind`]: the device does not serve this request kind.
+    pub const UNKNOWN_KIND: u8 = 11;
+    /// [`Error::UnexpectedKind`].
+    pub const UNEXPECTED_KIND: u8 = 12;
+    /// [`Error::Payload`]: the request's payload did not decode.
+    pub const PAYLOAD: u8 = 13;
+
+    /// The code of `error`.
+    pub const fn new(error: &Error) -> Self {
+        let code = match error {
+            Error::NonFinite { .. } => Self::NON_FINITE,
+            Error::OutOfRange { .. } => Self::OUT_OF_RANGE,
+            Error::Inconsistent { .. } => Self::INCONSISTENT,
+            Error::BadParam { .. } => Self::BAD_PARAM,
+            Error::BufferFull => Self::BUFFER_FULL,
+            Error::Oversize => Self::OVERSIZE,
+            Error::Cobs => Self::COBS,
+            Error::Truncated => Self::TRUNCATED,
+            Error::Crc { .. } => Self::CRC,
+            Error::Version { .. } => Self::VERSION,
+            Error::UnknownKind { .. } => Self::UNKNOWN_KIND,
+            Error::UnexpectedKind { .. } => Self::UNEXPECTED_KIND,
+            Error::Payload => Self::PAYLOAD,
+        };
+        ErrorReply { code }
+    }
+
+    /// The name of the code's [`Error`] variant, e.g. `"NonFinite"`; `"unknown"` for a code
+    /// this build does not know.
+    pub const fn name(&self) -> &'static str {
+        match self.code {
+            Self::NON_FINITE => "NonFinite",
+            Self::OUT_OF_RANGE => "OutOfRange",
+            Self::INCONSISTENT => "Inconsistent",
+            Self::BAD_PARAM => "BadParam",
+            Self::BUFFER_FULL => "BufferFull",
+            Self::OVERSIZE => "Oversize",
+            Self::COBS => "Cobs",
+            Self::TRUNCATED => "Truncated",
+            Self::CRC => "Crc",
+            Self::VERSION => "Version",
+            Self::UNKNOWN_KIND => "UnknownKind",
+            Self::UNEXPECTED_KIND => "UnexpectedKind",
+            Self::PAYLOAD => "Payload",
+            _ => "unknown",
+        }
+    }
+}
+
+impl From<Error> for ErrorReply {
+    fn from(error: Error) -> Self {
+        ErrorReply::new(&error)
+    }
+}
+
+impl<S: Scalar> AntPlanRequest<S> {
+    /// Runs [`ant::plan`] on the request: what a device does with it.
+    pub fn run(&self, params: &AntParams<S>) -> Result<AntPlanReply<S>> {
+        ant::plan(&self.state, &self.frame, params, self.ctx).map(|plan| AntPlanReply { plan })
+    }
+}
+
+impl<S: Scalar> AntResolveRequest<S> {
+    /// Runs [`ant::resolve`] on the request: what a device does with it.
+    pub fn run(&self, params: &AntParams<S>) -> Result<AntResolveReply<S>> {
+        ant::resolve(&self.plan, &self.frame, params).map(|state| AntResolveReply { state })
+    }
+}
+
+impl<S: Scalar> BeeStepRequest<S> {
+    /// Runs [`bee::step()`] on the request: what a device does with it.
+    pub fn run(&self, params: &BeeParams<S>) -> Result<BeeStepReply<S>> {
+        bee::step(&self.state, &self.frame, params)
+            .map(|(decision, state)| BeeStepReply { decision, state })
+    }
+}
+
+macro_rules! message_kinds {
+    ($($ty:ident $(<$s:ident>)? = $kind:path;)*) => {$(
+        impl$(<$s: Serialize + DeserializeOwned>)? Message for $ty$(<$s>)? {
+            const KIND: u8 = $kind;
+        }
+    )*};
+}
+
+message_kinds! {
+    ErrorReply = kind::ERROR_REPLY;
+    AntPlanRequest<S> = kind::ANT_PLAN_REQUEST;
+    AntPlanReply<S> = kind::ANT_PLAN_REPLY;
+    AntResolveRequest<S> = kind::ANT_RESOLVE_REQUEST;
+    AntResolveReply<S> = kind::ANT_RESOLVE_REPLY;
+    BeeStepRequest<S> = kind::BEE_STEP_REQUEST;
+    BeeStepReply<S> = kind::BEE_STEP_REPLY;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ant::{AntNeighbor, AntObject, Label, MotionState, StopReason, StopTimer};
+    use crate::bee::{BeeNeighbor, ObstacleSense};
+    use crate::wire::{Accumulator, Event, Header, encode_frame, encode_message};
+    use crate::{Fx, Rect, Vec2, Vec3};
+
+    fn v2<S: Scalar>(x: f32, y: f32) -> Vec2<S> {
+        Vec2::new(S::from_f32(x), S::from_f32(y))
+    }
+    fn v3<S: Scalar>(x: f32, y: f32, z: f32) -> Vec3<S> {
+        Vec3::new(S::from_f32(x), S::from_f32(y), S::from_f32(z))
+    }
+
+    /// Encodes `msg`, receives it through an accumulator, decodes it back.
+    fn through_the_wire<M: Message + PartialEq + core::fmt::Debug>(seq: u16, msg: &M) -> M {
+        let mut line = [0u8; MAX_FRAME];
+        let n = encode_message(seq, msg, &mut line).unwrap();
+        assert!(n <= MAX_FRAME);
+        let mut rx = Accumulator::<MAX_FRAME>::new();
+        let (ev, rest) = rx.feed(&line[..n]).unwrap();
+        assert!(rest.is_empty());
+        let Event::Frame(frame) = ev else {
+            panic!("{ev:?}")
+        };
+        assert_eq!(frame.header, Header::new(M::KIND, seq));
+        frame.message::<M>().unwrap()
+    }
+
+    fn payload_len<T: Serialize>(msg: &T) -> usize {
+        let mut buf = [0u8; 2 * MAX_PAYLOAD];
+        postcard::to_slice(msg, &mut buf).unwrap().len()
+    }
+
+    #[test]
+    fn kinds_are_distinct_and_named() {
+        let kinds = [
+            <ErrorReply as Message>::KIND,
+            <AntPlanRequest<f32> as Message>::KIND,
+            <AntPlanReply<f32> as Message>::KIND,
+            <AntResolveRequest<f32> as Message>::KIND,
+            <AntResolveReply<f32> as Message>::KIND,
+            <BeeStepRequest<Fx> as Message>::KIND,
+            <BeeStepReply<Fx> as Message>::KIND,
+        ];
+        for (i, a) in kinds.iter().enumerate() {
+            assert!(kind::name(*a).is_some());
+            for b in &kinds[i + 1..] {
+                assert_ne!(a, b);
+            }
+        }
+        assert_eq!(kind::ANT_PLAN_REPLY, kind::ANT_PLAN_REQUEST + 1);
+        assert_eq!(kind::ANT_RESOLVE_REPLY, kind::ANT_RESOLVE_REQUEST + 1);
+        assert_eq!(kind::BEE_STEP_REPLY, kind::BEE_STEP_REQUEST + 1);
+        assert_eq!(kind::name(0x80), None);
+        assert_eq!(kind::name(kind::BEE_STEP_REPLY), Some("BeeStepReply"));
+    }
+
+    fn ant_requests<S: Scalar>() -> (AntPlanRequest<S>, AntParams<S>) {
+        let bounds = Rect::new(v2(0.0, 0.0), v2(100.0, 100.0));
+        let mut frame = WirePlanFrame::new(bounds);
+        frame
+            .neighbours
+            .push(AntNeighbor {
+                id: 7,
+                pos: v2(11.0, 10.5),
+                label: Label::Food,
+                nest: 0,
+                origin: 3,
+                arrival: v2(80.0, 75.25),
+            })
+            .unwrap();
+        frame
+            .objects
+            .push(AntObject::Obstacle {
+                closest: v2(14.0, 9.0),
+            })
+            .unwrap();
+        frame
+            .objects
+            .push(AntObject::Food {
+                id: 3,
+                center: v2(80.0, 75.0),
+                radius: S::from_f32(4.0),
+            })
+            .unwrap();
+        let state = AntState::exploring(0, v2(10.0, 10.0), v2(0.6, 0.8));
+        let ctx = StepCtx {
+            seed: 42,
+            agent: 1,
+            step: 99,
+        };
+        (AntPlanRequest { state, frame, ctx }, AntParams::default())
+    }
+
+    fn ant_round_trip<S: Scalar + Serialize + DeserializeOwned>() {
+        let (req, params) = ant_requests::<S>();
+        assert_eq!(through_the_wire(1, &req), req);
+        let reply = req.run(&params).unwrap();
+        assert_eq!(through_the_wire(1, &reply), reply);
+
+        let mut frame = WireResolveFrame::new(req.frame.bounds);
+        frame.neighbours.push(v2(10.5, 10.5)).unwrap();
+        frame.neighbours.push(v2(9.0, 11.0)).unwrap();
+        let req = AntResolveRequest {
+            plan: reply.plan,
+            frame,
+        };
+        assert_eq!(through_the_wire(2, &req), req);
+        let reply = req.run(&params).unwrap();
+        assert_eq!(through_the_wire(2, &reply), reply);
+    }
+
+    fn bee_round_trip<S: Scalar + Serialize + DeserializeOwned>() {
+        let mut frame = WireBeeFrame::new(S::from_f32(0.25));
+        for i in 0..3 {
+            let d = i as f32;
+            frame
+                .neighbours
+                .push(BeeNeighbor {
+                    pos: v3(1.0 + d, 1.0, -d),
+                    vel: v3(0.0, 0.1 * d, 1.0),
+                    density: S::from_f32(0.05),
+                })
+                .unwrap();
+        }
+        frame.targets.push(v3(5.0, 1.0, 5.0)).unwrap();
+        frame.goal = Some(v3(10.0, 1.0, 0.0));
+        frame.obstacle = Some(ObstacleSense {
+            point: v3(2.0, 1.0, 0.5),
+            normal: v3(-1.0, 0.0, 0.0),
+        });
+        let req = BeeStepRequest {
+            state: BeeState::new(v3(0.0, 1.0, 0.0), v3(1.0, 0.0, 0.0)),
+            frame,
+        };
+        assert_eq!(through_the_wire(3, &req), req);
+        let reply = req.run(&BeeParams::default()).unwrap();
+        assert_eq!(through_the_wire(3, &reply), reply);
+    }
+
+    #[test]
+    fn ant_messages_round_trip_f32() {
+        ant_round_trip::<f32>();
+    }
+
+    #[test]
+    fn ant_messages_round_trip_fx() {
+        ant_round_trip::<Fx>();
+    }
+
+    #[test]
+    fn bee_messages_round_trip_f32() {
+        bee_round_trip::<f32>();
+    }
+
+    #[test]
+    fn bee_messages_round_trip_fx() {
+        bee_round_trip::<Fx>();
+    }
+
+    #[test]
+    fn error_reply() {
+        let e = Error::NonFinite {
+            field: "state.pos",
+            index: None,
+        };
+        let reply = ErrorReply::from(e);
+        assert_eq!(reply, ErrorReply { code: 1 });
+        assert_eq!(reply.name(), "NonFinite");
+        assert_eq!(through_the_wire(9, &reply), reply);
+        assert_eq!(ErrorReply { code: 200 }.name(), "unknown");
+        let all = [
+            Error::OutOfRange {
+                field: "",
+                index: None,
+            },
+            Error::Inconsistent {
+                field: "",
+                index: None,
+            },
+            Error::BadParam { field: "" },
+            Error::BufferFull,
+            Error::Oversize,
+            Error::Cobs,
+            Error::Truncated,
+            Error::Crc {
+                got: 0,
+                expected: 0,
+            },
+            Error::Version { got: 0 },
+            Error::UnknownKind { kind: 0 },
+            Error::UnexpectedKind {
+                got: 0,
+                expected: 0,
+            },
+            Error::Payload,
+        ];
+        for (i, e) in all.iter().enumerate() {
+            let r = ErrorReply::new(e);
+            assert_eq!(usize::from(r.code), i + 2);
+            assert_ne!(r.name(), "unknown");
+        }
+    }
+
+    #[test]
+    fn a_reply_is_not_taken_for_another() {
+        let mut line = [0u8; 16];
+        let n = encode_message(4, &ErrorReply { code: 2 }, &mut line).unwrap();
+        let mut body = line[..n - 1].to_vec();
+        assert_eq!(
+            crate::wire::decode_message::<AntResolveReply<f32>>(&mut body),
+            Err(Error::UnexpectedKind {
+                got: kind::ERROR_REPLY,
+                expected: kind::ANT_RESOLVE_REPLY
+            })
+        );
+    }
+
+    // ---- pinned vectors (docs/protocol.md, section 7), computed with the Python reference ----
+
+    fn hex(s: &str) -> Vec<u8> {
+        let s: String = s.split_whitespace().collect();
+        (0..s.len())
+            .step_by(2)
+            .map(|i| u8::from_str_radix(&s[i..i + 2], 16).unwrap())
+            .collect()
+    }
+
+    fn wire_bytes<M: Message>(seq: u16, msg: &M) -> Vec<u8> {
+        let mut line = [0u8; MAX_FRAME];
+        let n = encode_message(seq, msg, &mut line).unwrap();
+        line[..n].to_vec()
+    }
+
+    fn vector_state<S: Scalar>() -> AntResolveReply<S> {
+        AntResolveReply {
+            state: AntState {
+                pos: v2(10.0, 20.0),
+                heading: v2(1.0, 0.0),
+                label: Label::Nest,
+                nest: 1,
+                origin: 1,
+                arrival: v2(5.5, -3.0),
+                motion: MotionState::Stop,
+                stop: Some(StopTimer {
+                    reason: StopReason::CollectingFood,
+                    remaining: 300,
+                    place: 2,
+                }),
+            },
+        }
+    }
+
+    #[test]
+    fn vector_6_error_reply() {
+        let wire = wire_bytes(
+            7,
+            &ErrorReply {
+                code: ErrorReply::NON_FINITE,
+            },
+        );
+        assert_eq!(wire, hex("04 01 0f 07 04 01 02 fa 00"));
+    }
+
+    #[test]
+    fn vector_7_ant_resolve_reply_f32() {
+        let msg = vector_state::<f32>();
+        let mut payload = [0u8; 64];
+        let n = postcard::to_slice(&msg, &mut payload).unwrap().len();
+        assert_eq!(
+            payload[..n],
+            hex("00 00 20 41 00 00 a0 41 00 00 80 3f 00 00 00 00 02 01 01
+                 00 00 b0 40 00 00 40 c0 00 01 01 ac 02 02")
+        );
+        let wire = wire_bytes(0x0100, &msg);
+        assert_eq!(
+            wire,
+            hex(
+                "03 01 13 02 01 01 03 20 41 01 03 a0 41 01 03 80 3f 01 01 01 04 02 01 01
+                 01 03 b0 40 01 03 40 c0 08 01 01 ac 02 02 8e 4c 00"
+            )
+        );
+        assert_eq!(through_the_wire(0x0100, &msg), msg);
+    }
+
+    #[test]
+    fn vector_8_ant_resolve_reply_fx() {
+        let msg = vector_state::<Fx>();
+        let mut payload = [0u8; 64];
+        let n = postcard::to_slice(&msg, &mut payload).unwrap().len();
+        assert_eq!(
+            payload[..n],
+            hex("80 80 50 80 80 a0 01 80 80 08 00 02 01 01 80 80 2c ff ff 17 00 01 01 ac 02 02")
+        );
+        let wire = wire_bytes(0x0100, &msg);
+        assert_eq!(
+            wire,
+            hex(
+                "03 01 13 0c 01 80 80 50 80 80 a0 01 80 80 08 0a 02 01 01 80 80 2c ff ff 17
+                 08 01 01 ac 02 02 e5 72 00"
+            )
+        );
+        assert_eq!(through_the_wire(0x0100, &msg), msg);
+    }
+
+    // ---- sizes ----
+
+    /// A value whose postcard encoding is as long as the type allows.
+    trait Widest: Scalar + Serialize + DeserializeOwned {
+        fn widest() -> Self;
+    }
+    impl Widest for f32 {
+        fn widest() -> Self {
+            -1.0e30
+        }
+    }
+    impl Widest for Fx {
+        fn widest() -> Self {
+            Fx::from_bits(i32::MIN) // zig-zag u32::MAX: a 5-byte varint
+        }
+    }
+
+    fn w2<S: Widest>() -> Vec2<S> {
+        Vec2::new(S::widest(), S::widest())
+    }
+    fn w3<S: Widest>() -> Vec3<S> {
+        Vec3::new(S::widest(), S::widest(), S::widest())
+    }
+    fn wide_ant_state<S: Widest>() -> AntState<S> {
+        AntState {
+            pos: w2(),
+            heading: w2(),
+            label: Label::Nest,
+            nest: u16::MAX,
+            origin: u16::MAX,
+            arrival: w2(),
+            motion: MotionState::InteractEnvironment,
+            stop: Some(StopTimer {
+                reason: StopReason::DroppingFood,
+                remaining: u16::MAX,
+                place: u16::MAX,
+            }),
+        }
+    }
+    fn wide_bee_state<S: Widest>() -> BeeState<S> {
+        BeeState {
+            pos: w3(),
+            vel: w3(),
+            forward: w3(),
+            density: S::widest(),
+            avoiding: true,
+            u0: w3(),
+            roll: S::widest(),
+            pitch: S::widest(),
+        }
+    }
+
+    /// Payload lengths of the widest instance of every message.
+    fn widest_payloads<S: Widest>() -> [usize; 6] {
+        let mut pf = WirePlanFrame::new(Rect::new(w2(), w2()));
+        while pf
+            .neighbours
+            .push(AntNeighbor {
+                id: u32::MAX,
+                pos: w2(),
+                label: Label::Nest,
+                nest: u16::MAX,
+                origin: u16::MAX,
+                arrival: w2(),
+            })
+            .is_ok()
+        {}
+        while pf
+            .objects
+            .push(AntObject::Nest {
+                id: u16::MAX,
+                center: w2(),
+                radius: S::widest(),
+            })
+            .is_ok()
+        {}
+        let ctx = StepCtx {
+            seed: u32::MAX,
+            agent: u32::MAX,
+            step: u32::MAX,
+        };
+        let plan = AntPlan {
+            state: wide_ant_state::<S>(),
+            predicted: w2(),
+        };
+        let mut rf = WireResolveFrame::new(Rect::new(w2(), w2()));
+        while rf.neighbours.push(w2()).is_ok() {}
+        let mut bf = WireBeeFrame::new(S::widest());
+        while bf
+            .neighbours
+            .push(BeeNeighbor {
+                pos: w3(),
+                vel: w3(),
+                density: S::widest(),
+            })
+            .is_ok()
+        {}
+        while bf.targets.push(w3()).is_ok() {}
+        bf.goal = Some(w3());
+        bf.obstacle = Some(ObstacleSense {
+            point: w3(),
+            normal: w3(),
+        });
+        let decision = BeeDecision {
+            accel: w3(),
+            velocity: w3(),
+            roll: S::widest(),
+            pitch: S::widest(),
+            avoiding: true,
+            density: S::widest(),
+        };
+        [
+            payload_len(&AntPlanRequest {
+                state: wide_ant_state(),
+                frame: pf,
+                ctx,
+            }),
+            payload_len(&AntPlanReply { plan }),
+            payload_len(&AntResolveRequest { plan, frame: rf }),
+            payload_len(&AntResolveReply {
+                state: wide_ant_state::<S>(),
+            }),
+            payload_len(&BeeStepRequest {
+                state: wide_bee_state(),
+                frame: bf,
+            }),
+            payload_len(&BeeStepReply {
+                decision,
+                state: wide_bee_state(),
+            }),
+        ]
+    }
+
+    #[test]
+    fn widest_messages_fit_max_payload() {
+        // [plan req, plan reply, resolve req, resolve reply, bee req, bee reply]
+        let f = widest_payloads::<f32>();
+        let x = widest_payloads::<Fx>();
+        assert_eq!(f, [361, 48, 129, 40, 745, 98]);
+        assert_eq!(x, [415, 56, 157, 46, 930, 122]);
+        assert_eq!(f.iter().chain(&x).max(), Some(&MAX_PAYLOAD));
+        assert_eq!(MAX_FRAME, MAX_PAYLOAD + 6 + 4 + 1);
+        assert_eq!(payload_len(&ErrorReply { code: u8::MAX }), 1);
+        // And such a frame really fits a MAX_FRAME buffer (no zero byte: worst COBS case).
+        let mut out = [0u8; MAX_FRAME];
+        let raw = [0x55u8; MAX_PAYLOAD];
+        let n = encode_frame(0x55, 0x5555, &crate::wire::frame::Raw(&raw), &mut out).unwrap();
+        assert_eq!(n, MAX_FRAME);
+    }
+}

@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# Runs every test of the project: formatting, clippy, docs, the workspace's unit, property and
+# integration tests, and the no_std firmware images built for real Cortex-M targets and run in
+# QEMU. Installs the system packages it needs with apt-get when they are missing.
+#
+#   scripts/test.sh            everything
+#   scripts/test.sh --quick    skip the firmware build and QEMU runs
+#
+# In CI (CI=true) a missing tool is an error. On a developer's machine where packages cannot be
+# installed, the stages that need them are skipped with a loud warning.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+
+QUICK=0
+[[ "${1:-}" == "--quick" ]] && QUICK=1
+CI="${CI:-false}"
+passed=0
+failed=0
+failures=()
+
+say() { printf '\n\033[1m==> %s\033[0m\n' "$*"; }
+warn() { printf '\n\033[1;33m!!! %s\033[0m\n' "$*" >&2; }
+
+stage() {
+    local name="$1"; shift
+    say "$name"
+    if "$@"; then
+        passed=$((passed + 1))
+    else
+        failed=$((failed + 1))
+        failures+=("$name")
+        warn "FAILED: $name"
+    fi
+}
+
+# --- system packages -------------------------------------------------------------------
+# Debian packages the firmware stages need, with the command that proves each is present.
+need_pkgs=()
+have_embedded_rustup() {
+    command -v rustup >/dev/null 2>&1 &&
+        rustup target list --installed 2>/dev/null | grep -q thumbv7m-none-eabi &&
+        rustup target list --installed 2>/dev/null | grep -q thumbv7em-none-eabihf
+}
+if ! have_embedded_rustup; then
+    [[ -x /usr/bin/cargo && -x /usr/bin/rustc && -d /usr/lib/rustlib/src/rust/library ]] ||
+        need_pkgs+=(rustc-web cargo-web rust-web-src)
+    command -v ld.lld >/dev/null 2>&1 || need_pkgs+=(lld)
+fi
+command -v qemu-system-arm >/dev/null 2>&1 || need_pkgs+=(qemu-system-arm)
+
+firmware_ok=1
+if ((QUICK == 0)) && ((${#need_pkgs[@]} > 0)); then
+    say "installing system packages: ${need_pkgs[*]}"
+    SUDO=""
+    [[ $(id -u) -ne 0 ]] && command -v sudo >/dev/null 2>&1 && SUDO="sudo -n"
+    if ! { $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${need_pkgs[@]}"; }; then
+        if [[ "$CI" == "true" ]]; then
+            warn "cannot install ${need_pkgs[*]} with apt-get; the firmware tests need them (CI=true: failing)"
+            exit 1
+        fi
+        warn "cannot install ${need_pkgs[*]}: SKIPPING the firmware build and QEMU tests on this machine"
+        warn "(install them with: sudo apt-get install ${need_pkgs[*]})"
+        firmware_ok=0
+    fi
+fi
+
+# --- stages ----------------------------------------------------------------------------
+stage "cargo fmt --check" cargo fmt --all -- --check
+stage "cargo clippy (warnings are errors)" cargo clippy --workspace --all-targets -- -D warnings
+stage "swarm-core builds without std, every backend" bash -c '
+    cargo build -q -p swarm-core --no-default-features --features micromath,fixed,serde &&
+    cargo build -q -p swarm-core --no-default-features --features libm &&
+    cargo build -q -p swarm-core --features fixed,serde,defmt'
+stage "cargo doc (warnings are errors)" env RUSTDOCFLAGS="-D warnings" cargo doc -q --workspace --no-deps
+stage "cargo test --workspace (unit, property, integration, doc tests)" cargo test --workspace --release
+
+if ((QUICK == 1)); then
+    warn "--quick: SKIPPING the firmware build and QEMU tests"
+elif ((firmware_ok == 1)); then
+    stage "firmware: build ant-node and bee-node (f32, fixed) for Cortex-M" firmware-examples/build.sh
+    stage "firmware: run every image in qemu-system-arm, decisions equal the host's" scripts/qemu-run.sh
+fi
+
+echo
+if ((failed > 0)); then
+    printf 'failed stages:\n'; printf '  - %s\n' "${failures[@]}"
+fi
+echo "stages: ${passed} passed, ${failed} failed"
+((failed == 0))
