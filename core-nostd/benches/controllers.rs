@@ -3,7 +3,9 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
-use swarm_core::ant::{self, AntNeighbor, AntObject, AntParams, AntState, Label, PlanFrame, ResolveFrame};
+use swarm_core::ant::{
+    self, AntNeighbor, AntObject, AntParams, AntState, Label, PlanFrame, ResolveFrame,
+};
 use swarm_core::bee::{self, BeeFrame, BeeNeighbor, BeeParams, BeeState, ObstacleSense};
 use swarm_core::{Fx, Rect, Scalar, StepCtx, Vec2, Vec3};
 
@@ -24,7 +26,9 @@ fn ant_inputs<S: Scalar>() -> (AntState<S>, PlanFrame<S, 8, 4>, ResolveFrame<S, 
             origin: if i % 3 == 0 { 1 } else { 0 },
             arrival: v(80.0, 20.0),
         });
-        let _ = resolve.neighbours.push(v(50.6 + 1.2 * a.cos(), 50.8 + 1.2 * a.sin()));
+        let _ = resolve
+            .neighbours
+            .push(v(50.6 + 1.2 * a.cos(), 50.8 + 1.2 * a.sin()));
     }
     let _ = plan.objects.push(AntObject::Food {
         id: 1,
@@ -41,7 +45,11 @@ fn bench_ant<S: Scalar>(c: &mut Criterion, name: &str) {
     c.bench_function(name, |b| {
         b.iter(|| {
             step = step.wrapping_add(1);
-            let ctx = StepCtx { seed: 1, agent: 0, step };
+            let ctx = StepCtx {
+                seed: 1,
+                agent: 0,
+                step,
+            };
             let plan = ant::plan(black_box(&state), black_box(&pf), &params, ctx).unwrap();
             ant::resolve(&plan, black_box(&rf), &params).unwrap()
         })
@@ -55,7 +63,11 @@ fn bee_inputs<S: Scalar>() -> (BeeState<S>, BeeFrame<S, 16, 8>) {
     for i in 0..16u32 {
         let a = i as f32 * std::f32::consts::FRAC_PI_8;
         let _ = frame.neighbours.push(BeeNeighbor {
-            pos: v(1.2 * a.cos(), 2.0 + 0.3 * (i as f32 - 8.0) / 8.0, 1.2 * a.sin()),
+            pos: v(
+                1.2 * a.cos(),
+                2.0 + 0.3 * (i as f32 - 8.0) / 8.0,
+                1.2 * a.sin(),
+            ),
             vel: v(0.5, 0.0, 0.1),
             density: S::from_f32(0.05),
         });
