@@ -365,6 +365,19 @@ mod tests {
         let mut out = vec![0u8; full.len()];
         assert_eq!(encode_frame(9, 9, &msg, &mut out), Ok(full.len()));
         assert_eq!(out, full);
+        // Zero-free raw frames of 254 and 255 bytes: the 0xFF code-byte cases.
+        for len in [248usize, 249] {
+            let msg = Raw(&[0x55; 256][..len]);
+            let full = enc(0x55, 0x5555, &msg);
+            assert_eq!(full.len(), len + if len == 248 { 8 } else { 9 });
+            for n in 0..full.len() {
+                let mut out = vec![0u8; n];
+                let r = encode_frame(0x55, 0x5555, &msg, &mut out);
+                assert_eq!(r, Err(Error::BufferFull), "{len} {n}");
+            }
+            let mut out = vec![0u8; full.len()];
+            assert_eq!(encode_frame(0x55, 0x5555, &msg, &mut out), Ok(full.len()));
+        }
     }
 
     #[test]

@@ -84,8 +84,8 @@ impl<S: Scalar> World<S> {
             .iter()
             .enumerate()
             .filter(|&(j, _)| j != i)
-            .map(|(j, a)| ((a.pos - me.pos).length(), j))
-            .filter(|&(d, _)| d <= self.params.contact_range)
+            .map(|(j, a)| ((a.pos - me.pos).length_sq(), j))
+            .filter(|&(d2, _)| d2 <= self.params.contact_range * self.params.contact_range)
             .collect();
         near.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap().then(a.1.cmp(&b.1)));
         for &(_, j) in near.iter().take(N) {
@@ -133,8 +133,8 @@ impl<S: Scalar> World<S> {
             .iter()
             .enumerate()
             .filter(|&(j, _)| j != i)
-            .map(|(j, p)| ((p.predicted - me).length(), j))
-            .filter(|&(d, _)| d < self.params.collision_range)
+            .map(|(j, p)| ((p.predicted - me).length_sq(), j))
+            .filter(|&(d2, _)| d2 < self.params.collision_range * self.params.collision_range)
             .collect();
         near.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap().then(a.1.cmp(&b.1)));
         let mut f = ResolveFrame::new(self.bounds);

@@ -25,7 +25,7 @@ use swarm_core::{Rect, Scalar, StepCtx, Vec2};
 /// Ants in the scenario.
 pub const AGENTS: usize = 8;
 /// Ticks simulated.
-pub const STEPS: u32 = 8;
+pub const STEPS: u32 = 6;
 /// Neighbour capacity of the frames (an MCU-sized choice).
 pub const N: usize = 8;
 /// Object capacity of the frames.

@@ -12,8 +12,32 @@
 
 use core::ptr::addr_of;
 use cortex_m_rt::{ExceptionFrame, exception};
-use cortex_m_semihosting::{debug, hprintln, nr};
+use cortex_m_semihosting::{debug, hio, nr};
 use fw_scenario::Sink;
+
+#[cfg(all(feature = "lm3s6965evb", feature = "mps2-an386"))]
+compile_error!("fw-support: pick one board feature, `lm3s6965evb` or `mps2-an386`");
+
+/// Device interrupt lines of the board's NVIC (QEMU's `num-irq`).
+#[cfg(feature = "lm3s6965evb")]
+pub const IRQS: usize = 80;
+/// Device interrupt lines of the board's NVIC (QEMU's `num-irq`).
+#[cfg(feature = "mps2-an386")]
+pub const IRQS: usize = 48;
+#[cfg(not(any(feature = "lm3s6965evb", feature = "mps2-an386")))]
+compile_error!("fw-support: enable a board feature, `lm3s6965evb` or `mps2-an386`");
+
+unsafe extern "C" {
+    /// cortex-m-rt's default handler (it loops; the images enable no interrupt).
+    fn DefaultHandler();
+}
+
+/// The device part of the vector table (cortex-m-rt feature `device`; a board support crate
+/// would provide this with named handlers). Every line goes to the default handler.
+#[unsafe(link_section = ".vector_table.interrupts")]
+#[unsafe(no_mangle)]
+#[used]
+pub static __INTERRUPTS: [unsafe extern "C" fn(); IRQS] = [DefaultHandler; IRQS];
 
 /// The pattern painted over the free stack.
 const PAINT: u32 = 0xC0FF_EE55;
@@ -60,22 +84,26 @@ pub fn check(name: &str, expected: &[u32], scenario: impl FnOnce(&mut Checker<'_
     let mut c = Checker { expected, index: 0, mismatches: 0, first: None, flip };
     scenario(&mut c);
     let (peak, capped) = stack_peak(window);
-    let cap = if capped { ">=" } else { "" };
     let n = expected.len();
     let ok = c.mismatches == 0 && c.index == n;
+    let mut l = Line::new();
+    l.str(name);
     if ok {
-        hprintln!("{}: PASS {}/{} decision words bit-identical to the host (stack peak {}{} B)", name, c.index, n, cap, peak);
+        l.str(": PASS ").dec(c.index).str("/").dec(n);
+        l.str(" decision words bit-identical to the host");
     } else {
-        hprintln!(
-            "{}: FAIL {} mismatching of {} words produced, {} expected (stack peak {}{} B)",
-            name, c.mismatches, c.index, n, cap, peak
-        );
-        if let Some((i, got, want)) = c.first {
-            hprintln!("{}: first mismatch at word {}: device {:#010x}, host {:#010x}", name, i, got, want);
-        }
-        if flip != usize::MAX {
-            hprintln!("{}: (self-test: expected word {} was corrupted on purpose)", name, flip);
-        }
+        l.str(": FAIL ").dec(c.mismatches).str(" mismatching of ").dec(c.index);
+        l.str(" words produced, ").dec(n).str(" expected");
+    }
+    l.str(" (stack peak ").str(if capped { ">=" } else { "" }).dec(peak).str(" B)").print();
+    if let Some((i, got, want)) = c.first {
+        let mut l = Line::new();
+        l.str(name).str(": first mismatch at word ").dec(i);
+        l.str(": device ").hex(got).str(", host ").hex(want).print();
+    }
+    if flip != usize::MAX {
+        let mut l = Line::new();
+        l.str(name).str(": (self-test: expected word ").dec(flip).str(" was corrupted on purpose)").print();
     }
     exit(ok)
 }
@@ -138,16 +166,88 @@ fn stack_peak(lo: usize) -> (usize, bool) {
 
 #[panic_handler]
 fn panic(info: &core::panic::PanicInfo<'_>) -> ! {
-    if let Some(l) = info.location() {
-        hprintln!("PANIC at {}:{}", l.file(), l.line());
-    } else {
-        hprintln!("PANIC");
+    let mut l = Line::new();
+    l.str("PANIC");
+    if let Some(loc) = info.location() {
+        l.str(" at ").str(loc.file()).str(":").dec(loc.line() as usize);
     }
+    l.print();
     exit(false)
 }
 
 #[exception]
 unsafe fn HardFault(ef: &ExceptionFrame) -> ! {
-    hprintln!("HARD FAULT at pc {:#010x}", ef.pc());
+    Line::new().str("HARD FAULT at pc ").hex(ef.pc()).print();
     exit(false)
+}
+
+/// A line of text for the semihosting console, built without `core::fmt` (which would cost
+/// a few KiB of flash): strings, decimal and hex numbers; silently truncated when full.
+pub struct Line {
+    buf: [u8; 160],
+    len: usize,
+}
+
+impl Line {
+    /// An empty line.
+    pub const fn new() -> Self {
+        Line { buf: [0; 160], len: 0 }
+    }
+
+    /// Appends bytes (panic-free: no bounds-check failure path, so no `core::fmt` either).
+    fn bytes(&mut self, b: &[u8]) -> &mut Self {
+        for (dst, &src) in self.buf.iter_mut().skip(self.len).zip(b) {
+            *dst = src;
+            self.len += 1;
+        }
+        self
+    }
+
+    /// Appends a string.
+    pub fn str(&mut self, s: &str) -> &mut Self {
+        self.bytes(s.as_bytes())
+    }
+
+    /// Appends a number in decimal.
+    pub fn dec(&mut self, v: usize) -> &mut Self {
+        let mut d = [0u8; 20];
+        let mut n = 0;
+        let mut v = v;
+        for slot in d.iter_mut() {
+            *slot = b'0' + (v % 10) as u8;
+            n += 1;
+            v /= 10;
+            if v == 0 {
+                break;
+            }
+        }
+        for &c in d.iter().take(n).rev() {
+            self.bytes(&[c]);
+        }
+        self
+    }
+
+    /// Appends a 32-bit word as `0x` and eight hex digits.
+    pub fn hex(&mut self, v: u32) -> &mut Self {
+        let mut d = *b"0x00000000";
+        for (k, c) in d[2..].iter_mut().enumerate() {
+            let nib = ((v >> (28 - 4 * k)) & 0xf) as u8;
+            *c = if nib < 10 { b'0' + nib } else { b'a' + nib - 10 };
+        }
+        self.bytes(&d)
+    }
+
+    /// Writes the line and a newline to the host's stdout (semihosting).
+    pub fn print(&mut self) {
+        self.bytes(b"\n");
+        if let Ok(mut out) = hio::hstdout() {
+            let _ = out.write_all(self.buf.get(..self.len).unwrap_or(&self.buf));
+        }
+    }
+}
+
+impl Default for Line {
+    fn default() -> Self {
+        Line::new()
+    }
 }
