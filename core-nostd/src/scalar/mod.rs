@@ -1,6 +1,6 @@
 //! The number type every controller is generic over.
 //!
-//! Two implementations: `f32` ([`float`]) and, with feature `fixed`, [`Fx`] (I16F16). Controller
+//! Two implementations: `f32` (math from `libm` or `micromath`) and, with feature `fixed`, [`Fx`] (I16F16). Controller
 //! code is written once against [`Scalar`]; constants come in through [`Scalar::from_f32`] (for
 //! `Fx` a correctly rounded, deterministic conversion).
 

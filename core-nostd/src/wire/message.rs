@@ -27,9 +27,23 @@ pub const WIRE_BEE_NEIGHBOURS: usize = 16;
 /// Target particles in a bee sensor frame on the wire.
 pub const WIRE_BEE_TARGETS: usize = 16;
 
-/// The largest payload of any message of this module, for either scalar
+/// The largest payload of an ant message (or [`ErrorReply`]), for either scalar
+/// ([`AntPlanRequest<Fx>`](AntPlanRequest) with full lists; pinned by a test).
+pub const MAX_ANT_PAYLOAD: usize = 415;
+/// The longest frame of an ant message (or [`ErrorReply`]), delimiter included: buffer size
+/// for a node that only runs the ant controller.
+pub const MAX_ANT_FRAME: usize = max_frame_len(MAX_ANT_PAYLOAD);
+/// The largest payload of a bee message (or [`ErrorReply`]), for either scalar
 /// ([`BeeStepRequest<Fx>`](BeeStepRequest) with full lists; pinned by a test).
-pub const MAX_PAYLOAD: usize = 930;
+pub const MAX_BEE_PAYLOAD: usize = 930;
+/// The longest frame of a bee message (or [`ErrorReply`]), delimiter included.
+pub const MAX_BEE_FRAME: usize = max_frame_len(MAX_BEE_PAYLOAD);
+/// The largest payload of any message of this module, for either scalar.
+pub const MAX_PAYLOAD: usize = if MAX_ANT_PAYLOAD > MAX_BEE_PAYLOAD {
+    MAX_ANT_PAYLOAD
+} else {
+    MAX_BEE_PAYLOAD
+};
 /// The longest frame of any message of this module, delimiter included: the size of a send
 /// buffer that always suffices, and an [`Accumulator`](super::Accumulator) capacity that
 /// always receives.
@@ -715,8 +729,11 @@ mod tests {
         let x = widest_payloads::<Fx>();
         assert_eq!(f, [361, 48, 129, 40, 745, 98]);
         assert_eq!(x, [415, 56, 157, 46, 930, 122]);
+        assert_eq!(f[..4].iter().chain(&x[..4]).max(), Some(&MAX_ANT_PAYLOAD));
+        assert_eq!(f[4..].iter().chain(&x[4..]).max(), Some(&MAX_BEE_PAYLOAD));
         assert_eq!(f.iter().chain(&x).max(), Some(&MAX_PAYLOAD));
         assert_eq!(MAX_FRAME, MAX_PAYLOAD + 6 + 4 + 1);
+        assert_eq!((MAX_ANT_FRAME, MAX_BEE_FRAME, MAX_FRAME), (424, 941, 941));
         assert_eq!(payload_len(&ErrorReply { code: u8::MAX }), 1);
         // And such a frame really fits a MAX_FRAME buffer (no zero byte: worst COBS case).
         let mut out = [0u8; MAX_FRAME];

@@ -59,8 +59,9 @@ pub use frame::{
 pub use header::{HEADER_LEN, Header, PROTOCOL_VERSION};
 pub use message::{
     AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, BeeStepReply, BeeStepRequest,
-    ErrorReply, MAX_FRAME, MAX_PAYLOAD, WIRE_ANT_NEIGHBOURS, WIRE_ANT_OBJECTS, WIRE_BEE_NEIGHBOURS,
-    WIRE_BEE_TARGETS, WireBeeFrame, WirePlanFrame, WireResolveFrame, kind,
+    ErrorReply, MAX_ANT_FRAME, MAX_ANT_PAYLOAD, MAX_BEE_FRAME, MAX_BEE_PAYLOAD, MAX_FRAME,
+    MAX_PAYLOAD, WIRE_ANT_NEIGHBOURS, WIRE_ANT_OBJECTS, WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS,
+    WireBeeFrame, WirePlanFrame, WireResolveFrame, kind,
 };
 
 use crate::Result;
