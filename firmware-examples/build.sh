@@ -49,7 +49,7 @@ done
 unset CARGO_TARGET_DIR CARGO_BUILD_TARGET CARGO_BUILD_TARGET_DIR RUSTFLAGS CARGO_ENCODED_RUSTFLAGS \
       RUSTDOCFLAGS RUSTC_WRAPPER RUSTC_WORKSPACE_WRAPPER CARGO_MAKEFLAGS MAKEFLAGS MFLAGS \
       CARGO_MANIFEST_DIR CARGO_PKG_NAME CARGO_PRIMARY_PACKAGE CARGO OUT_DIR TARGET HOST \
-      CARGO_BUILD_RUSTC CARGO_BUILD_RUSTC_WRAPPER 2>/dev/null || true
+      CARGO_BUILD_RUSTC CARGO_BUILD_RUSTC_WRAPPER RUSTC RUSTDOC 2>/dev/null || true
 
 TARGET_DIR="$HERE/target"
 DEBIAN_RUSTC=/usr/bin/rustc
@@ -57,9 +57,17 @@ DEBIAN_CARGO=/usr/bin/cargo
 
 die() { echo "build.sh: error: $*" >&2; exit 1; }
 
+# The toolchain rustup would use here (empty without rustup).
+rustup_toolchain() {
+    command -v rustup >/dev/null 2>&1 || return 0
+    (cd "$HERE" && rustup show active-toolchain 2>/dev/null) | awk 'NR == 1 { print $1 }'
+}
+
 rustup_has_target() {
-    command -v rustup >/dev/null 2>&1 || return 1
-    (cd "$HERE" && env -u RUSTC rustup target list --installed 2>/dev/null) | grep -qx "$1"
+    local tc
+    tc=$(rustup_toolchain)
+    [ -n "$tc" ] || return 1
+    rustup target list --installed --toolchain "$tc" 2>/dev/null | grep -qx "$1"
 }
 
 debian_usable() {
@@ -100,7 +108,10 @@ build() {
     echo "==> $pkg for $triple (toolchain: $route)"
     case "$route" in
         rustup)
-            cargo build --release "${OFFLINE[@]}" --target-dir "$TARGET_DIR" -p "$pkg" --target "$triple" \
+            local tc
+            tc=$(rustup_toolchain)
+            [ -n "$tc" ] || die "FW_TOOLCHAIN=rustup but rustup has no active toolchain"
+            rustup run "$tc" cargo build --release "${OFFLINE[@]}" --target-dir "$TARGET_DIR" -p "$pkg" --target "$triple" \
                 || die "cargo (rustup) failed to build $pkg for $triple"
             ;;
         debian)
@@ -124,8 +135,9 @@ build() {
 if [ "$FETCH" = 1 ]; then
     echo "==> fetching crates (workspace deps; std-library deps for -Z build-std)"
     cargo_route=${FW_TOOLCHAIN:-auto}
-    if [ "$cargo_route" != debian ] && command -v rustup >/dev/null 2>&1; then
-        cargo fetch || die "cargo fetch failed"
+    tc=$(rustup_toolchain)
+    if [ "$cargo_route" != debian ] && [ -n "$tc" ]; then
+        rustup run "$tc" cargo fetch || die "cargo fetch failed"
     fi
     if [ "$cargo_route" != rustup ] && debian_usable; then
         env -u RUSTUP_TOOLCHAIN PATH="/usr/bin:/bin:$PATH" RUSTC="$DEBIAN_RUSTC" RUSTC_BOOTSTRAP=1 \
@@ -152,7 +164,7 @@ fi
 # Prints "name size" per allocated section of an ELF.
 sections() {
     local elf=$1 tool
-    for tool in llvm-size rust-size arm-none-eabi-size; do
+    for tool in ${FW_SIZE_TOOL:-llvm-size rust-size arm-none-eabi-size}; do
         if command -v "$tool" >/dev/null 2>&1; then
             "$tool" -A "$elf" | awk 'NR > 2 && $1 ~ /^\./ { print $1, $2 }'
             return
@@ -162,7 +174,9 @@ sections() {
     readelf=$(command -v llvm-readelf || command -v readelf || command -v arm-none-eabi-readelf) \
         || die "no size tool: install llvm (llvm-size), binutils-arm-none-eabi or binutils (readelf)"
     # readelf -SW: [Nr] Name Type Address Off Size ...  (sizes in hex)
-    "$readelf" -SW "$elf" | sed 's/^ *\[ *[0-9]*\] *//' | awk '$1 ~ /^\./ { printf "%s %d\n", $1, strtonum("0x" $5) }'
+    local name size
+    "$readelf" -SW "$elf" | sed 's/^ *\[ *[0-9]*\] *//' | awk '$1 ~ /^\./ { print $1, $5 }' |
+        while read -r name size; do echo "$name $((16#$size))"; done
 }
 
 SIZES="$TARGET_DIR/sizes.json"

@@ -7,5 +7,7 @@ include!(concat!(env!("OUT_DIR"), "/expected_f32.rs"));
 
 #[cortex_m_rt::entry]
 fn main() -> ! {
-    fw_support::check("bee-node [f32/libm, cortex-m4f]", &EXPECTED, |c| fw_scenario::bee::run::<f32>(c))
+    fw_support::check("bee-node [f32/libm, cortex-m4f]", &EXPECTED, |c| {
+        fw_scenario::bee::run::<f32>(c)
+    })
 }

@@ -86,10 +86,18 @@ impl<S: Scalar> World<S> {
         let sense = S::from_f32(SENSE);
         let near = |c: Vec2<S>, r: S| (c - me).length() <= sense + r;
         if near(self.nest.0, self.nest.1) {
-            let _ = f.objects.push(AntObject::Nest { id: NEST_ID, center: self.nest.0, radius: self.nest.1 });
+            let _ = f.objects.push(AntObject::Nest {
+                id: NEST_ID,
+                center: self.nest.0,
+                radius: self.nest.1,
+            });
         }
         if near(self.food.0, self.food.1) {
-            let _ = f.objects.push(AntObject::Food { id: FOOD_ID, center: self.food.0, radius: self.food.1 });
+            let _ = f.objects.push(AntObject::Food {
+                id: FOOD_ID,
+                center: self.food.0,
+                radius: self.food.1,
+            });
         }
         if let Some(u) = (me - self.rock.0).normalized() {
             let closest = self.rock.0 + u * self.rock.1;
@@ -98,7 +106,10 @@ impl<S: Scalar> World<S> {
             }
         }
         if near(self.danger.0, self.danger.1) {
-            let _ = f.objects.push(AntObject::Disturbance { center: self.danger.0, radius: self.danger.1 });
+            let _ = f.objects.push(AntObject::Disturbance {
+                center: self.danger.0,
+                radius: self.danger.1,
+            });
         }
         f
     }
@@ -110,10 +121,11 @@ impl<S: Scalar> World<S> {
         let Some(me) = plans[i] else { return f };
         let hear = S::from_f32(HEAR);
         for (j, p) in plans.iter().enumerate() {
-            if let Some(p) = p {
-                if j != i && (p.predicted - me.predicted).length() <= hear {
-                    let _ = f.neighbours.push(p.predicted);
-                }
+            if let Some(p) = p
+                && j != i
+                && (p.predicted - me.predicted).length() <= hear
+            {
+                let _ = f.neighbours.push(p.predicted);
             }
         }
         f
@@ -171,7 +183,11 @@ pub fn run<S: Word>(out: &mut impl Sink) {
         // Phase 1: every ant plans on the previous tick's states.
         let mut plans: [Option<AntPlan<S>>; AGENTS] = [None; AGENTS];
         for (i, plan) in plans.iter_mut().enumerate() {
-            let ctx = StepCtx { seed: SEED, agent: i as u32, step };
+            let ctx = StepCtx {
+                seed: SEED,
+                agent: i as u32,
+                step,
+            };
             match ant::plan(&ants[i], &w.plan_frame(&ants, i), &params, ctx) {
                 Ok(p) => {
                     out.vec2(p.predicted);
@@ -214,8 +230,17 @@ fn emit<S: Word>(r: swarm_core::Result<AntPlan<S>>, out: &mut impl Sink) {
 /// Bad input must be refused with the same typed error on the MCU and the host: a neighbour
 /// beyond the coordinate limit, a duplicate neighbour id, a non-unit heading, and a bad
 /// parameter. Each emits the error's marker and code (or, wrongly accepted, its plan).
-fn probes<S: Word>(w: &World<S>, ants: &[AntState<S>; AGENTS], params: &AntParams<S>, out: &mut impl Sink) {
-    let ctx = StepCtx { seed: SEED, agent: 0, step: STEPS };
+fn probes<S: Word>(
+    w: &World<S>,
+    ants: &[AntState<S>; AGENTS],
+    params: &AntParams<S>,
+    out: &mut impl Sink,
+) {
+    let ctx = StepCtx {
+        seed: SEED,
+        agent: 0,
+        step: STEPS,
+    };
     let far = AntNeighbor {
         id: 5,
         pos: Vec2::from_f32(20_000.0, 3.0),
@@ -226,13 +251,21 @@ fn probes<S: Word>(w: &World<S>, ants: &[AntState<S>; AGENTS], params: &AntParam
     };
     let mut f = w.plan_frame(ants, 0);
     f.neighbours.clear();
-    let _ = f.neighbours.push(AntNeighbor { id: 3, pos: ants[0].pos, ..far });
+    let _ = f.neighbours.push(AntNeighbor {
+        id: 3,
+        pos: ants[0].pos,
+        ..far
+    });
     let _ = f.neighbours.push(far);
     emit(ant::plan(&ants[0], &f, params, ctx), out);
 
     let mut f = w.plan_frame(ants, 0);
     f.neighbours.clear();
-    let twin = AntNeighbor { id: 4, pos: ants[0].pos, ..far };
+    let twin = AntNeighbor {
+        id: 4,
+        pos: ants[0].pos,
+        ..far
+    };
     let _ = f.neighbours.push(twin);
     let _ = f.neighbours.push(twin);
     emit(ant::plan(&ants[0], &f, params, ctx), out);
@@ -241,7 +274,10 @@ fn probes<S: Word>(w: &World<S>, ants: &[AntState<S>; AGENTS], params: &AntParam
     bent.heading = Vec2::from_f32(0.5, 0.5);
     emit(ant::plan(&bent, &w.plan_frame(ants, 0), params, ctx), out);
 
-    let bad = AntParams { speed: -S::ONE, ..*params };
+    let bad = AntParams {
+        speed: -S::ONE,
+        ..*params
+    };
     emit(ant::plan(&ants[0], &w.plan_frame(ants, 0), &bad, ctx), out);
 }
 
@@ -250,7 +286,12 @@ fn probes<S: Word>(w: &World<S>, ants: &[AntState<S>; AGENTS], params: &AntParam
 /// (place, remaining and origin truncated to 8 bits; the scenario keeps them small).
 pub fn discrete<S>(s: &AntState<S>) -> u32 {
     let (stopped, reason, place, remaining) = match s.stop {
-        Some(t) => (1, t.reason as u32, u32::from(t.place), u32::from(t.remaining)),
+        Some(t) => (
+            1,
+            t.reason as u32,
+            u32::from(t.place),
+            u32::from(t.remaining),
+        ),
         None => (0, 0, 0, 0),
     };
     s.label as u32
@@ -269,8 +310,11 @@ mod tests {
     use swarm_core::ant::{EnvAction, StopReason};
 
     /// Decoded per tick: (plan discrete words, resolved discrete words), per ant.
-    fn ticks<S: Word>() -> (Vec<([u32; AGENTS], [u32; AGENTS])>, Vec<u32>) {
-        let words = collect(|s| run::<S>(s));
+    /// Per tick: the plan-phase and the resolved discrete words, per ant.
+    type Tick = ([u32; AGENTS], [u32; AGENTS]);
+
+    fn ticks<S: Word>() -> (Vec<Tick>, Vec<u32>) {
+        let words = collect(run::<S>);
         let mut t = Vec::new();
         let mut at = 0;
         for _ in 0..STEPS {
@@ -292,44 +336,90 @@ mod tests {
     fn coverage<S: Word>() {
         let (t, probes) = ticks::<S>();
         let motion = |d: u32| (d >> 2) & 3;
-        let seen_motion: Vec<u32> = (0..4).filter(|m| t.iter().any(|(p, _)| p.iter().any(|&d| motion(d) == *m))).collect();
+        let seen_motion: Vec<u32> = (0..4)
+            .filter(|m| t.iter().any(|(p, _)| p.iter().any(|&d| motion(d) == *m)))
+            .collect();
         assert_eq!(seen_motion, [0, 1, 2, 3], "every motion state occurs");
-        for reason in [StopReason::Casual, StopReason::CollectingFood, StopReason::DroppingFood] {
+        for reason in [
+            StopReason::Casual,
+            StopReason::CollectingFood,
+            StopReason::DroppingFood,
+        ] {
             let r = reason as u32;
             assert!(
-                t.iter().any(|(p, _)| p.iter().any(|&d| d & 0x10 != 0 && (d >> 5) & 3 == r)),
+                t.iter()
+                    .any(|(p, _)| p.iter().any(|&d| d & 0x10 != 0 && (d >> 5) & 3 == r)),
                 "stop {reason:?} occurs"
             );
         }
         let label = |d: u32| d & 3;
         let changed = |i: usize, from: Label, to: Label| {
-            t.windows(2).any(|w| label(w[0].1[i]) == from as u32 && label(w[1].1[i]) == to as u32)
+            t.windows(2)
+                .any(|w| label(w[0].1[i]) == from as u32 && label(w[1].1[i]) == to as u32)
                 || (label(t[0].1[i]) == to as u32 && from == initial(&World::<S>::new())[i].label)
         };
-        assert!(changed(1, Label::Nothing, Label::Nest), "ant 1 becomes S_nest at its nest");
+        assert!(
+            changed(1, Label::Nothing, Label::Nest),
+            "ant 1 becomes S_nest at its nest"
+        );
         assert!(changed(2, Label::Food, Label::Nest), "ant 2 drops its food");
         assert!(changed(3, Label::Nest, Label::Food), "ant 3 collects food");
         // The probes: far neighbour, twin id, bent heading, bad parameter.
         let m = crate::ERROR_MARKER;
-        assert_eq!(probes, [m, 2 << 16 | 1, m, 3 << 16 | 1, m, 2 << 16 | 0xffff, m, 4 << 16 | 0xffff]);
+        assert_eq!(
+            probes,
+            [
+                m,
+                2 << 16 | 1,
+                m,
+                3 << 16 | 1,
+                m,
+                2 << 16 | 0xffff,
+                m,
+                4 << 16 | 0xffff
+            ]
+        );
 
         // Tick 0, branch by branch.
         let w = World::<S>::new();
         let ants = initial(&w);
         let p = params::<S>();
-        let ctx = |i| StepCtx { seed: SEED, agent: i as u32, step: 0 };
-        let env = |i: usize| ant::environment(&ants[i], &w.plan_frame(&ants, i).objects, &p, ctx(i));
-        assert!(matches!(env(4), EnvAction::Avoid(_)), "ant 4 avoids the rock: {:?}", env(4));
-        assert!(matches!(env(5), EnvAction::Escape(_)), "ant 5 escapes: {:?}", env(5));
+        let ctx = |i| StepCtx {
+            seed: SEED,
+            agent: i as u32,
+            step: 0,
+        };
+        let env =
+            |i: usize| ant::environment(&ants[i], &w.plan_frame(&ants, i).objects, &p, ctx(i));
+        assert!(
+            matches!(env(4), EnvAction::Avoid(_)),
+            "ant 4 avoids the rock: {:?}",
+            env(4)
+        );
+        assert!(
+            matches!(env(5), EnvAction::Escape(_)),
+            "ant 5 escapes: {:?}",
+            env(5)
+        );
         assert!(matches!(env(1), EnvAction::AtNest));
         assert!(matches!(env(2), EnvAction::Drop(NEST_ID)));
         assert!(matches!(env(3), EnvAction::Collect(FOOD_ID)));
-        assert!(ant::informer(&ants[6], &w.plan_frame(&ants, 6).neighbours, &p).is_some(), "ant 6 is informed");
+        assert!(
+            ant::informer(&ants[6], &w.plan_frame(&ants, 6).neighbours, &p).is_some(),
+            "ant 6 is informed"
+        );
         let plans: [Option<AntPlan<S>>; AGENTS] =
             core::array::from_fn(|i| ant::plan(&ants[i], &w.plan_frame(&ants, i), &p, ctx(i)).ok());
-        let r = ant::repulsion(plans[6].unwrap().predicted, &w.resolve_frame(&plans, 6).neighbours, &p);
+        let r = ant::repulsion(
+            plans[6].unwrap().predicted,
+            &w.resolve_frame(&plans, 6).neighbours,
+            &p,
+        );
         assert!(r.length() > S::ZERO, "ants 6 and 7 repel (eq. 2-4)");
-        assert_eq!(plans[7].unwrap().state.heading.x < S::ZERO, true, "ant 7 reflected off the east wall");
+        assert!(
+            plans[7].unwrap().state.heading.x < S::ZERO,
+            "ant 7 reflected off the east wall"
+        );
     }
 
     #[test]
@@ -345,7 +435,7 @@ mod tests {
 
     #[test]
     fn word_count() {
-        let n = collect(|s| run::<f32>(s)).len();
+        let n = collect(run::<f32>).len();
         assert_eq!(n, STEPS as usize * AGENTS * WORDS_PER_ANT_TICK + 8);
     }
 }

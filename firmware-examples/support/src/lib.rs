@@ -65,7 +65,10 @@ pub struct Checker<'a> {
 impl Sink for Checker<'_> {
     #[inline(never)]
     fn put(&mut self, w: u32) {
-        let want = self.expected.get(self.index).map(|&e| if self.index == self.flip { e ^ 1 } else { e });
+        let want = self
+            .expected
+            .get(self.index)
+            .map(|&e| if self.index == self.flip { e ^ 1 } else { e });
         if want != Some(w) {
             self.mismatches += 1;
             if self.first.is_none() {
@@ -80,8 +83,18 @@ impl Sink for Checker<'_> {
 /// exactly `expected.len()` words, all bit-identical to the host's.
 pub fn check(name: &str, expected: &[u32], scenario: impl FnOnce(&mut Checker<'_>)) -> ! {
     let window = paint_stack();
-    let flip = if cmdline_has(b"corrupt") { expected.len() / 2 } else { usize::MAX };
-    let mut c = Checker { expected, index: 0, mismatches: 0, first: None, flip };
+    let flip = if cmdline_has(b"corrupt") {
+        expected.len() / 2
+    } else {
+        usize::MAX
+    };
+    let mut c = Checker {
+        expected,
+        index: 0,
+        mismatches: 0,
+        first: None,
+        flip,
+    };
     scenario(&mut c);
     let (peak, capped) = stack_peak(window);
     let n = expected.len();
@@ -92,10 +105,17 @@ pub fn check(name: &str, expected: &[u32], scenario: impl FnOnce(&mut Checker<'_
         l.str(": PASS ").dec(c.index).str("/").dec(n);
         l.str(" decision words bit-identical to the host");
     } else {
-        l.str(": FAIL ").dec(c.mismatches).str(" mismatching of ").dec(c.index);
+        l.str(": FAIL ")
+            .dec(c.mismatches)
+            .str(" mismatching of ")
+            .dec(c.index);
         l.str(" words produced, ").dec(n).str(" expected");
     }
-    l.str(" (stack peak ").str(if capped { ">=" } else { "" }).dec(peak).str(" B)").print();
+    l.str(" (stack peak ")
+        .str(if capped { ">=" } else { "" })
+        .dec(peak)
+        .str(" B)")
+        .print();
     if let Some((i, got, want)) = c.first {
         let mut l = Line::new();
         l.str(name).str(": first mismatch at word ").dec(i);
@@ -103,14 +123,22 @@ pub fn check(name: &str, expected: &[u32], scenario: impl FnOnce(&mut Checker<'_
     }
     if flip != usize::MAX {
         let mut l = Line::new();
-        l.str(name).str(": (self-test: expected word ").dec(flip).str(" was corrupted on purpose)").print();
+        l.str(name)
+            .str(": (self-test: expected word ")
+            .dec(flip)
+            .str(" was corrupted on purpose)")
+            .print();
     }
     exit(ok)
 }
 
 /// Exits QEMU through semihosting with success or failure.
 pub fn exit(ok: bool) -> ! {
-    debug::exit(if ok { debug::EXIT_SUCCESS } else { debug::EXIT_FAILURE });
+    debug::exit(if ok {
+        debug::EXIT_SUCCESS
+    } else {
+        debug::EXIT_FAILURE
+    });
     // Not reached under QEMU; on real hardware without a debugger, park.
     loop {
         cortex_m::asm::wfi();
@@ -124,7 +152,8 @@ fn cmdline_has(needle: &[u8]) -> bool {
     // SYS_GET_CMDLINE: block = {buffer address, buffer length}; the host writes the length used.
     let mut block = [buf.as_mut_ptr() as usize, buf.len()];
     // SAFETY: a valid semihosting operation with a writable block and buffer that outlive it.
-    let rc = unsafe { cortex_m_semihosting::syscall1(nr::GET_CMDLINE, block.as_mut_ptr() as usize) };
+    let rc =
+        unsafe { cortex_m_semihosting::syscall1(nr::GET_CMDLINE, block.as_mut_ptr() as usize) };
     if rc != 0 {
         return false;
     }
@@ -169,7 +198,10 @@ fn panic(info: &core::panic::PanicInfo<'_>) -> ! {
     let mut l = Line::new();
     l.str("PANIC");
     if let Some(loc) = info.location() {
-        l.str(" at ").str(loc.file()).str(":").dec(loc.line() as usize);
+        l.str(" at ")
+            .str(loc.file())
+            .str(":")
+            .dec(loc.line() as usize);
     }
     l.print();
     exit(false)
@@ -191,7 +223,10 @@ pub struct Line {
 impl Line {
     /// An empty line.
     pub const fn new() -> Self {
-        Line { buf: [0; 160], len: 0 }
+        Line {
+            buf: [0; 160],
+            len: 0,
+        }
     }
 
     /// Appends bytes (panic-free: no bounds-check failure path, so no `core::fmt` either).
@@ -232,7 +267,11 @@ impl Line {
         let mut d = *b"0x00000000";
         for (k, c) in d[2..].iter_mut().enumerate() {
             let nib = ((v >> (28 - 4 * k)) & 0xf) as u8;
-            *c = if nib < 10 { b'0' + nib } else { b'a' + nib - 10 };
+            *c = if nib < 10 {
+                b'0' + nib
+            } else {
+                b'a' + nib - 10
+            };
         }
         self.bytes(&d)
     }
