@@ -149,5 +149,9 @@ impl<S: Scalar, const N: usize> ResolveFrame<S, N> {
 fn check_bounds<S: Scalar>(b: Rect<S>) -> Result<()> {
     check_point(b.min, "bounds")?;
     check_point(b.max, "bounds")?;
-    b.check("bounds").map(|_| ())
+    if b.min.x < b.max.x && b.min.y < b.max.y {
+        Ok(())
+    } else {
+        Err(Error::out_of_range("bounds"))
+    }
 }

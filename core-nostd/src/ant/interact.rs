@@ -32,19 +32,19 @@ pub fn informer<S: Scalar>(
     neighbours: &[AntNeighbor<S>],
     params: &AntParams<S>,
 ) -> Option<Vec2<S>> {
-    let range2 = params.contact_range * params.contact_range;
+    // Distances, not squared distances: squares saturate in fixed point beyond ~181.
     let mut best: Option<(S, u32, Vec2<S>)> = None;
     for j in neighbours.iter().filter(|j| transfers(i, j)) {
-        let d2 = (j.pos - i.pos).length_sq();
-        if d2 > range2 {
+        let d = (j.pos - i.pos).length();
+        if d > params.contact_range {
             continue;
         }
         let better = match best {
             None => true,
-            Some((bd, bid, _)) => d2 < bd || (d2 == bd && j.id < bid),
+            Some((bd, bid, _)) => d < bd || (d == bd && j.id < bid),
         };
         if better {
-            best = Some((d2, j.id, j.arrival));
+            best = Some((d, j.id, j.arrival));
         }
     }
     best.map(|(_, _, arrival)| arrival)
@@ -114,24 +114,35 @@ fn inside<S: Scalar>(p: Vec2<S>, center: Vec2<S>, radius: S) -> bool {
     (p - center).length() <= radius
 }
 
+/// The object nearest to the ant among those `pick` accepts; `pick` gives its distance and a
+/// direction vector.
+fn nearest<S: Scalar>(
+    objects: &[AntObject<S>],
+    pick: impl Fn(&AntObject<S>) -> Option<(S, Vec2<S>)>,
+) -> Option<Vec2<S>> {
+    let mut best: Option<(S, Vec2<S>)> = None;
+    for (dist, v) in objects.iter().filter_map(pick) {
+        if best.is_none_or(|(bd, _)| dist < bd) {
+            best = Some((dist, v));
+        }
+    }
+    best.map(|(_, v)| v)
+}
+
 fn avoid_obstacle<S: Scalar>(
     s: &AntState<S>,
     objects: &[AntObject<S>],
     params: &AntParams<S>,
     ctx: StepCtx,
 ) -> Option<Vec2<S>> {
-    let mut nearest: Option<(S, Vec2<S>)> = None;
-    for o in objects {
-        if let AntObject::Obstacle { closest } = *o {
+    let d = nearest(objects, |o| match *o {
+        AntObject::Obstacle { closest } => {
             let d = closest - s.pos;
             let dist = d.length();
-            let ahead = d.dot(s.heading) > S::ZERO;
-            if ahead && dist <= params.avoid_range && nearest.is_none_or(|(bd, _)| dist < bd) {
-                nearest = Some((dist, d));
-            }
+            (d.dot(s.heading) > S::ZERO && dist <= params.avoid_range).then_some((dist, d))
         }
-    }
-    let (_, d) = nearest?;
+        _ => None,
+    })?;
     let perp = d.normalized()?.perp();
     let side = perp.dot(s.heading);
     let flip = if side == S::ZERO {
@@ -147,17 +158,14 @@ fn escape_disturbance<S: Scalar>(
     objects: &[AntObject<S>],
     ctx: StepCtx,
 ) -> Option<Vec2<S>> {
-    let mut nearest: Option<(S, Vec2<S>)> = None;
-    for o in objects {
-        if let AntObject::Disturbance { center, radius } = *o {
+    let away = nearest(objects, |o| match *o {
+        AntObject::Disturbance { center, radius } => {
             let away = s.pos - center;
             let dist = away.length();
-            if dist < radius && nearest.is_none_or(|(bd, _)| dist < bd) {
-                nearest = Some((dist, away));
-            }
+            (dist < radius).then_some((dist, away))
         }
-    }
-    let (_, away) = nearest?;
+        _ => None,
+    })?;
     Some(away.normalized().unwrap_or_else(|| {
         let a = rand::angle(ctx, stream::ANT_FALLBACK, crate::scalar::pi::<S>());
         Vec2::from_angle(a)

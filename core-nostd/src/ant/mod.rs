@@ -25,5 +25,5 @@ pub use frame::{AntNeighbor, AntObject, PlanFrame, ResolveFrame};
 pub use interact::{EnvAction, environment, informer, transfers};
 pub use params::AntParams;
 pub use plan::{AntPlan, plan, predict};
-pub use resolve::{repulsion, resolve};
+pub use resolve::{W_MAX, repulsion, resolve};
 pub use state::{AntState, COORD_LIMIT, Label, MotionState, StopReason, StopTimer};

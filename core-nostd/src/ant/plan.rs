@@ -3,9 +3,9 @@
 use super::frame::PlanFrame;
 use super::interact::{EnvAction, environment, informer};
 use super::params::AntParams;
-use super::state::{AntState, Label, MotionState, StopReason, StopTimer, check_point};
+use super::state::{AntState, Label, MotionState, StopReason, StopTimer};
 use crate::rand::{self, stream};
-use crate::{Rect, Result, Scalar, StepCtx, Vec2};
+use crate::{Error, Rect, Result, Scalar, StepCtx, Vec2};
 
 wire_type! {
     /// The outcome of [`plan`]: the ant's state after the local exploration, with its preferred
@@ -44,6 +44,9 @@ pub fn plan<S: Scalar, const N: usize, const O: usize>(
     params.validate()?;
     state.validate()?;
     frame.validate(ctx.agent)?;
+    if !frame.bounds.contains(state.pos) {
+        return Err(Error::out_of_range("state.pos"));
+    }
     let mut s = *state;
 
     // (1) The stop state.
@@ -78,7 +81,9 @@ pub fn plan<S: Scalar, const N: usize, const O: usize>(
             s.heading = h;
             s.motion = MotionState::InteractEnvironment;
         }
+        // A stopped ant holds its orientation (§4.1): undo this tick's turns.
         EnvAction::Collect(food) => {
+            s.heading = state.heading;
             return Ok(stop(
                 s,
                 StopReason::CollectingFood,
@@ -87,6 +92,7 @@ pub fn plan<S: Scalar, const N: usize, const O: usize>(
             ));
         }
         EnvAction::Drop(nest) => {
+            s.heading = state.heading;
             return Ok(stop(s, StopReason::DroppingFood, params.drop_ticks, nest));
         }
         EnvAction::AtNest => {
@@ -100,7 +106,6 @@ pub fn plan<S: Scalar, const N: usize, const O: usize>(
     // (4) Eq. 1 with the boundary check.
     let (heading, predicted) = predict(s.pos, s.heading, frame.bounds, params);
     s.heading = heading;
-    check_point(predicted, "predicted")?;
     Ok(AntPlan {
         state: s,
         predicted,

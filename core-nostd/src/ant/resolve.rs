@@ -16,19 +16,28 @@ use crate::{Result, Scalar, Vec2};
 /// while the text defines R_d* as "the unit vector pointing from the d-th colliding ant to the
 /// current ant" — a repulsion. We follow the text: R_d* = (p* − p_d*)/‖p* − p_d*‖. A neighbour
 /// predicted exactly at p* gives no direction and is skipped. Terms are summed in frame order.
+///
+/// w_d is limited to [`W_MAX`] (ours): as ‖p_d* − p*‖ → 0 the printed weight diverges, which
+/// overflows `f32` and saturates fixed point differently; past the limit R_d is dominated by the
+/// nearest ant either way, so the direction of O(t+1) is unaffected.
 pub fn repulsion<S: Scalar>(me: Vec2<S>, others: &[Vec2<S>], params: &AntParams<S>) -> Vec2<S> {
     let mut sum = Vec2::zero();
     for &p in others {
         let away = me - p;
         let dist = away.length();
-        if dist == S::ZERO || dist >= params.collision_range {
+        if dist >= params.collision_range {
             continue;
         }
-        let w = params.c / dist.powi(params.k);
-        sum += away * (w / dist);
+        if let Some(unit) = away.normalized() {
+            let w = (params.c / dist.powi(params.k)).min(S::from_f32(W_MAX));
+            sum += unit * w;
+        }
     }
     sum
 }
+
+/// The largest repulsion weight w_d of eq. 3 (8 neighbours at the limit stay below 2^15).
+pub const W_MAX: f32 = 1000.0;
 
 /// Phase 2 of the ant tick (xiang2018 §4.3, Algorithm 1 lines 4-5):
 ///

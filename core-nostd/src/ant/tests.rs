@@ -511,3 +511,91 @@ fn bad_input_is_a_typed_error_naming_the_field() {
         }
     );
 }
+
+// ---- Regressions from review -------------------------------------------------------------
+
+#[test]
+fn nearly_coincident_predictions_stay_finite_and_agree_across_scalars() {
+    let p = AntParams::<F>::default();
+    let pf = p.cast::<Fx>();
+    for others in [
+        [v(1.0, 1e-30), v(1.0, 0.5)],
+        [v(1.01, 0.0), v(1.0, 0.02)],
+        [v(1.0, 1e-6), v(1.0, -1e-6)],
+    ] {
+        let r = repulsion(v(1.0, 0.0), &others, &p);
+        assert!(r.x.is_finite() && r.y.is_finite(), "{others:?} -> {r:?}");
+        let others_fx = others.map(|o| o.cast::<Fx>());
+        let rf = repulsion(Vec2::<Fx>::from_f32(1.0, 0.0), &others_fx, &pf).to_f32();
+        if let (Some(a), Some(b)) = (r.normalized(), rf.normalized()) {
+            assert!(
+                angle_between(a, b) < 0.05,
+                "{others:?}: f32 {a:?} vs fixed {b:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn contact_range_uses_true_distance_in_fixed_point() {
+    let pf = AntParams::<Fx> {
+        contact_range: Fx::from_f32(200.0),
+        ..AntParams::default()
+    };
+    let mut a =
+        AntState::<Fx>::at_nest(0, Vec2::from_f32(1000.0, 1000.0), Vec2::from_f32(1.0, 0.0));
+    a.label = Label::Nest;
+    let far = |id, dx: f32, arrival: Vec2<Fx>| AntNeighbor {
+        id,
+        pos: Vec2::from_f32(1000.0 + dx, 1000.0),
+        label: Label::Food,
+        nest: 0,
+        origin: 7,
+        arrival,
+    };
+    let near_target = Vec2::from_f32(0.0, 0.0);
+    let ns = [
+        far(1, 250.0, Vec2::from_f32(5.0, 5.0)),
+        far(2, 190.0, near_target),
+    ];
+    assert_eq!(informer(&a, &ns, &pf), Some(near_target));
+    assert_eq!(informer(&a, &ns[..1], &pf), None, "beyond contact range");
+}
+
+#[test]
+fn an_ant_outside_the_arena_is_rejected() {
+    let p = AntParams::<F>::default();
+    let mut a = ant(Label::Nest);
+    a.pos = v(150.0, 50.0);
+    assert_eq!(
+        plan(&a, &Frame::new(arena()), &p, ctx(0)).unwrap_err(),
+        Error::OutOfRange {
+            field: "state.pos",
+            index: None
+        }
+    );
+}
+
+#[test]
+fn arriving_at_food_holds_the_orientation() {
+    let p = AntParams::<F>::default(); // full θ: the turn would change the heading
+    let a = ant(Label::Nest);
+    let mut f = Frame::new(arena());
+    f.objects
+        .push(AntObject::Food {
+            id: 9,
+            center: v(50.0, 50.0),
+            radius: 2.0,
+        })
+        .unwrap();
+    for step in 0..50 {
+        let out = plan(&a, &f, &p, ctx(step)).unwrap();
+        if out
+            .state
+            .stop
+            .is_some_and(|t| t.reason == StopReason::CollectingFood)
+        {
+            assert_eq!(out.state.heading, a.heading);
+        }
+    }
+}

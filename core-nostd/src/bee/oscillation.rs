@@ -12,15 +12,21 @@ const HOVER_SPEED: f32 = 1e-3;
 /// Pitch maneuvering function, eq. 3: θ_pitch = 16.429 + 3.5 sin(π (t + 2.986) / 35.972), in
 /// degrees, `t` in seconds.
 pub fn pitch_deg<S: Scalar>(t: S) -> S {
-    let phase = (t + S::from_f32(2.986)) * S::from_f32(core::f32::consts::PI / 35.972);
-    S::from_f32(16.429) + S::from_f32(3.5) * phase.sin()
+    S::from_f32(16.429) + S::from_f32(3.5) * sin_pi_over(t + S::from_f32(2.986), 35.972)
 }
 
 /// Roll maneuvering function, eq. 4: θ_roll = −0.765 + 18.914 sin(π (t + 38.298) / 91.775), in
 /// degrees, `t` in seconds.
 pub fn roll_deg<S: Scalar>(t: S) -> S {
-    let phase = (t + S::from_f32(38.298)) * S::from_f32(core::f32::consts::PI / 91.775);
-    S::from_f32(-0.765) + S::from_f32(18.914) * phase.sin()
+    S::from_f32(-0.765) + S::from_f32(18.914) * sin_pi_over(t + S::from_f32(38.298), 91.775)
+}
+
+/// sin(π·x/T), with x reduced modulo the period 2T first so that the phase stays exact for large
+/// times in both scalar types (a rounded π/T would drift linearly with t).
+fn sin_pi_over<S: Scalar>(x: S, t_half: f32) -> S {
+    let cycles = x / S::from_f32(2.0 * t_half);
+    let frac = cycles - S::from_i32(cycles.floor_i32());
+    (frac * S::from_f32(core::f32::consts::TAU)).sin()
 }
 
 /// Lift coefficient of Fig. 4: l(α) = −0.00095953 α² + 0.090635 α − 0.34182, α in degrees (the
@@ -97,6 +103,27 @@ pub fn oscillation_force<S: Scalar>(
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn maneuvering_functions_keep_their_phase_for_long_runs() {
+        use crate::Fx;
+        for t in [0.0f32, 1000.0, 5_000.5, 15_999.0] {
+            let exact = |c: f64, a: f64, off: f64, half: f64| {
+                c + a * (core::f64::consts::PI * (t as f64 + off) / half).sin()
+            };
+            let roll = exact(-0.765, 18.914, 38.298, 91.775);
+            let pitch = exact(16.429, 3.5, 2.986, 35.972);
+            for (got, want) in [
+                (roll_deg(Fx::from_f32(t)).to_f32() as f64, roll),
+                (pitch_deg(Fx::from_f32(t)).to_f32() as f64, pitch),
+                (roll_deg(t) as f64, roll),
+                (pitch_deg(t) as f64, pitch),
+            ] {
+                // 5e-4 rad = 0.029°.
+                assert!((got - want).abs() < 0.029, "t = {t}: {got} vs {want}");
+            }
+        }
+    }
+
     use super::*;
     use crate::Fx;
 

@@ -5,7 +5,7 @@
 //! factor at a time, so no h³, h⁴ or h⁹ is ever formed (fixed-point range).
 
 use super::frame::BeeNeighbor;
-use super::params::BeeParams;
+use super::params::{BeeParams, LIMIT};
 use crate::scalar::pi;
 use crate::{Scalar, Vec3};
 
@@ -44,8 +44,10 @@ pub fn pressure<S: Scalar>(rho: S, p: &BeeParams<S>) -> S {
     p.stiffness * (rho - p.rest_density).max(S::ZERO)
 }
 
-/// The density of eq. 10: ρ_i = Σ_j m_j W_poly6(|r_i − r_j| − 2r, h) over the neighbours and the
-/// target particles (each of mass m), the bee itself excluded.
+/// The density of eq. 10: ρ_i = Σ_j m_j W_poly6(|r_i − r_j| − 2r, h) over the bee itself (as in
+/// Müller et al. \[61\]: the self term m·W(0, h) keeps ρ bounded away from 0) and the
+/// neighbours and target particles (each of mass m). Limited to ±`LIMIT` so the result is
+/// always a valid input for the next step.
 pub fn density<S: Scalar>(
     pos: Vec3<S>,
     neighbours: &[BeeNeighbor<S>],
@@ -56,9 +58,16 @@ pub fn density<S: Scalar>(
         .iter()
         .map(|n| n.pos)
         .chain(targets.iter().copied());
-    others.fold(S::ZERO, |rho, r_j| {
-        rho + p.mass * poly6(gap((pos - r_j).length(), p.radius), p.h)
-    })
+    others
+        .fold(self_density(p), |rho, r_j| {
+            rho + p.mass * poly6(gap((pos - r_j).length(), p.radius), p.h)
+        })
+        .min(S::from_f32(LIMIT))
+}
+
+/// The density of an isolated bee, m·W_poly6(0, h): the self term of eq. 10.
+pub fn self_density<S: Scalar>(p: &BeeParams<S>) -> S {
+    p.mass * poly6(S::ZERO, p.h)
 }
 
 /// The repulsion force on bee i (eq. 11), given its new density `rho_i`.
@@ -73,8 +82,9 @@ pub fn density<S: Scalar>(
 /// with r̂_ji the unit vector from r_j to r_i (repulsive). It is antisymmetric for equal
 /// densities (F_ij = −F_ji).
 ///
-/// A neighbour's ρ_j is the density it broadcast, p_j = k·max(ρ_j − ρ0, 0); a neighbour with
-/// ρ_j = 0 contributes nothing. Target particles carry no density of their own: they mirror
+/// A neighbour's ρ_j is the density it broadcast, at least the self term m·W(0, h) (a real
+/// neighbour's density includes itself; the floor keeps 1/ρ_j bounded whatever a frame says),
+/// and p_j = k·max(ρ_j − ρ0, 0). Target particles carry no density of their own: they mirror
 /// the bee's (ρ_j = ρ_i, p_j = p_i), as in Akinci et al.'s boundary handling. Coincident
 /// positions have no direction and are skipped.
 pub fn repulsion<S: Scalar>(
@@ -85,9 +95,11 @@ pub fn repulsion<S: Scalar>(
     p: &BeeParams<S>,
 ) -> Vec3<S> {
     let p_i = pressure(rho_i, p);
-    let from_bees = neighbours
-        .iter()
-        .map(|n| pair_force(pos, n.pos, p_i, pressure(n.density, p), n.density, p));
+    let floor = self_density(p);
+    let from_bees = neighbours.iter().map(|n| {
+        let rho_j = n.density.max(floor);
+        pair_force(pos, n.pos, p_i, pressure(rho_j, p), rho_j, p)
+    });
     let from_targets = targets
         .iter()
         .map(|&t| pair_force(pos, t, p_i, p_i, rho_i, p));
@@ -105,9 +117,6 @@ fn pair_force<S: Scalar>(
     rho_j: S,
     p: &BeeParams<S>,
 ) -> Vec3<S> {
-    if rho_j <= S::ZERO {
-        return Vec3::zero();
-    }
     let diff = r_i - r_j;
     let dist = diff.length();
     let grad = spiky_grad(gap(dist, p.radius), p.h);
@@ -216,24 +225,26 @@ mod tests {
         let rho = density(me, &[], &target, &p);
         let f = repulsion(me, rho, &[], &target, &p);
         assert!(f.x < 0.0 && f.y == 0.0 && f.z == 0.0);
-        // Coincident, silent (ρ_j = 0) and out-of-range neighbours give nothing.
+        // Coincident and out-of-range neighbours give nothing.
         let nb = |x: f32, density: f32| BeeNeighbor {
             pos: Vec3::new(x, 0.0, 0.0),
             vel: Vec3::zero(),
             density,
         };
         assert_eq!(
-            repulsion(
-                me,
-                1.0,
-                &[nb(0.0, 1.0), nb(1.0, 0.0), nb(3.6, 1.0)],
-                &[],
-                &p
-            ),
+            repulsion(me, 1.0, &[nb(0.0, 1.0), nb(3.6, 1.0)], &[], &p),
             Vec3::zero()
         );
-        assert_eq!(density(me, &[nb(3.6, 1.0)], &[], &p), 0.0);
-        // Overlapping capsules: gap clamped to 0, maximum kernel.
-        assert_eq!(density(me, &[nb(0.4, 1.0)], &[], &p), poly6(0.0, 3.0));
+        // A neighbour that reports ρ_j = 0 (or a tiny ρ_j near the kernel edge) is floored at
+        // the self density: finite and repulsive, no blow-up.
+        let silent = repulsion(me, 1.0, &[nb(1.0, 0.0)], &[], &p);
+        let floored = repulsion(me, 1.0, &[nb(1.0, self_density(&p))], &[], &p);
+        assert!(silent.x < 0.0 && silent == floored);
+        let edge = repulsion(me, 1.0, &[nb(2.0 * p.radius + 2.999, 1e-9)], &[], &p);
+        assert!(edge.x.is_finite() && edge.x.abs() < 1.0);
+        // Density: the self term alone when nothing is near; overlapping capsules: gap clamped
+        // to 0, maximum kernel.
+        assert_eq!(density(me, &[nb(3.6, 1.0)], &[], &p), self_density(&p));
+        assert_eq!(density(me, &[nb(0.4, 1.0)], &[], &p), 2.0 * poly6(0.0, 3.0));
     }
 }

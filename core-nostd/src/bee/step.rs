@@ -2,7 +2,7 @@
 
 use super::frame::{BeeDecision, BeeFrame, BeeState};
 use super::oscillation::{forward_axis, oscillation_force, pitch_deg, roll_deg};
-use super::params::BeeParams;
+use super::params::{BeeParams, LIMIT};
 use super::vision::{Sighting, avoidance_roll_deg, sense, tune_velocity};
 use super::{curl, sph};
 use crate::scalar::deg;
@@ -64,7 +64,7 @@ pub fn step<S: Scalar, const N: usize, const P: usize>(
         density: rho,
     };
     let next = BeeState {
-        pos: state.pos + velocity * params.dt,
+        pos: within_limit(state.pos + velocity * params.dt),
         vel: velocity,
         forward: o,
         density: rho,
@@ -82,6 +82,17 @@ pub fn step<S: Scalar, const N: usize, const P: usize>(
 fn avoid<S: Scalar>(u: Vec3<S>, state: &BeeState<S>, s: &Sighting<S>, d0: S) -> (Vec3<S>, Vec3<S>) {
     let u0 = if state.avoiding { state.u0 } else { state.vel };
     (tune_velocity(u, u0, s.normal, s.d, d0), u0)
+}
+
+/// `p` with every coordinate limited to ±[`LIMIT`], so the next state is a valid input (the
+/// bee stops at the edge of the representable world).
+fn within_limit<S: Scalar>(p: Vec3<S>) -> Vec3<S> {
+    let l = S::from_f32(LIMIT);
+    Vec3::new(
+        p.x.clamp_to(-l, l),
+        p.y.clamp_to(-l, l),
+        p.z.clamp_to(-l, l),
+    )
 }
 
 /// `v / k` component-wise (one rounding per component in fixed point).

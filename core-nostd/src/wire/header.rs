@@ -17,7 +17,7 @@ pub const HEADER_LEN: usize = 4;
 /// | 0    | `version` | u8 ([`PROTOCOL_VERSION`]) |
 /// | 1    | `kind`    | u8 (which message)       |
 /// | 2..4 | `seq`     | u16, little-endian       |
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Header {
     /// Protocol version of the sender.
