@@ -41,3 +41,31 @@ pub fn write_table(path: &Path, name: &str, header: &str, words: &[u32]) {
         std::fs::write(path, s).unwrap_or_else(|e| panic!("writing {}: {e}", path.display()));
     }
 }
+
+/// The build script of a node image: passes its `memory.x` to the linker (`-Tlink.x`) and writes
+/// the expected-decision tables `expected_f32.rs` and, when given, `expected_fixed.rs` to
+/// `OUT_DIR`. `what` names the scenario in the tables' doc comments.
+pub fn node_build_script(what: &str, f32_words: &[u32], fixed_words: Option<&[u32]>) {
+    let out = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
+    std::fs::copy("memory.x", out.join("memory.x")).expect("copy memory.x");
+    println!("cargo:rustc-link-search={}", out.display());
+    println!("cargo:rustc-link-arg-bins=-Tlink.x");
+    println!("cargo:rerun-if-changed=memory.x");
+    println!("cargo:rerun-if-changed=build.rs");
+    let header =
+        |scalar: &str| format!("Host-computed decision words of the {what}, scalar {scalar}.");
+    write_table(
+        &out.join("expected_f32.rs"),
+        "EXPECTED",
+        &header("f32 (libm)"),
+        f32_words,
+    );
+    if let Some(words) = fixed_words {
+        write_table(
+            &out.join("expected_fixed.rs"),
+            "EXPECTED",
+            &header("Fx (I16F16)"),
+            words,
+        );
+    }
+}
