@@ -1,7 +1,13 @@
 //! # swarm-sim
 //!
-//! The std host simulator (issue 3): whole swarms on the CPU (rayon) and the GPU (wgpu), every
-//! agent driven through the same [`swarm_core`] controllers a microcontroller runs. This crate
-//! is a seam for now; the engine lands with the simulator issue.
+//! The std host simulator: whole ant colonies and bee swarms, every agent driven through the
+//! same [`swarm_core`] controllers a microcontroller runs. The simulator is the reference a
+//! device is checked against, so its sensor frames are built by public functions the HIL
+//! harness calls too.
+//!
+//! Work in progress (issue 3): scenario files, the CPU engine, outputs and the `swarm` CLI.
 
 pub use swarm_core;
+
+pub mod output;
+pub mod scenario;
