@@ -75,6 +75,27 @@ pub use geom::{Rect, Vec2, Vec3};
 pub use scalar::Fx;
 pub use scalar::{MathBackend, Scalar, ScalarKind};
 
+/// Parameters that passed their `validate()`: a controller given `Checked` parameters does not
+/// check them again (a simulator validates once, then runs millions of ticks). Obtained from
+/// [`AntParams::checked`](ant::AntParams::checked) or
+/// [`BeeParams::checked`](bee::BeeParams::checked); read-only afterwards.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Checked<P>(P);
+
+impl<P> core::ops::Deref for Checked<P> {
+    type Target = P;
+    fn deref(&self) -> &P {
+        &self.0
+    }
+}
+
+impl<P> Checked<P> {
+    /// Wraps parameters whose validation the caller has just run.
+    pub(crate) fn assume_valid(p: P) -> Self {
+        Checked(p)
+    }
+}
+
 /// Where a decision sits in the run: the inputs of the counter-based random numbers
 /// ([`rand::rand`]). Time is always an argument, never read from a clock.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

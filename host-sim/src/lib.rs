@@ -9,5 +9,12 @@
 
 pub use swarm_core;
 
+pub mod ants;
+pub mod bench;
+mod error;
+pub mod grid;
 pub mod output;
+pub mod scalar;
 pub mod scenario;
+
+pub use error::{Result, SimError};

@@ -24,6 +24,6 @@ mod tests;
 pub use frame::{AntNeighbor, AntObject, PlanFrame, ResolveFrame};
 pub use interact::{EnvAction, environment, informer, transfers};
 pub use params::AntParams;
-pub use plan::{AntPlan, plan, predict};
-pub use resolve::{W_MAX, repulsion, resolve};
+pub use plan::{AntPlan, plan, plan_checked, predict};
+pub use resolve::{W_MAX, repulsion, resolve, resolve_checked};
 pub use state::{AntState, COORD_LIMIT, Label, MotionState, StopReason, StopTimer};

@@ -83,6 +83,12 @@ impl<S: Scalar> AntParams<S> {
         }
     }
 
+    /// The parameters, validated once (see [`Checked`](crate::Checked)).
+    pub fn checked(self) -> Result<crate::Checked<Self>> {
+        self.validate()?;
+        Ok(crate::Checked::assume_valid(self))
+    }
+
     /// Checks every parameter; the error names the first bad one.
     pub fn validate(&self) -> Result<()> {
         let pos = |v: S, hi: f32, field: &'static str| {

@@ -5,7 +5,7 @@ use super::interact::{EnvAction, environment, informer};
 use super::params::AntParams;
 use super::state::{AntState, Label, MotionState, StopReason, StopTimer};
 use crate::rand::{self, stream};
-use crate::{Error, Rect, Result, Scalar, StepCtx, Vec2};
+use crate::{Checked, Error, Rect, Result, Scalar, StepCtx, Vec2};
 
 wire_type! {
     /// The outcome of [`plan`]: the ant's state after the local exploration, with its preferred
@@ -41,7 +41,17 @@ pub fn plan<S: Scalar, const N: usize, const O: usize>(
     params: &AntParams<S>,
     ctx: StepCtx,
 ) -> Result<AntPlan<S>> {
-    params.validate()?;
+    plan_checked(state, frame, &params.checked()?, ctx)
+}
+
+/// [`plan`] with parameters validated beforehand (the state and frame are still checked).
+pub fn plan_checked<S: Scalar, const N: usize, const O: usize>(
+    state: &AntState<S>,
+    frame: &PlanFrame<S, N, O>,
+    params: &Checked<AntParams<S>>,
+    ctx: StepCtx,
+) -> Result<AntPlan<S>> {
+    let params: &AntParams<S> = params;
     state.validate()?;
     frame.validate(ctx.agent)?;
     if !frame.bounds.contains(state.pos) {

@@ -4,7 +4,7 @@ use super::frame::ResolveFrame;
 use super::params::AntParams;
 use super::plan::AntPlan;
 use super::state::{AntState, check_point};
-use crate::{Result, Scalar, Vec2};
+use crate::{Checked, Result, Scalar, Vec2};
 
 /// The repulsion sum R_d(t+1) of eq. 3 for an ant predicted at `me`, from the predicted
 /// positions `others` of its neighbours:
@@ -51,7 +51,16 @@ pub fn resolve<S: Scalar, const N: usize>(
     frame: &ResolveFrame<S, N>,
     params: &AntParams<S>,
 ) -> Result<AntState<S>> {
-    params.validate()?;
+    resolve_checked(plan, frame, &params.checked()?)
+}
+
+/// [`resolve`] with parameters validated beforehand (the plan and frame are still checked).
+pub fn resolve_checked<S: Scalar, const N: usize>(
+    plan: &AntPlan<S>,
+    frame: &ResolveFrame<S, N>,
+    params: &Checked<AntParams<S>>,
+) -> Result<AntState<S>> {
+    let params: &AntParams<S> = params;
     plan.state.validate()?;
     check_point(plan.predicted, "plan.predicted")?;
     frame.validate()?;

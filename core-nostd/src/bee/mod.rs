@@ -53,4 +53,4 @@ pub mod vision;
 
 pub use frame::{BeeDecision, BeeFrame, BeeNeighbor, BeeState, ObstacleSense};
 pub use params::BeeParams;
-pub use step::step;
+pub use step::{step, step_checked};

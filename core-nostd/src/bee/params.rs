@@ -122,6 +122,12 @@ impl<S: Scalar> BeeParams<S> {
         }
     }
 
+    /// The parameters, validated once (see [`Checked`](crate::Checked)).
+    pub fn checked(self) -> Result<crate::Checked<Self>> {
+        self.validate()?;
+        Ok(crate::Checked::assume_valid(self))
+    }
+
     /// Checks every parameter: finite and at most [`LIMIT`]; h, L, m, Δt, d0 and the speed
     /// limit at least [`MIN_POSITIVE`]; all others ≥ 0. The error names the first bad one.
     pub fn validate(&self) -> Result<()> {

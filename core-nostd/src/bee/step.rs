@@ -6,7 +6,7 @@ use super::params::{BeeParams, LIMIT};
 use super::vision::{Sighting, avoidance_roll_deg, sense, tune_velocity};
 use super::{curl, sph};
 use crate::scalar::deg;
-use crate::{Error, Result, Scalar, Vec3};
+use crate::{Checked, Error, Result, Scalar, Vec3};
 
 /// One step of the bee controller.
 ///
@@ -28,7 +28,16 @@ pub fn step<S: Scalar, const N: usize, const P: usize>(
     frame: &BeeFrame<S, N, P>,
     params: &BeeParams<S>,
 ) -> Result<(BeeDecision<S>, BeeState<S>)> {
-    params.validate()?;
+    step_checked(state, frame, &params.checked()?)
+}
+
+/// [`step()`] with parameters validated beforehand (the state and frame are still checked).
+pub fn step_checked<S: Scalar, const N: usize, const P: usize>(
+    state: &BeeState<S>,
+    frame: &BeeFrame<S, N, P>,
+    params: &Checked<BeeParams<S>>,
+) -> Result<(BeeDecision<S>, BeeState<S>)> {
+    let params: &BeeParams<S> = params;
     state.validate()?;
     frame.validate()?;
 

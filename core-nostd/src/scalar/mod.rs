@@ -11,7 +11,7 @@ mod float;
 #[cfg(feature = "fixed")]
 mod fx;
 #[cfg(feature = "fixed")]
-pub use fx::Fx;
+pub use fx::{Fx, I16F16};
 
 /// Which number type a controller runs on (carried in the HIL handshake).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -1,1 +1,53 @@
-//! Scenario files (in progress).
+//! Scenario files: TOML descriptions of a world, its agents, objects and timed events.
+//!
+//! A scenario is loaded with [`Scenario::from_path`], [`Scenario::from_str`], [`builtin`] or
+//! [`resolve`] (a built-in name first, then a file). Loading checks everything before anything
+//! runs; an error names the file, the line and column, the field path (`groups[1].spawn.radius`)
+//! and what was expected.
+//!
+//! ```toml
+//! name = "ants-fig7a-single-colony"   # optional, defaults to the file stem
+//! description = "..."
+//! seed = 7                            # default 0
+//! steps = 4000
+//! world = { dim = 2, min = [0, 0], max = [200, 120] }   # dim = 3 and [x, y, z] for bees
+//!
+//! [[groups]]
+//! name = "colony"
+//! model = "ant"                       # "ant" (2D) or "bee" (3D)
+//! count = 500
+//! scalar = "f32"                      # or "fixed"; default "f32"
+//! nest = "nest"                       # ants: the home nest (required)
+//! spawn = { at = "nest", radius = 12 }   # or { min = [..], max = [..] }; optional heading = [..]
+//! ant = { w0 = 0.6 }                  # any AntParams field; bees: bee = { preset = "grassland", kappa2 = 4 }
+//!
+//! [[objects]]
+//! name = "nest"
+//! kind = "nest"                       # nest food rock polygon disturbance waypoint | sphere box shaft target
+//! center = [40, 60]
+//! radius = 5
+//!
+//! [[events]]
+//! step = 2000
+//! move = { object = "food", to = [120, 100] }   # or add/remove/start/stop = "name"
+//!
+//! [outputs]
+//! every = 10                          # and trajectories, npy, render, gif (all default true)
+//! ```
+
+mod builtin;
+mod error;
+mod load;
+mod raw;
+mod types;
+
+#[cfg(test)]
+mod tests;
+
+pub use builtin::{BUILTINS, Builtin, builtin, builtin_names, resolve};
+pub use error::{Diagnostic, DiagnosticKind, Result, ScenarioError};
+pub use types::{
+    Action, AntParamsOverride, BeeParamsOverride, BeePreset, Event, Group, MAX_AGENTS, MAX_COORD,
+    MAX_TARGET_PARTICLES, Model, Object, ObjectKind, Outputs, ScalarType, Scenario, Spawn,
+    SpawnRegion, World,
+};

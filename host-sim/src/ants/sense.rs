@@ -1,0 +1,185 @@
+//! Sensor frames of an ant, built from the world exactly as a robot would sense it: the
+//! nearest neighbours in contact range with their labels and latest arrival positions, the
+//! objects in sensing range, the arena; then, for the second phase, the neighbours' broadcast
+//! plans. The HIL harness feeds devices with these same functions.
+
+use swarm_core::ant::{AntNeighbor, AntObject, PlanFrame, ResolveFrame};
+use swarm_core::wire::{WIRE_ANT_NEIGHBOURS, WIRE_ANT_OBJECTS};
+use swarm_core::{Rect, Vec2};
+
+use super::world::{AntObjectKind, AntWorld};
+use crate::scalar::{SimScalar, v2};
+
+/// Neighbour capacity of an ant frame (the wire's).
+pub const N: usize = WIRE_ANT_NEIGHBOURS;
+/// Object capacity of an ant frame (the wire's).
+pub const O: usize = WIRE_ANT_OBJECTS;
+
+/// The plan-phase sensor frame of the simulator.
+pub type AntPlanFrame<S> = PlanFrame<S, N, O>;
+/// The resolve-phase sensor frame of the simulator.
+pub type AntResolveFrame<S> = ResolveFrame<S, N>;
+
+/// The `K` smallest `(key, tie)` pairs offered, in increasing order, each with its slot: a
+/// deterministic nearest-K selection whatever the order (or slots) candidates arrive in.
+#[derive(Debug)]
+struct Nearest<const K: usize> {
+    items: [(f32, u32, u32); K],
+    len: usize,
+}
+
+impl<const K: usize> Nearest<K> {
+    fn new() -> Self {
+        Nearest {
+            items: [(0.0, 0, 0); K],
+            len: 0,
+        }
+    }
+    fn offer(&mut self, key: f32, tie: u32, slot: u32) {
+        let item = (key, tie, slot);
+        let less = |a: (f32, u32, u32), b: (f32, u32, u32)| a.0 < b.0 || (a.0 == b.0 && a.1 < b.1);
+        if self.len == K {
+            if K == 0 || !less(item, self.items[K - 1]) {
+                return;
+            }
+            self.len -= 1;
+        }
+        let mut k = self.len;
+        while k > 0 && less(item, self.items[k - 1]) {
+            self.items[k] = self.items[k - 1];
+            k -= 1;
+        }
+        self.items[k] = item;
+        self.len += 1;
+    }
+    /// The selected slots, nearest first.
+    fn slots(&self) -> impl Iterator<Item = usize> + '_ {
+        self.items[..self.len].iter().map(|&(_, _, s)| s as usize)
+    }
+}
+
+/// Squared distance in the plane, from the grid's `f32` copy of the positions (selection
+/// only: the frame itself carries the exact positions).
+fn d2f(a: [f32; 3], b: [f32; 3]) -> f32 {
+    (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1])
+}
+
+fn bounds<S: SimScalar>(w: &AntWorld) -> Rect<S> {
+    Rect::new(
+        Vec2::new(S::from_f32(w.min[0]), S::from_f32(w.min[1])),
+        Vec2::new(S::from_f32(w.max[0]), S::from_f32(w.max[1])),
+    )
+}
+
+/// The plan-phase sensor frame of ant `i` (xiang2018 §4.2): its `N` nearest neighbours within
+/// the world's contact range (by distance, then id) and its `O` nearest active objects within
+/// sensing range (an object the ant is inside counts as distance 0).
+pub fn plan_frame<S: SimScalar>(w: &AntWorld, i: usize) -> AntPlanFrame<S> {
+    let me = w.sensed.pos[i];
+    let mut frame = PlanFrame::new(bounds(w));
+    let r2 = w.contact_range * w.contact_range;
+    let mut near = Nearest::<N>::new();
+    let p = [me[0] as f32, me[1] as f32, 0.0];
+    w.grid.for_each_candidate(p, w.contact_range, |j, q| {
+        let d = d2f(q, p);
+        if j as usize != i && d <= r2 {
+            near.offer(d, w.sensed.id[j as usize], j);
+        }
+    });
+    for j in near.slots() {
+        let s = &w.sensed;
+        let _ = frame.neighbours.push(AntNeighbor {
+            id: s.id[j],
+            pos: v2(s.pos[j]),
+            label: s.label[j],
+            nest: s.nest[j],
+            origin: s.origin[j],
+            arrival: v2(s.arrival[j]),
+        });
+    }
+
+    let mut objects = Nearest::<O>::new();
+    let p2 = [me[0] as f32, me[1] as f32];
+    for (k, o) in w.objects.iter().enumerate().filter(|(_, o)| o.active) {
+        if !o.may_be_within(p2, w.sense_range) {
+            continue;
+        }
+        let (closest, inside) = o.closest(p2);
+        let dist = if inside {
+            0.0
+        } else {
+            (closest[0] - p2[0]).hypot(closest[1] - p2[1])
+        };
+        if dist <= w.sense_range {
+            objects.offer(dist, k as u32, k as u32);
+        }
+    }
+    for k in objects.slots() {
+        let o = &w.objects[k];
+        let c = |p: [f32; 2]| Vec2::new(S::from_f32(p[0]), S::from_f32(p[1]));
+        let sensed = match (&o.kind, o.circle()) {
+            (AntObjectKind::Obstacle, _) => AntObject::Obstacle {
+                closest: c(o.closest(p2).0),
+            },
+            (AntObjectKind::Nest, Some((center, radius))) => AntObject::Nest {
+                id: o.id,
+                center: c(center),
+                radius: S::from_f32(radius),
+            },
+            (AntObjectKind::Food { .. }, Some((center, radius))) => AntObject::Food {
+                id: o.id,
+                center: c(center),
+                radius: S::from_f32(radius),
+            },
+            (AntObjectKind::Disturbance, Some((center, radius))) => AntObject::Disturbance {
+                center: c(center),
+                radius: S::from_f32(radius),
+            },
+            // Nests, food and disturbances are circles (checked when the world is built).
+            _ => continue,
+        };
+        let _ = frame.objects.push(sensed);
+    }
+    frame
+}
+
+/// The resolve-phase sensor frame of ant `i` (xiang2018 eq. 2-4): the predictions p*(t+1) of
+/// its `N` nearest neighbours within the world's collision range of its own prediction.
+pub fn resolve_frame<S: SimScalar>(w: &AntWorld, i: usize) -> AntResolveFrame<S> {
+    let me = w.predicted[i];
+    let mut frame = ResolveFrame::new(bounds(w));
+    let r2 = w.collision_range * w.collision_range;
+    let mut near = Nearest::<N>::new();
+    let p = [me[0] as f32, me[1] as f32, 0.0];
+    w.predicted_grid
+        .for_each_candidate(p, w.collision_range, |j, q| {
+            let d = d2f(q, p);
+            if j as usize != i && d < r2 {
+                near.offer(d, w.sensed.id[j as usize], j);
+            }
+        });
+    for j in near.slots() {
+        let _ = frame.neighbours.push(v2(w.predicted[j]));
+    }
+    frame
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nearest_keeps_the_k_smallest_in_order_whatever_the_arrival_order() {
+        let keys = [5.0, 1.0, 3.0, 1.0, 9.0, 0.5, 3.0];
+        let mut a = Nearest::<4>::new();
+        let mut b = Nearest::<4>::new();
+        for (i, k) in keys.iter().enumerate() {
+            a.offer(*k, i as u32, i as u32);
+        }
+        for (i, k) in keys.iter().enumerate().rev() {
+            b.offer(*k, i as u32, i as u32);
+        }
+        assert_eq!(a.slots().collect::<Vec<_>>(), vec![5, 1, 3, 2]);
+        assert_eq!(b.slots().collect::<Vec<_>>(), vec![5, 1, 3, 2]);
+    }
+}

@@ -1,0 +1,240 @@
+//! The ant world: the arena, its objects, and the *sensed* state of every ant (struct of
+//! arrays, `f64`, as of the previous step) from which sensor frames are built.
+
+use swarm_core::ant::{AntState, Label};
+
+use crate::grid::Grid;
+use crate::scalar::{SimScalar, a2};
+
+/// The shape of an ant-world object.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape2 {
+    /// A disc.
+    Circle {
+        /// Centre.
+        center: [f32; 2],
+        /// Radius.
+        radius: f32,
+    },
+    /// A simple polygon (obstacles only).
+    Polygon {
+        /// Vertices in order.
+        points: Vec<[f32; 2]>,
+    },
+}
+
+/// What an ant-world object is.
+#[derive(Clone, Debug, PartialEq)]
+pub enum AntObjectKind {
+    /// A nest.
+    Nest,
+    /// A food source with the food left (`None`: endless).
+    Food {
+        /// Food left.
+        amount: Option<u32>,
+    },
+    /// An obstacle.
+    Obstacle,
+    /// An external disturbance (a dangerous circle).
+    Disturbance,
+}
+
+/// An object of the ant world.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AntObjectDef {
+    /// Id carried in sensor frames (nest and food ids).
+    pub id: u16,
+    /// Name (from the scenario).
+    pub name: String,
+    /// What it is.
+    pub kind: AntObjectKind,
+    /// Where it is.
+    pub shape: Shape2,
+    /// Present now.
+    pub active: bool,
+}
+
+impl AntObjectDef {
+    /// The point of the object's boundary closest to `p`, and whether `p` is inside it.
+    pub fn closest(&self, p: [f32; 2]) -> ([f32; 2], bool) {
+        match &self.shape {
+            Shape2::Circle { center, radius } => {
+                let d = [p[0] - center[0], p[1] - center[1]];
+                let len = d[0].hypot(d[1]);
+                if len == 0.0 {
+                    return ([center[0] + radius, center[1]], true);
+                }
+                let k = radius / len;
+                ([center[0] + d[0] * k, center[1] + d[1] * k], len <= *radius)
+            }
+            Shape2::Polygon { points } => closest_on_polygon(points, p),
+        }
+    }
+
+    /// A cheap test: false only if `p` is certainly farther than `range` from the object.
+    pub fn may_be_within(&self, p: [f32; 2], range: f32) -> bool {
+        match &self.shape {
+            Shape2::Circle { center, radius } => {
+                let d2 = (p[0] - center[0]).powi(2) + (p[1] - center[1]).powi(2);
+                d2 <= (radius + range).powi(2)
+            }
+            Shape2::Polygon { .. } => true,
+        }
+    }
+
+    /// Centre and radius, for circles.
+    pub fn circle(&self) -> Option<([f32; 2], f32)> {
+        match self.shape {
+            Shape2::Circle { center, radius } => Some((center, radius)),
+            Shape2::Polygon { .. } => None,
+        }
+    }
+}
+
+/// Closest boundary point of a polygon and whether `p` is inside (even-odd rule).
+fn closest_on_polygon(points: &[[f32; 2]], p: [f32; 2]) -> ([f32; 2], bool) {
+    let mut best = (f32::INFINITY, p);
+    let mut inside = false;
+    let n = points.len();
+    for k in 0..n {
+        let (a, b) = (points[k], points[(k + 1) % n]);
+        let ab = [b[0] - a[0], b[1] - a[1]];
+        let ap = [p[0] - a[0], p[1] - a[1]];
+        let len2 = ab[0] * ab[0] + ab[1] * ab[1];
+        let t = if len2 > 0.0 {
+            ((ap[0] * ab[0] + ap[1] * ab[1]) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let q = [a[0] + ab[0] * t, a[1] + ab[1] * t];
+        let d = (p[0] - q[0]).hypot(p[1] - q[1]);
+        if d < best.0 {
+            best = (d, q);
+        }
+        if (a[1] > p[1]) != (b[1] > p[1]) && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * ab[0] {
+            inside = !inside;
+        }
+    }
+    (best.1, inside)
+}
+
+/// The arena, its objects and the sensed ants.
+#[derive(Clone, Debug, Default)]
+pub struct AntWorld {
+    /// Arena lower-left corner.
+    pub min: [f32; 2],
+    /// Arena upper-right corner.
+    pub max: [f32; 2],
+    /// Every object (inactive ones included; frames skip them).
+    pub objects: Vec<AntObjectDef>,
+    /// Objects whose boundary is within this distance are sensed.
+    pub sense_range: f32,
+    /// Largest contact range of any group (neighbour query radius of the plan frame).
+    pub contact_range: f32,
+    /// Largest collision range of any group (query radius of the resolve frame).
+    pub collision_range: f32,
+    /// Sensed state of every ant at the previous step.
+    pub sensed: Sensed,
+    /// Predicted positions p*(t+1) of the current step's plans.
+    pub predicted: Vec<[f64; 2]>,
+    pub(crate) grid: Grid,
+    pub(crate) predicted_grid: Grid,
+}
+
+/// What an ant's neighbours can sense of it: struct of arrays, indexed by agent.
+#[derive(Clone, Debug, Default)]
+pub struct Sensed {
+    /// Positions.
+    pub pos: Vec<[f64; 2]>,
+    /// Latest arrival positions.
+    pub arrival: Vec<[f64; 2]>,
+    /// Stable ant ids.
+    pub id: Vec<u32>,
+    /// Labels S_c.
+    pub label: Vec<Label>,
+    /// Home nests.
+    pub nest: Vec<u16>,
+    /// Label origins.
+    pub origin: Vec<u16>,
+}
+
+impl Sensed {
+    /// Writes the sensed state of slot `i`, ant `id`.
+    pub fn set<S: SimScalar>(&mut self, i: usize, id: u32, s: &AntState<S>) {
+        self.id[i] = id;
+        self.pos[i] = a2(s.pos);
+        self.arrival[i] = a2(s.arrival);
+        self.label[i] = s.label;
+        self.nest[i] = s.nest;
+        self.origin[i] = s.origin;
+    }
+
+    /// Room for `n` ants.
+    pub fn resize(&mut self, n: usize) {
+        self.pos.resize(n, [0.0; 2]);
+        self.arrival.resize(n, [0.0; 2]);
+        self.id.resize(n, 0);
+        self.label.resize(n, Label::Nothing);
+        self.nest.resize(n, 0);
+        self.origin.resize(n, 0);
+    }
+}
+
+impl AntWorld {
+    /// An empty world over `[min, max]`.
+    pub fn new(min: [f32; 2], max: [f32; 2], contact_range: f32, collision_range: f32) -> Self {
+        let cell = contact_range.max(collision_range).max(0.5);
+        let grid = Grid::new([min[0], min[1], 0.0], [max[0], max[1], 0.0], cell);
+        AntWorld {
+            min,
+            max,
+            objects: Vec::new(),
+            sense_range: 2.0 * contact_range.max(collision_range),
+            contact_range,
+            collision_range,
+            sensed: Sensed::default(),
+            predicted: Vec::new(),
+            predicted_grid: grid.clone(),
+            grid,
+        }
+    }
+
+    /// Sizes the neighbour grids for `n` ants: cells no smaller than the query ranges, and about
+    /// one ant per cell in sparse worlds (fewer, fuller cells: less to clear and scan per
+    /// rebuild, while a query still reads a few contiguous rows).
+    pub fn size_grids(&mut self, n: usize) {
+        let range = self.contact_range.max(self.collision_range).max(0.5);
+        let area = (self.max[0] - self.min[0]) * (self.max[1] - self.min[1]);
+        let cell = range.max((area / n.max(1) as f32).sqrt());
+        let (lo, hi) = (
+            [self.min[0], self.min[1], 0.0],
+            [self.max[0], self.max[1], 0.0],
+        );
+        self.grid = Grid::new(lo, hi, cell);
+        self.predicted_grid = Grid::new(lo, hi, cell);
+    }
+
+    /// The number of ants.
+    pub fn len(&self) -> usize {
+        self.sensed.pos.len()
+    }
+
+    /// Whether there are no ants.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Rebuilds the neighbour grid from the sensed positions.
+    pub fn index_positions(&mut self) {
+        let pos = &self.sensed.pos;
+        self.grid
+            .rebuild(pos.iter().map(|p| [p[0] as f32, p[1] as f32, 0.0]));
+    }
+
+    /// Rebuilds the grid of predicted positions.
+    pub fn index_predictions(&mut self) {
+        let pred = &self.predicted;
+        self.predicted_grid
+            .rebuild(pred.iter().map(|p| [p[0] as f32, p[1] as f32, 0.0]));
+    }
+}

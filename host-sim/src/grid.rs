@@ -1,0 +1,179 @@
+//! The uniform neighbour grid, built by counting sort (cell histogram, prefix sum, scatter):
+//! the layout the fastest GPU agent simulators use, and the one the GPU backend will share.
+//!
+//! Agents are stored cell by cell; within a cell in increasing index order, so every query is
+//! deterministic whatever the thread count.
+
+/// A uniform grid over an axis-aligned box, with cells of edge `cell`.
+#[derive(Clone, Debug, Default)]
+pub struct Grid {
+    origin: [f32; 3],
+    cell: f32,
+    inv_cell: f32,
+    dims: [u32; 3],
+    /// `starts[c]..starts[c + 1]` is the range of `order` holding the agents of cell `c`.
+    starts: Vec<u32>,
+    /// Agent indices sorted by cell.
+    order: Vec<u32>,
+    /// Their positions, in the same order (queries read these contiguously).
+    sorted: Vec<[f32; 3]>,
+    /// Scratch: each agent's cell, and the scatter cursors.
+    cells: Vec<u32>,
+    fill: Vec<u32>,
+}
+
+impl Grid {
+    /// An empty grid over `[min, max]` with cells of edge `cell` (> 0). Positions outside the box
+    /// are put in the nearest border cell. For a 2D world pass equal z bounds: one layer.
+    pub fn new(min: [f32; 3], max: [f32; 3], cell: f32) -> Grid {
+        let cell = if cell.is_finite() && cell > 0.0 {
+            cell
+        } else {
+            1.0
+        };
+        let dims = std::array::from_fn(|k| {
+            let n = ((max[k] - min[k]) / cell).ceil();
+            (n.clamp(1.0, 65_536.0)) as u32
+        });
+        let cells = dims.iter().map(|&d| d as usize).product::<usize>();
+        Grid {
+            origin: min,
+            cell,
+            inv_cell: 1.0 / cell,
+            dims,
+            starts: vec![0; cells + 1],
+            order: Vec::new(),
+            sorted: Vec::new(),
+            cells: Vec::new(),
+            fill: Vec::new(),
+        }
+    }
+
+    /// The same geometry with no agents (for computing cells elsewhere).
+    pub fn clone_geometry(&self) -> Grid {
+        Grid {
+            origin: self.origin,
+            cell: self.cell,
+            inv_cell: self.inv_cell,
+            dims: self.dims,
+            ..Grid::default()
+        }
+    }
+
+    /// The cell index of `p` (row-major; outside the box: the nearest border cell).
+    pub fn cell_of(&self, p: [f32; 3]) -> u32 {
+        self.index(self.coord(p)) as u32
+    }
+
+    /// The cell edge.
+    pub fn cell(&self) -> f32 {
+        self.cell
+    }
+
+    fn coord(&self, p: [f32; 3]) -> [u32; 3] {
+        std::array::from_fn(|k| {
+            // `max` maps NaN to 0; truncation is the floor for non-negative values; beyond the
+            // box, the border cells.
+            let c = ((p[k] - self.origin[k]) * self.inv_cell).max(0.0);
+            (c as u32).min(self.dims[k] - 1)
+        })
+    }
+
+    fn index(&self, c: [u32; 3]) -> usize {
+        (c[2] as usize * self.dims[1] as usize + c[1] as usize) * self.dims[0] as usize
+            + c[0] as usize
+    }
+
+    /// Rebuilds the grid for `positions` (agent `i` at `positions[i]`): counting sort.
+    pub fn rebuild(&mut self, positions: impl ExactSizeIterator<Item = [f32; 3]> + Clone) {
+        self.starts.iter_mut().for_each(|s| *s = 0);
+        self.cells.clear();
+        let probe = self.clone_geometry();
+        self.cells
+            .extend(positions.clone().map(|p| probe.cell_of(p)));
+        // Histogram (shifted by one), then the exclusive prefix sum.
+        for &c in &self.cells {
+            self.starts[c as usize + 1] += 1;
+        }
+        for i in 1..self.starts.len() {
+            self.starts[i] += self.starts[i - 1];
+        }
+        // Scatter in index order: each cell lists its agents in increasing index.
+        self.fill.clear();
+        self.fill.extend_from_slice(&self.starts);
+        self.order.resize(self.cells.len(), 0);
+        self.sorted.resize(self.cells.len(), [0.0; 3]);
+        for ((i, &c), p) in self.cells.iter().enumerate().zip(positions) {
+            let slot = &mut self.fill[c as usize];
+            self.order[*slot as usize] = i as u32;
+            self.sorted[*slot as usize] = p;
+            *slot += 1;
+        }
+    }
+
+    /// Calls `f` with every agent whose cell overlaps the cube of half-edge `radius` around
+    /// `p` (a superset of the agents within `radius`; the caller checks the distance).
+    pub fn for_each_candidate(&self, p: [f32; 3], radius: f32, mut f: impl FnMut(u32, [f32; 3])) {
+        let lo = self.coord([p[0] - radius, p[1] - radius, p[2] - radius]);
+        let hi = self.coord([p[0] + radius, p[1] + radius, p[2] + radius]);
+        for z in lo[2]..=hi[2] {
+            for y in lo[1]..=hi[1] {
+                let row = self.index([lo[0], y, z]);
+                let (a, b) = (
+                    self.starts[row] as usize,
+                    self.starts[row + (hi[0] - lo[0]) as usize + 1] as usize,
+                );
+                // Cells of one row are contiguous in `order`.
+                for (&i, &q) in self.order[a..b].iter().zip(&self.sorted[a..b]) {
+                    f(i, q);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn queries_find_exactly_the_agents_a_brute_force_search_finds() {
+        let pts: Vec<[f32; 3]> = (0..2000u32)
+            .map(|i| {
+                let h = swarm_core::rand::rand(1, i, 0, 0);
+                let g = swarm_core::rand::rand(1, i, 0, 1);
+                [(h % 10_000) as f32 / 50.0, (g % 10_000) as f32 / 100.0, 0.0]
+            })
+            .collect();
+        let mut grid = Grid::new([0.0, 0.0, 0.0], [200.0, 100.0, 0.0], 3.0);
+        grid.rebuild(pts.iter().copied());
+        for (i, p) in pts.iter().enumerate().step_by(37) {
+            for r in [0.5f32, 2.0, 7.5] {
+                let mut got = Vec::new();
+                grid.for_each_candidate(*p, r, |j, q| {
+                    assert_eq!(q, pts[j as usize]);
+                    if (q[0] - p[0]).hypot(q[1] - p[1]) <= r {
+                        got.push(j)
+                    }
+                });
+                got.sort();
+                let want: Vec<u32> = (0..pts.len() as u32)
+                    .filter(|&j| {
+                        let q = pts[j as usize];
+                        (q[0] - p[0]).hypot(q[1] - p[1]) <= r
+                    })
+                    .collect();
+                assert_eq!(got, want, "agent {i} radius {r}");
+            }
+        }
+    }
+
+    #[test]
+    fn out_of_box_and_nan_positions_land_in_border_cells() {
+        let mut grid = Grid::new([0.0; 3], [10.0, 10.0, 10.0], 1.0);
+        grid.rebuild([[-5.0, 50.0, 3.0], [f32::NAN, 1.0, 1.0]].into_iter());
+        let mut seen = Vec::new();
+        grid.for_each_candidate([0.0, 9.9, 3.0], 0.5, |i, _| seen.push(i));
+        assert_eq!(seen, vec![0]);
+    }
+}

@@ -1,0 +1,246 @@
+//! Whole-or-nothing file writes.
+//!
+//! Every output file goes through [`AtomicFile`]: the bytes go to a temporary file in the same
+//! folder (named `.<final name>.<random>`), which is flushed, synced to disk and then renamed over
+//! the final name. A reader therefore sees either the previous file (or none) or the complete new
+//! one, never a half-written file; on any error, or when the writer is dropped without
+//! [`AtomicFile::commit`], the temporary file is removed and the final name is left untouched.
+
+use std::ffi::OsString;
+use std::fs::File;
+use std::io::{self, BufWriter, Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
+
+use tempfile::NamedTempFile;
+
+use super::error::{OutputError, Result};
+
+/// Buffer size of the writer handed to callers.
+const BUF_SIZE: usize = 256 * 1024;
+
+/// A file being written atomically: write through [`AtomicFile::writer`], then
+/// [`commit`](AtomicFile::commit). Dropping it uncommitted removes the temporary file.
+pub struct AtomicFile {
+    path: PathBuf,
+    out: BufWriter<NamedTempFile>,
+}
+
+impl std::fmt::Debug for AtomicFile {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("AtomicFile")
+            .field("path", &self.path)
+            .field("temp", &self.out.get_ref().path())
+            .finish()
+    }
+}
+
+impl AtomicFile {
+    /// Starts writing `path`: creates the temporary file beside it (the folder must exist).
+    pub fn create(path: impl AsRef<Path>) -> Result<Self> {
+        let path = path.as_ref().to_path_buf();
+        let dir = match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        let name = path
+            .file_name()
+            .ok_or_else(|| OutputError::invalid(&path, "the path has no file name"))?;
+        let mut prefix = OsString::from(".");
+        prefix.push(name);
+        prefix.push(".");
+        let mut builder = tempfile::Builder::new();
+        builder.prefix(&prefix).suffix(".tmp");
+        #[cfg(unix)]
+        {
+            // The usual mode of a new file (the umask still applies), not tempfile's 0600.
+            use std::os::unix::fs::PermissionsExt;
+            builder.permissions(std::fs::Permissions::from_mode(0o666));
+        }
+        let tmp = builder
+            .tempfile_in(&dir)
+            .map_err(|e| OutputError::io("creating a temporary file for", &path, e))?;
+        Ok(Self {
+            path,
+            out: BufWriter::with_capacity(BUF_SIZE, tmp),
+        })
+    }
+
+    /// The final path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The buffered writer into the temporary file.
+    pub fn writer(&mut self) -> &mut BufWriter<NamedTempFile> {
+        &mut self.out
+    }
+
+    /// Flushes the buffer and overwrites `len` bytes at `offset` (e.g. a header whose numbers are
+    /// only known at the end), then returns to the end of the file.
+    pub fn patch(&mut self, offset: u64, bytes: &[u8]) -> Result<()> {
+        let path = self.path.clone();
+        let io = |e| OutputError::io("writing", &path, e);
+        self.out.flush().map_err(io)?;
+        let f = self.out.get_mut();
+        f.seek(SeekFrom::Start(offset)).map_err(io)?;
+        f.write_all(bytes).map_err(io)?;
+        f.seek(SeekFrom::End(0)).map_err(io)?;
+        Ok(())
+    }
+
+    /// Flushes, syncs and renames the temporary file over the final path.
+    pub fn commit(self) -> Result<()> {
+        let Self { path, out } = self;
+        let tmp = out
+            .into_inner()
+            .map_err(|e| OutputError::io("writing", &path, e.into_error()))?;
+        tmp.as_file()
+            .sync_all()
+            .map_err(|e| OutputError::io("syncing", &path, e))?;
+        tmp.persist(&path)
+            .map_err(|e| OutputError::io("renaming the temporary file to", &path, e.error))?;
+        sync_parent(&path);
+        Ok(())
+    }
+}
+
+/// Syncs the folder holding `path` so the rename itself is durable (best effort: not every
+/// platform or file system allows syncing a folder).
+fn sync_parent(path: &Path) {
+    #[cfg(unix)]
+    if let Some(dir) = path.parent() {
+        let dir = if dir.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            dir
+        };
+        if let Ok(d) = File::open(dir) {
+            let _ = d.sync_all();
+        }
+    }
+    #[cfg(not(unix))]
+    let _ = path;
+}
+
+/// Writes `path` whole or not at all: `write` gets a buffered writer into a temporary file in the
+/// same folder, which replaces `path` only if `write` returns `Ok`. An error from `write` is
+/// reported as a write error on `path` and leaves no file behind.
+pub fn write_atomic<F>(path: impl AsRef<Path>, write: F) -> Result<()>
+where
+    F: FnOnce(&mut dyn Write) -> io::Result<()>,
+{
+    let mut file = AtomicFile::create(path)?;
+    if let Err(e) = write(file.writer()) {
+        return Err(OutputError::io("writing", file.path(), e));
+    }
+    file.commit()
+}
+
+/// Writes `bytes` to `path` whole or not at all.
+pub fn write_atomic_bytes(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
+    write_atomic(path, |w| w.write_all(bytes))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn entries(dir: &Path) -> Vec<String> {
+        let mut v: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    }
+
+    #[test]
+    fn writes_whole_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("a.txt");
+        write_atomic(&p, |w| w.write_all(b"hello\n")).unwrap();
+        assert_eq!(std::fs::read(&p).unwrap(), b"hello\n");
+        assert_eq!(entries(dir.path()), vec!["a.txt"]);
+        // Overwrite.
+        write_atomic_bytes(&p, b"bye").unwrap();
+        assert_eq!(std::fs::read(&p).unwrap(), b"bye");
+        assert_eq!(entries(dir.path()), vec!["a.txt"]);
+    }
+
+    #[test]
+    fn failing_closure_leaves_no_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("b.csv");
+        let err = write_atomic(&p, |w| {
+            w.write_all(&[b'x'; 1_000_000])?;
+            Err(io::Error::other("boom"))
+        })
+        .unwrap_err();
+        let msg = err.to_string();
+        assert!(msg.contains("b.csv") && msg.contains("boom"), "{msg}");
+        assert!(!p.exists());
+        assert!(entries(dir.path()).is_empty(), "{:?}", entries(dir.path()));
+    }
+
+    #[test]
+    fn failing_closure_keeps_previous_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("c.json");
+        write_atomic_bytes(&p, b"old").unwrap();
+        assert!(
+            write_atomic(&p, |w| {
+                w.write_all(b"new but broken")?;
+                Err(io::Error::other("nope"))
+            })
+            .is_err()
+        );
+        assert_eq!(std::fs::read(&p).unwrap(), b"old");
+        assert_eq!(entries(dir.path()), vec!["c.json"]);
+    }
+
+    #[test]
+    fn dropped_uncommitted_leaves_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("d.npy");
+        {
+            let mut f = AtomicFile::create(&p).unwrap();
+            f.writer().write_all(b"partial").unwrap();
+        }
+        assert!(entries(dir.path()).is_empty());
+    }
+
+    #[test]
+    fn patch_rewrites_header() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("e.bin");
+        let mut f = AtomicFile::create(&p).unwrap();
+        f.writer().write_all(b"????-body").unwrap();
+        f.patch(0, b"HEAD").unwrap();
+        f.writer().write_all(b"-tail").unwrap();
+        f.commit().unwrap();
+        assert_eq!(std::fs::read(&p).unwrap(), b"HEAD-body-tail");
+    }
+
+    #[test]
+    fn missing_folder_names_the_path() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("no/such/dir/f.txt");
+        let msg = write_atomic_bytes(&p, b"x").unwrap_err().to_string();
+        assert!(msg.contains("f.txt"), "{msg}");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn file_mode_is_not_private() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("m.txt");
+        write_atomic_bytes(&p, b"x").unwrap();
+        let mode = std::fs::metadata(&p).unwrap().permissions().mode() & 0o777;
+        // Whatever the umask, group/other get at least what a plain File::create gives them.
+        let q = dir.path().join("plain.txt");
+        std::fs::write(&q, b"x").unwrap();
+        let plain = std::fs::metadata(&q).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode, plain);
+    }
+}

@@ -1,0 +1,394 @@
+//! `trajectories.csv`: one row per agent per recorded step.
+//!
+//! ```text
+//! step,id,group,x,y,z,hx,hy,hz,label,motion
+//! 0,0,0,12.5,3.25,0,1,0,0,0,1
+//! ```
+//!
+//! Rows are grouped by step (increasing), agents in id order inside a step. Floats are printed
+//! with Rust's `{}` for `f32`, the shortest text that parses back to the same `f32`, so reading
+//! the file gives back the recorded bits exactly.
+
+use std::fs::File;
+use std::io::{BufRead, BufReader, Write};
+use std::path::{Path, PathBuf};
+
+use super::atomic::AtomicFile;
+use super::error::{OutputError, Result};
+use super::frames::{AgentSample, Frame};
+
+/// The header line (without the newline).
+pub const CSV_HEADER: &str = "step,id,group,x,y,z,hx,hy,hz,label,motion";
+
+/// Streams frames into `trajectories.csv`, atomically: nothing appears at the final path until
+/// [`CsvWriter::finish`]; dropping the writer unfinished leaves no file.
+#[derive(Debug)]
+pub struct CsvWriter {
+    file: AtomicFile,
+    agents: Option<usize>,
+    last_step: Option<u32>,
+}
+
+impl CsvWriter {
+    /// Starts the file and writes the header.
+    pub fn create(path: impl AsRef<Path>) -> Result<Self> {
+        let mut file = AtomicFile::create(path)?;
+        writeln!(file.writer(), "{CSV_HEADER}")
+            .map_err(|e| OutputError::io("writing", file.path(), e))?;
+        Ok(Self {
+            file,
+            agents: None,
+            last_step: None,
+        })
+    }
+
+    /// Appends one frame (it must hold as many agents as the first one, at a later step).
+    pub fn push(&mut self, frame: &Frame) -> Result<()> {
+        let path = self.file.path().to_path_buf();
+        match self.agents {
+            None => self.agents = Some(frame.agents.len()),
+            Some(n) if n != frame.agents.len() => {
+                return Err(OutputError::invalid(
+                    &path,
+                    format!(
+                        "frame at step {} has {} agents, the first frame had {n}",
+                        frame.step,
+                        frame.agents.len()
+                    ),
+                ));
+            }
+            Some(_) => {}
+        }
+        if let Some(last) = self.last_step
+            && frame.step <= last
+        {
+            return Err(OutputError::invalid(
+                &path,
+                format!(
+                    "step {} follows step {last}: steps must increase",
+                    frame.step
+                ),
+            ));
+        }
+        self.last_step = Some(frame.step);
+        let w = self.file.writer();
+        let step = frame.step;
+        for a in &frame.agents {
+            let [x, y, z] = a.pos;
+            let [hx, hy, hz] = a.heading;
+            writeln!(
+                w,
+                "{step},{},{},{x},{y},{z},{hx},{hy},{hz},{},{}",
+                a.id, a.group, a.label, a.motion
+            )
+            .map_err(|e| OutputError::io("writing", &path, e))?;
+        }
+        Ok(())
+    }
+
+    /// Completes the file (flush, sync, rename into place).
+    pub fn finish(self) -> Result<()> {
+        self.file.commit()
+    }
+}
+
+/// Writes all `frames` to `path` (whole or not at all).
+pub fn write_csv(path: impl AsRef<Path>, frames: &[Frame]) -> Result<()> {
+    let path = path.as_ref();
+    super::frames::check_frames(frames, path)?;
+    let mut w = CsvWriter::create(path)?;
+    for f in frames {
+        w.push(f)?;
+    }
+    w.finish()
+}
+
+/// Reads `trajectories.csv` back into frames, checking the header, every field, and that every
+/// step holds the same agents in the same order. Errors name the file and line.
+pub fn read_csv(path: impl AsRef<Path>) -> Result<Vec<Frame>> {
+    let path = path.as_ref();
+    let file = File::open(path).map_err(|e| OutputError::io("opening", path, e))?;
+    let mut rd = BufReader::with_capacity(256 * 1024, file);
+    let mut line = String::new();
+    let mut lineno = 0usize;
+    let read = |rd: &mut BufReader<File>, line: &mut String| -> Result<usize> {
+        line.clear();
+        rd.read_line(line)
+            .map_err(|e| OutputError::io("reading", path, e))
+    };
+    if read(&mut rd, &mut line)? == 0 {
+        return Err(OutputError::format(
+            path,
+            1,
+            "empty file, expected the CSV header",
+        ));
+    }
+    lineno += 1;
+    let header = line.trim_end_matches(['\n', '\r']);
+    if header != CSV_HEADER {
+        return Err(OutputError::format(
+            path,
+            1,
+            format!("header is {header:?}, expected {CSV_HEADER:?}"),
+        ));
+    }
+    let mut frames: Vec<Frame> = Vec::new();
+    let mut agents_per_frame: Option<usize> = None;
+    loop {
+        if read(&mut rd, &mut line)? == 0 {
+            break;
+        }
+        lineno += 1;
+        let row = line.trim_end_matches(['\n', '\r']);
+        if row.is_empty() {
+            continue;
+        }
+        let (step, sample) = parse_row(row).map_err(|m| OutputError::format(path, lineno, m))?;
+        let new_frame = frames.last().is_none_or(|f| f.step != step);
+        if new_frame {
+            if let Some(prev) = frames.last() {
+                if step < prev.step {
+                    return Err(OutputError::format(
+                        path,
+                        lineno,
+                        format!(
+                            "step {step} after step {}: rows must be grouped by increasing step",
+                            prev.step
+                        ),
+                    ));
+                }
+                let n = prev.agents.len();
+                match agents_per_frame {
+                    None => agents_per_frame = Some(n),
+                    Some(m) if m != n => {
+                        return Err(OutputError::format(
+                            path,
+                            lineno - 1,
+                            format!("step {} has {n} agents, the first step has {m}", prev.step),
+                        ));
+                    }
+                    Some(_) => {}
+                }
+            }
+            let cap = agents_per_frame.unwrap_or(0);
+            frames.push(Frame {
+                step,
+                agents: Vec::with_capacity(cap),
+            });
+        }
+        let nf = frames.len();
+        let idx = frames[nf - 1].agents.len();
+        if nf > 1 {
+            let expect = frames[0].agents.get(idx).map(|a| a.id);
+            if expect != Some(sample.id) {
+                return Err(OutputError::format(
+                    path,
+                    lineno,
+                    match expect {
+                        Some(id) => format!(
+                            "agent id {} at position {idx} of step {step}, the first step has id {id} there",
+                            sample.id
+                        ),
+                        None => format!(
+                            "step {step} has more agents than the first step ({})",
+                            frames[0].agents.len()
+                        ),
+                    },
+                ));
+            }
+        }
+        frames[nf - 1].agents.push(sample);
+    }
+    if let (Some(m), Some(last)) = (agents_per_frame, frames.last())
+        && last.agents.len() != m
+    {
+        return Err(OutputError::format(
+            path,
+            lineno,
+            format!(
+                "step {} has {} agents, the first step has {m}",
+                last.step,
+                last.agents.len()
+            ),
+        ));
+    }
+    Ok(frames)
+}
+
+fn parse_row(row: &str) -> std::result::Result<(u32, AgentSample), String> {
+    let mut it = row.split(',');
+    let mut next = |name: &str| {
+        it.next()
+            .map(str::trim)
+            .ok_or_else(|| format!("missing field {name:?} (expected 11 fields)"))
+    };
+    fn num<T: std::str::FromStr>(s: &str, name: &str) -> std::result::Result<T, String> {
+        s.parse::<T>()
+            .map_err(|_| format!("field {name:?} is {s:?}, not a valid number"))
+    }
+    let step: u32 = num(next("step")?, "step")?;
+    let id: u32 = num(next("id")?, "id")?;
+    let group: u16 = num(next("group")?, "group")?;
+    let x: f32 = num(next("x")?, "x")?;
+    let y: f32 = num(next("y")?, "y")?;
+    let z: f32 = num(next("z")?, "z")?;
+    let hx: f32 = num(next("hx")?, "hx")?;
+    let hy: f32 = num(next("hy")?, "hy")?;
+    let hz: f32 = num(next("hz")?, "hz")?;
+    let label: u8 = num(next("label")?, "label")?;
+    let motion: u8 = num(next("motion")?, "motion")?;
+    if it.next().is_some() {
+        return Err("too many fields (expected 11)".into());
+    }
+    Ok((
+        step,
+        AgentSample {
+            id,
+            pos: [x, y, z],
+            heading: [hx, hy, hz],
+            group,
+            label,
+            motion,
+        },
+    ))
+}
+
+/// Default file name inside a run folder.
+pub fn csv_path(dir: &Path) -> PathBuf {
+    dir.join(super::TRAJECTORIES_CSV)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    pub(crate) fn sample_frames(frames: usize, agents: usize) -> Vec<Frame> {
+        let mut s = 0x1234_5678_u32;
+        let mut rnd = move || {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            // Awkward floats: full mantissa, various exponents, signs.
+            f32::from_bits((s & 0x807f_ffff) | (((s >> 23) % 40 + 107) << 23))
+        };
+        (0..frames)
+            .map(|f| Frame {
+                step: (f * 3) as u32,
+                agents: (0..agents)
+                    .map(|i| AgentSample {
+                        id: i as u32,
+                        group: (i % 3) as u16,
+                        pos: [rnd(), rnd(), rnd()],
+                        heading: [rnd(), rnd(), 0.0],
+                        label: (i % 3) as u8,
+                        motion: ((i + f) % 4) as u8,
+                    })
+                    .collect(),
+            })
+            .collect()
+    }
+
+    #[test]
+    fn round_trip_is_bit_exact() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = csv_path(dir.path());
+        let mut frames = sample_frames(7, 13);
+        frames[2].agents[4].pos = [f32::MIN_POSITIVE, -0.0, f32::MAX];
+        frames[3].agents[0].heading = [1e-45, -3.4028235e38, 0.1];
+        write_csv(&p, &frames).unwrap();
+        let back = read_csv(&p).unwrap();
+        assert_eq!(back.len(), frames.len());
+        for (a, b) in frames.iter().zip(&back) {
+            assert_eq!(a.step, b.step);
+            for (x, y) in a.agents.iter().zip(&b.agents) {
+                assert_eq!(x.id, y.id);
+                assert_eq!(x.group, y.group);
+                assert_eq!(x.label, y.label);
+                assert_eq!(x.motion, y.motion);
+                for k in 0..3 {
+                    assert_eq!(x.pos[k].to_bits(), y.pos[k].to_bits());
+                    assert_eq!(x.heading[k].to_bits(), y.heading[k].to_bits());
+                }
+            }
+        }
+        let text = std::fs::read_to_string(&p).unwrap();
+        assert!(text.starts_with("step,id,group,x,y,z,hx,hy,hz,label,motion\n"));
+        assert_eq!(text.lines().count(), 1 + 7 * 13);
+    }
+
+    #[test]
+    fn exact_text() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("t.csv");
+        let frames = vec![Frame {
+            step: 4,
+            agents: vec![AgentSample {
+                id: 2,
+                group: 1,
+                pos: [0.1, -2.5, 0.0],
+                heading: [1.0, 0.0, 0.0],
+                label: 1,
+                motion: 3,
+            }],
+        }];
+        write_csv(&p, &frames).unwrap();
+        assert_eq!(
+            std::fs::read_to_string(&p).unwrap(),
+            "step,id,group,x,y,z,hx,hy,hz,label,motion\n4,2,1,0.1,-2.5,0,1,0,0,1,3\n"
+        );
+    }
+
+    #[test]
+    fn empty_frames_give_header_only() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("e.csv");
+        write_csv(&p, &[]).unwrap();
+        assert!(read_csv(&p).unwrap().is_empty());
+    }
+
+    #[test]
+    fn reader_errors_name_file_and_line() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("bad.csv");
+        std::fs::write(
+            &p,
+            format!("{CSV_HEADER}\n0,0,0,1,2,3,1,0,0,0,1\n0,1,0,1,x,3,1,0,0,0,1\n"),
+        )
+        .unwrap();
+        let msg = read_csv(&p).unwrap_err().to_string();
+        assert!(msg.contains("bad.csv:3") && msg.contains("\"y\""), "{msg}");
+
+        std::fs::write(&p, "a,b\n").unwrap();
+        let msg = read_csv(&p).unwrap_err().to_string();
+        assert!(msg.contains("bad.csv:1") && msg.contains("header"), "{msg}");
+
+        // Second step lacks an agent.
+        std::fs::write(
+            &p,
+            format!("{CSV_HEADER}\n0,0,0,1,2,3,1,0,0,0,1\n0,1,0,1,2,3,1,0,0,0,1\n1,0,0,1,2,3,1,0,0,0,1\n"),
+        )
+        .unwrap();
+        let msg = read_csv(&p).unwrap_err().to_string();
+        assert!(msg.contains("step 1 has 1 agents"), "{msg}");
+
+        // Too many fields.
+        std::fs::write(&p, format!("{CSV_HEADER}\n0,0,0,1,2,3,1,0,0,0,1,9\n")).unwrap();
+        let msg = read_csv(&p).unwrap_err().to_string();
+        assert!(msg.contains("too many fields"), "{msg}");
+
+        let msg = read_csv(dir.path().join("none.csv"))
+            .unwrap_err()
+            .to_string();
+        assert!(msg.contains("none.csv"), "{msg}");
+    }
+
+    #[test]
+    fn writer_rejects_inconsistent_frames() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("w.csv");
+        let mut frames = sample_frames(3, 4);
+        frames[2].agents.pop();
+        assert!(write_csv(&p, &frames).is_err());
+        assert!(!p.exists());
+    }
+}

@@ -1,0 +1,73 @@
+//! Host-side conversions of the controller scalars.
+//!
+//! The simulator keeps the *sensed* world (what neighbours see of an agent) in `f64`, which
+//! holds every `f32` and every I16F16 value exactly, so groups of different scalar types can
+//! share a world and a fixed-point group still senses bit-exact fixed-point positions.
+
+use swarm_core::{Fx, Scalar, Vec2, Vec3};
+
+/// A [`Scalar`] the simulator can run: exact conversions to and from `f64`.
+pub trait SimScalar: Scalar {
+    /// The value as `f64` (exact).
+    fn to_f64(self) -> f64;
+    /// The nearest value to `v` (exact for values that came from `to_f64`).
+    fn from_f64(v: f64) -> Self;
+}
+
+impl SimScalar for f32 {
+    fn to_f64(self) -> f64 {
+        self as f64
+    }
+    fn from_f64(v: f64) -> f32 {
+        v as f32
+    }
+}
+
+impl SimScalar for Fx {
+    fn to_f64(self) -> f64 {
+        self.0.to_num::<f64>()
+    }
+    fn from_f64(v: f64) -> Fx {
+        if v.is_nan() {
+            Fx::ZERO
+        } else {
+            Fx(swarm_core::scalar::I16F16::saturating_from_num(v))
+        }
+    }
+}
+
+/// `[x, y]` as a `Vec2<S>`.
+pub fn v2<S: SimScalar>(p: [f64; 2]) -> Vec2<S> {
+    Vec2::new(S::from_f64(p[0]), S::from_f64(p[1]))
+}
+
+/// A `Vec2<S>` as `[x, y]`.
+pub fn a2<S: SimScalar>(v: Vec2<S>) -> [f64; 2] {
+    [v.x.to_f64(), v.y.to_f64()]
+}
+
+/// `[x, y, z]` as a `Vec3<S>`.
+pub fn v3<S: SimScalar>(p: [f64; 3]) -> Vec3<S> {
+    Vec3::new(S::from_f64(p[0]), S::from_f64(p[1]), S::from_f64(p[2]))
+}
+
+/// A `Vec3<S>` as `[x, y, z]`.
+pub fn a3<S: SimScalar>(v: Vec3<S>) -> [f64; 3] {
+    [v.x.to_f64(), v.y.to_f64(), v.z.to_f64()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn conversions_through_f64_are_exact() {
+        for bits in [0i32, 1, -1, i32::MAX, i32::MIN, 0x1234_5678, -0x0765_4321] {
+            let x = Fx::from_bits(bits);
+            assert_eq!(Fx::from_f64(x.to_f64()), x);
+        }
+        for x in [0.1f32, -3.75e-9, 16_383.999, f32::MIN_POSITIVE] {
+            assert_eq!(f32::from_f64(x.to_f64()).to_bits(), x.to_bits());
+        }
+    }
+}

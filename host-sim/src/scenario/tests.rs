@@ -1,0 +1,1026 @@
+//! Tests of the scenario layer: the built-ins, every kind of error (file, line, field), round
+//! trips.
+
+use std::path::Path;
+
+use swarm_core::ant::AntParams;
+use swarm_core::bee::BeeParams;
+
+use super::*;
+
+/// A small valid ant scenario; the error tests break one thing at a time.
+const ANTS: &str = r#"
+name = "test"
+steps = 100
+world = { dim = 2, min = [0, 0], max = [100, 50] }
+
+[[groups]]
+name = "colony"
+model = "ant"
+count = 20
+nest = "nest"
+spawn = { at = "nest", radius = 5 }
+
+[[groups]]
+name = "others"
+model = "ant"
+count = 10
+nest = "nest"
+spawn = { min = [60, 10], max = [70, 20] }
+ant = { p_stop = 0.01, theta = 0.3, k = 3 }
+
+[[objects]]
+name = "nest"
+kind = "nest"
+center = [20, 25]
+radius = 3
+
+[[objects]]
+name = "food"
+kind = "food"
+center = [80, 25]
+radius = 3
+
+[[objects]]
+name = "rock"
+kind = "rock"
+center = [50, 25]
+radius = 4
+active = false
+
+[[objects]]
+name = "danger"
+kind = "disturbance"
+center = [50, 40]
+radius = 5
+active = false
+
+[[events]]
+step = 10
+add = "rock"
+
+[[events]]
+step = 20
+start = "danger"
+
+[[events]]
+step = 30
+move = { object = "food", to = [80, 30] }
+"#;
+
+/// A small valid bee scenario.
+const BEES: &str = r#"
+steps = 50
+world = { dim = 3, min = [0, 0, 0], max = [30, 20, 30] }
+
+[[groups]]
+name = "swarm"
+model = "bee"
+count = 30
+goal = "nest"
+spawn = { min = [2, 5, 2], max = [10, 15, 10] }
+bee = { preset = "around_nest", kappa2 = 3.0 }
+
+[[objects]]
+name = "nest"
+kind = "target"
+center = [20, 10, 20]
+radius = 2
+particles = 50
+
+[[objects]]
+name = "pole"
+kind = "shaft"
+center = [15, 15]
+radius = 1
+y_min = 0
+y_max = 20
+"#;
+
+const FILE: &str = "tests/broken.toml";
+
+/// 1-based line of the first occurrence of `needle` in `text`.
+fn line_of(text: &str, needle: &str) -> usize {
+    let at = text
+        .find(needle)
+        .unwrap_or_else(|| panic!("`{needle}` not in the text"));
+    text[..at].matches('\n').count() + 1
+}
+
+/// `text` with the first `from` replaced by `to` (which must exist).
+fn edit(text: &str, from: &str, to: &str) -> String {
+    assert!(text.contains(from), "`{from}` not in the text");
+    text.replacen(from, to, 1)
+}
+
+/// Loads `text`, expects a diagnostic and checks its file, line, field and that the message
+/// (and the displayed error) contain `says`.
+#[track_caller]
+fn expect_error(text: &str, line: usize, field: &str, says: &str) -> Diagnostic {
+    let err = Scenario::from_str(text, FILE).expect_err("the scenario should be rejected");
+    let shown = err.to_string();
+    let d = err.diagnostic().expect("a diagnostic").clone();
+    assert_eq!(d.file, FILE, "{shown}");
+    assert_eq!(d.line, Some(line), "{shown}");
+    assert_eq!(d.field, field, "{shown}");
+    assert!(
+        d.message.contains(says),
+        "message should contain `{says}`: {shown}"
+    );
+    assert!(shown.contains(&format!("{FILE}:{line}:")), "{shown}");
+    if !field.is_empty() {
+        assert!(shown.contains(&format!("`{field}`")), "{shown}");
+    }
+    d
+}
+
+#[test]
+fn the_test_scenarios_are_valid() {
+    let s = Scenario::from_str(ANTS, "x/test.toml").unwrap();
+    assert_eq!(s.name, "test");
+    assert_eq!(
+        s.world,
+        World::Ants2D {
+            min: [0.0, 0.0],
+            max: [100.0, 50.0]
+        }
+    );
+    assert_eq!(s.groups.len(), 2);
+    assert_eq!(s.groups[0].scalar, ScalarType::F32);
+    assert_eq!(
+        s.events[2].action,
+        Action::Move {
+            object: "food".into(),
+            to: vec![80.0, 30.0]
+        }
+    );
+    assert_eq!(s.outputs, Outputs::default());
+    let b = Scenario::from_str(BEES, "dir/bees-small.toml").unwrap();
+    assert_eq!(b.name, "bees-small", "the name defaults to the file stem");
+    assert_eq!(b.groups[0].bee_params().kappa2, 3.0);
+    assert_eq!(
+        b.groups[0].bee_params().kappa1,
+        BeeParams::<f32>::around_nest().kappa1
+    );
+}
+
+#[test]
+fn every_builtin_loads() {
+    assert_eq!(builtin_names().len(), BUILTINS.len());
+    for b in BUILTINS {
+        let s = builtin(b.name).unwrap_or_else(|| {
+            let err = resolve(b.name).expect_err("a built-in that does not load");
+            panic!("built-in `{}` does not load: {err}", b.name)
+        });
+        assert_eq!(s.name, b.name, "a built-in's name is its file stem");
+        assert!(
+            s.description.contains("Fig."),
+            "{}: cite the figure",
+            b.name
+        );
+        assert!(
+            s.description.contains("--steps"),
+            "{}: mention --steps",
+            b.name
+        );
+        assert!(!b.summary.is_empty() && !b.summary.contains('\n'));
+        let model = s.world.model();
+        assert!(s.groups.iter().all(|g| g.model == model));
+        let prefix = if model == Model::Ant {
+            "ants-"
+        } else {
+            "bees-"
+        };
+        assert!(b.name.starts_with(prefix));
+        let range = if model == Model::Ant {
+            3000..=6000
+        } else {
+            1000..=2000
+        };
+        assert!(range.contains(&s.steps), "{}: {} steps", b.name, s.steps);
+    }
+    assert!(builtin("no-such-scenario").is_none());
+}
+
+#[test]
+fn every_file_in_scenarios_is_a_builtin() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios");
+    let mut stems: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| {
+            let p = e.unwrap().path();
+            (p.extension()? == "toml").then(|| p.file_stem().unwrap().to_string_lossy().into())
+        })
+        .collect();
+    stems.sort();
+    let mut names: Vec<String> = builtin_names().iter().map(|n| n.to_string()).collect();
+    names.sort();
+    assert_eq!(stems, names);
+    // And the files on disk load through `from_path` and `resolve(path)` too.
+    for stem in &stems {
+        let path = dir.join(format!("{stem}.toml"));
+        let s = Scenario::from_path(&path).unwrap();
+        assert_eq!(s.source.as_deref(), Some(path.as_path()));
+        let r = resolve(path.to_str().unwrap()).unwrap();
+        assert_eq!(r, s);
+    }
+}
+
+#[test]
+fn builtins_say_what_the_figures_show() {
+    let get = |n: &str| builtin(n).unwrap();
+    let fig7a = get("ants-fig7a-single-colony");
+    assert_eq!(fig7a.agent_count(), 500);
+    let (nest, food) = (fig7a.object("nest").unwrap(), fig7a.object("food").unwrap());
+    let (n, f) = (nest.kind.point().unwrap(), food.kind.point().unwrap());
+    let d = ((n[0] - f[0]).powi(2) + (n[1] - f[1]).powi(2)).sqrt();
+    assert!((90.0..=110.0).contains(&d), "nest-food distance {d}");
+
+    let fig8a = get("ants-fig8a-hybrid");
+    assert_eq!(fig8a.agent_count(), 500);
+    assert!(fig8a.groups.len() >= 2);
+    let nests: std::collections::HashSet<_> = fig8a.groups.iter().map(|g| g.nest.clone()).collect();
+    assert_eq!(nests.len(), fig8a.groups.len(), "one nest per colony");
+
+    let fig11 = get("ants-fig11-dynamic-obstacles");
+    let adds = fig11
+        .events
+        .iter()
+        .filter(|e| matches!(e.action, Action::Add(_)))
+        .count();
+    let removes = fig11
+        .events
+        .iter()
+        .filter(|e| matches!(e.action, Action::Remove(_)))
+        .count();
+    assert_eq!((adds, removes), (3, 3));
+    let fig12 = get("ants-fig12-moved-food");
+    assert!(
+        fig12
+            .events
+            .iter()
+            .any(|e| matches!(&e.action, Action::Move { object, .. } if object == "food"))
+    );
+    let fig13 = get("ants-fig13-disturbance");
+    let verbs: Vec<_> = fig13.events.iter().map(|e| e.action.verb()).collect();
+    assert_eq!(verbs, ["start", "stop"]);
+    let fig14 = get("ants-fig14-waypoints");
+    assert!(
+        fig14
+            .objects
+            .iter()
+            .filter(|o| matches!(o.kind, ObjectKind::Waypoint { .. }))
+            .count()
+            >= 2
+    );
+
+    let grass = get("bees-fig11-grassland");
+    assert_eq!(grass.agent_count(), 1000);
+    assert_eq!(grass.groups[0].bee_params(), BeeParams::grassland());
+    let nest = get("bees-fig15-nest");
+    assert_eq!(nest.agent_count(), 350);
+    assert_eq!(nest.groups[0].bee_params(), BeeParams::around_nest());
+    assert_eq!(nest.groups[0].goal.as_deref(), Some("nest"));
+    let shafts = get("bees-fig14-shafts");
+    assert!(
+        shafts
+            .objects
+            .iter()
+            .filter(|o| matches!(o.kind, ObjectKind::Shaft { .. }))
+            .count()
+            >= 3
+    );
+    assert!(shafts.groups[0].goal.is_some());
+}
+
+#[test]
+fn round_trip_through_toml() {
+    let mut texts: Vec<(String, &str)> = BUILTINS
+        .iter()
+        .map(|b| (b.name.to_owned(), b.text))
+        .collect();
+    texts.push(("test".into(), ANTS));
+    texts.push(("bees-small".into(), BEES));
+    for (name, text) in texts {
+        let s = Scenario::from_str(text, &format!("{name}.toml")).unwrap();
+        let written = s.to_toml().unwrap();
+        let again = Scenario::from_str(&written, "written.toml")
+            .unwrap_or_else(|e| panic!("{name}: written TOML does not load: {e}\n{written}"));
+        assert_eq!(again, s, "{name}");
+        // Serde directly (no file): the same.
+        let via_serde: Scenario = toml::from_str(&written).unwrap();
+        assert_eq!(via_serde, s, "{name}");
+    }
+}
+
+#[test]
+fn serde_deserialization_validates_too() {
+    let err = toml::from_str::<Scenario>(&edit(ANTS, "count = 20", "count = 0")).unwrap_err();
+    assert!(err.message().contains("groups[0].count"), "{err}");
+    let o: Object =
+        toml::from_str("name = \"r\"\nkind = \"rock\"\ncenter = [1, 2]\nradius = 3\n").unwrap();
+    assert_eq!(
+        o.kind,
+        ObjectKind::Rock {
+            center: [1.0, 2.0],
+            radius: 3.0
+        }
+    );
+    assert!(o.active);
+}
+
+#[test]
+fn syntax_error_names_file_and_line() {
+    let text = edit(
+        ANTS,
+        "[[objects]]\nname = \"food\"",
+        "[[objects]\nname = \"food\"",
+    );
+    let d = expect_error(
+        &text,
+        line_of(&text, "[[objects]\n"),
+        "objects[1]",
+        "expected `]`",
+    );
+    assert_eq!(d.kind, DiagnosticKind::Syntax);
+    assert!(d.column.is_some());
+    let text = edit(ANTS, "count = 20", "count = 20 20");
+    let d = expect_error(
+        &text,
+        line_of(&text, "count = 20 20"),
+        "groups[0].count",
+        "",
+    );
+    assert_eq!(d.kind, DiagnosticKind::Syntax);
+}
+
+#[test]
+fn type_errors_name_the_field() {
+    let text = edit(ANTS, "count = 20", "count = \"many\"");
+    let d = expect_error(&text, line_of(&text, "\"many\""), "groups[0].count", "u32");
+    assert_eq!(d.kind, DiagnosticKind::Shape);
+    assert_eq!(d.column, Some(9));
+    let text = edit(
+        ANTS,
+        "spawn = { at = \"nest\", radius = 5 }",
+        "spawn = { at = \"nest\", radius = true }",
+    );
+    expect_error(
+        &text,
+        line_of(&text, "radius = true"),
+        "groups[0].spawn.radius",
+        "f32",
+    );
+    let text = edit(ANTS, "kind = \"rock\"", "kind = \"rok\"");
+    expect_error(
+        &text,
+        line_of(&text, "\"rok\""),
+        "objects[2].kind",
+        "unknown variant `rok`",
+    );
+    let text = edit(ANTS, "model = \"ant\"", "model = \"wasp\"");
+    expect_error(
+        &text,
+        line_of(&text, "\"wasp\""),
+        "groups[0].model",
+        "`bee`",
+    );
+    let text = edit(ANTS, "count = 10", "count = -10");
+    expect_error(&text, line_of(&text, "-10"), "groups[1].count", "");
+}
+
+#[test]
+fn unknown_fields_are_rejected_by_name() {
+    let text = edit(ANTS, "radius = 5 }", "radius = 5, heding = [1, 0] }");
+    expect_error(
+        &text,
+        line_of(&text, "heding"),
+        "groups[0].spawn.heding",
+        "`heding`",
+    );
+    let text = edit(ANTS, "steps = 100", "steps = 100\nsteeps = 3");
+    expect_error(
+        &text,
+        line_of(&text, "steeps"),
+        "steeps",
+        "unknown field `steeps`",
+    );
+    let text = edit(
+        ANTS,
+        "nest = \"nest\"",
+        "nest = \"nest\"\nant = { sped = 2 }",
+    );
+    expect_error(
+        &text,
+        line_of(&text, "sped"),
+        "groups[0].ant.sped",
+        "`sped`",
+    );
+    // A field of another kind of object.
+    let text = edit(ANTS, "radius = 4\n", "radius = 4\namount = 10\n");
+    expect_error(
+        &text,
+        line_of(&text, "amount = 10"),
+        "objects[2].amount",
+        "`rock` has no field `amount`",
+    );
+}
+
+#[test]
+fn missing_fields_point_at_their_table() {
+    let text = edit(ANTS, "steps = 100\n", "");
+    let d = expect_error(&text, 1, "steps", "missing field `steps`");
+    assert!(d.message.contains("expected the number of steps"));
+    let text = edit(ANTS, "count = 10\n", "");
+    let groups = text.match_indices("[[groups]]").nth(1).unwrap().0;
+    let line = text[..groups].matches('\n').count() + 1;
+    expect_error(&text, line, "groups[1].count", "missing field `count`");
+    let text = edit(ANTS, "center = [50, 25]\n", "");
+    expect_error(
+        &text,
+        line_of(&text, "name = \"rock\"") - 1,
+        "objects[2]",
+        "missing field `center`",
+    );
+    let text = edit(
+        ANTS,
+        "spawn = { at = \"nest\", radius = 5 }",
+        "spawn = { at = \"nest\" }",
+    );
+    expect_error(
+        &text,
+        line_of(&text, "spawn = { at"),
+        "groups[0].spawn",
+        "missing field `radius`",
+    );
+}
+
+#[test]
+fn world_rules() {
+    let text = edit(ANTS, "max = [100, 50]", "max = [100, -50]");
+    expect_error(
+        &text,
+        line_of(&text, "world ="),
+        "world.max",
+        "on y max -50 <= min 0",
+    );
+    let text = edit(ANTS, "dim = 2", "dim = 4");
+    expect_error(
+        &text,
+        line_of(&text, "world ="),
+        "world.dim",
+        "expected 2 (ants",
+    );
+    let text = edit(ANTS, "min = [0, 0], max", "min = [0, 0, 0], max");
+    expect_error(
+        &text,
+        line_of(&text, "world ="),
+        "world.min",
+        "expected 2 numbers",
+    );
+    let text = edit(ANTS, "steps = 100", "steps = 0");
+    expect_error(&text, line_of(&text, "steps = 0"), "steps", "at least 1");
+    let text = format!("{ANTS}\n[outputs]\nevery = 0\n");
+    expect_error(
+        &text,
+        line_of(&text, "every = 0"),
+        "outputs.every",
+        "at least 1",
+    );
+}
+
+#[test]
+fn group_rules() {
+    // No group at all.
+    let start = ANTS.find("[[groups]]").unwrap();
+    let end = ANTS.find("[[objects]]").unwrap();
+    let text = format!("{}{}", &ANTS[..start], &ANTS[end..]);
+    expect_error(&text, 1, "groups", "at least one group");
+    let text = edit(ANTS, "count = 20", "count = 0");
+    expect_error(
+        &text,
+        line_of(&text, "count = 0"),
+        "groups[0].count",
+        "1 to 10000000",
+    );
+    let text = edit(ANTS, "count = 20", "count = 10000001");
+    expect_error(
+        &text,
+        line_of(&text, "count = 1000"),
+        "groups[0].count",
+        "1 to 10000000",
+    );
+    let text = edit(ANTS, "name = \"others\"", "name = \"colony\"");
+    expect_error(
+        &text,
+        line_of(&text, "name = \"colony\"\nmodel = \"ant\"\ncount = 10"),
+        "groups[1].name",
+        "duplicate group name",
+    );
+    // Ant groups need a nest, naming a nest.
+    let text = edit(ANTS, "count = 20\nnest = \"nest\"\n", "count = 20\n");
+    expect_error(
+        &text,
+        line_of(&text, "[[groups]]"),
+        "groups[0].nest",
+        "missing field `nest`",
+    );
+    let text = edit(ANTS, "nest = \"nest\"", "nest = \"food\"");
+    expect_error(
+        &text,
+        line_of(&text, "nest = \"food\""),
+        "groups[0].nest",
+        "`food` is a `food`",
+    );
+    let text = edit(ANTS, "nest = \"nest\"", "nest = \"home\"");
+    expect_error(
+        &text,
+        line_of(&text, "\"home\""),
+        "groups[0].nest",
+        "no object named `home`",
+    );
+    // Models and worlds.
+    let text = edit(ANTS, "model = \"ant\"", "model = \"bee\"");
+    expect_error(&text, line_of(&text, "\"bee\""), "groups[0].model", "3D");
+    let text = edit(BEES, "model = \"bee\"", "model = \"ant\"");
+    expect_error(&text, line_of(&text, "\"ant\""), "groups[0].model", "2D");
+    let text = edit(BEES, "goal = \"nest\"", "goal = \"pole\"");
+    expect_error(
+        &text,
+        line_of(&text, "\"pole\""),
+        "groups[0].goal",
+        "expected an object of kind `target`",
+    );
+    let text = edit(BEES, "goal = \"nest\"", "nest = \"nest\"");
+    expect_error(
+        &text,
+        line_of(&text, "nest = \"nest\""),
+        "groups[0].nest",
+        "for ant groups",
+    );
+    let text = edit(ANTS, "nest = \"nest\"", "nest = \"nest\"\nbee = { h = 2 }");
+    expect_error(
+        &text,
+        line_of(&text, "bee = "),
+        "groups[0].bee",
+        "bee parameters in an ant group",
+    );
+}
+
+#[test]
+fn parameter_overrides_are_validated_by_the_controllers() {
+    let text = edit(
+        ANTS,
+        "nest = \"nest\"",
+        "nest = \"nest\"\nant = { theta = 4.0 }",
+    );
+    let d = expect_error(
+        &text,
+        line_of(&text, "ant = {"),
+        "groups[0].ant.theta",
+        "invalid ant parameter `theta`",
+    );
+    assert!(d.message.contains("(0, π]"));
+    let text = edit(
+        ANTS,
+        "radius = 5 }",
+        "radius = 5 }\n[groups.ant]\ncollect_ticks = 0",
+    );
+    expect_error(
+        &text,
+        line_of(&text, "collect_ticks = 0"),
+        "groups[0].ant.collect_ticks",
+        "at least 1 tick",
+    );
+    let text = edit(BEES, "kappa2 = 3.0", "h = 0");
+    expect_error(
+        &text,
+        line_of(&text, "bee = {"),
+        "groups[0].bee.h",
+        "invalid bee parameter `h`",
+    );
+    // Fixed point: a value f32 accepts but I16F16 cannot hold.
+    let big = edit(BEES, "kappa2 = 3.0", "stiffness = 15000.0");
+    assert!(Scenario::from_str(&big, FILE).is_ok());
+    let text = edit(&big, "count = 30", "count = 30\nscalar = \"fixed\"");
+    assert!(Scenario::from_str(&text, FILE).is_ok());
+    let text = edit(BEES, "preset = \"around_nest\"", "preset = \"meadow\"");
+    expect_error(
+        &text,
+        line_of(&text, "\"meadow\""),
+        "groups[0].bee.preset",
+        "unknown variant `meadow`",
+    );
+}
+
+#[test]
+fn spawn_rules() {
+    let text = edit(ANTS, "radius = 5 }", "radius = 25 }");
+    expect_error(
+        &text,
+        line_of(&text, "radius = 25"),
+        "groups[0].spawn.radius",
+        "reaches outside the world",
+    );
+    let text = edit(ANTS, "radius = 5 }", "radius = -1 }");
+    expect_error(
+        &text,
+        line_of(&text, "radius = -1"),
+        "groups[0].spawn.radius",
+        "positive",
+    );
+    let text = edit(ANTS, "max = [70, 20]", "max = [170, 20]");
+    expect_error(
+        &text,
+        line_of(&text, "max = [170"),
+        "groups[1].spawn.max",
+        "outside the world",
+    );
+    let text = edit(ANTS, "min = [60, 10]", "min = [60, 10, 0]");
+    expect_error(
+        &text,
+        line_of(&text, "[60, 10, 0]"),
+        "groups[1].spawn.min",
+        "expected 2 numbers",
+    );
+    let text = edit(
+        ANTS,
+        "spawn = { min = [60, 10]",
+        "spawn = { at = \"nest\", min = [60, 10]",
+    );
+    expect_error(
+        &text,
+        line_of(&text, "at = \"nest\", min"),
+        "groups[1].spawn.min",
+        "cannot be combined",
+    );
+    let text = edit(
+        ANTS,
+        "spawn = { at = \"nest\", radius = 5 }",
+        "spawn = { at = \"nowhere\", radius = 5 }",
+    );
+    expect_error(
+        &text,
+        line_of(&text, "\"nowhere\""),
+        "groups[0].spawn.at",
+        "no object named `nowhere`",
+    );
+    let text = edit(ANTS, "radius = 5 }", "radius = 5, heading = [0, 0] }");
+    expect_error(
+        &text,
+        line_of(&text, "heading"),
+        "groups[0].spawn.heading",
+        "non-zero",
+    );
+    let text = edit(ANTS, "radius = 5 }", "radius = 5, heading = [1, 0] }");
+    let s = Scenario::from_str(&text, FILE).unwrap();
+    assert_eq!(s.groups[0].spawn.heading, Some(vec![1.0, 0.0]));
+}
+
+#[test]
+fn object_rules() {
+    let text = edit(ANTS, "center = [80, 25]", "center = [180, 25]");
+    expect_error(
+        &text,
+        line_of(&text, "[180, 25]"),
+        "objects[1].center",
+        "outside the world",
+    );
+    let text = edit(ANTS, "radius = 4\n", "radius = -4\n");
+    expect_error(
+        &text,
+        line_of(&text, "radius = -4"),
+        "objects[2].radius",
+        "positive",
+    );
+    let text = edit(ANTS, "name = \"food\"", "name = \"nest\"");
+    expect_error(
+        &text,
+        line_of(&text, "name = \"nest\"\nkind = \"food\""),
+        "objects[1].name",
+        "duplicate object name `nest`",
+    );
+    let text = edit(ANTS, "kind = \"rock\"", "kind = \"sphere\"");
+    expect_error(
+        &text,
+        line_of(&text, "[50, 25]"),
+        "objects[2].center",
+        "expected 3 numbers",
+    );
+    let text = edit(
+        ANTS,
+        "kind = \"rock\"\ncenter = [50, 25]",
+        "kind = \"sphere\"\ncenter = [50, 25, 1]",
+    );
+    expect_error(
+        &text,
+        line_of(&text, "\"sphere\""),
+        "objects[2].kind",
+        "3D world",
+    );
+    let text = edit(
+        ANTS,
+        "kind = \"food\"\ncenter = [80, 25]\nradius = 3",
+        "kind = \"food\"\ncenter = [80, 25]\nradius = 3\namount = 0",
+    );
+    expect_error(
+        &text,
+        line_of(&text, "amount = 0"),
+        "objects[1].amount",
+        "endless",
+    );
+    let bow = "\n[[objects]]\nname = \"bow\"\nkind = \"polygon\"\npoints = [[10, 10], [20, 20], [20, 10], [10, 20]]\n";
+    let text = format!("{ANTS}{bow}");
+    expect_error(
+        &text,
+        line_of(&text, "points = "),
+        "objects[4].points",
+        "not simple",
+    );
+    let text = format!(
+        "{ANTS}{}",
+        bow.replace(
+            "[[10, 10], [20, 20], [20, 10], [10, 20]]",
+            "[[10, 10], [20, 20]]"
+        )
+    );
+    expect_error(
+        &text,
+        line_of(&text, "points = "),
+        "objects[4].points",
+        "at least 3 points",
+    );
+    let text = format!("{ANTS}{}", bow.replace("[10, 20]]", "[10, 200]]"));
+    expect_error(
+        &text,
+        line_of(&text, "points = "),
+        "objects[4].points[3]",
+        "outside the world",
+    );
+    let text = edit(BEES, "y_max = 20", "y_max = 25");
+    expect_error(
+        &text,
+        line_of(&text, "y_max = 25"),
+        "objects[1].y_max",
+        "y range",
+    );
+    let text = edit(BEES, "particles = 50", "particles = 0");
+    expect_error(
+        &text,
+        line_of(&text, "particles = 0"),
+        "objects[0].particles",
+        "1 to",
+    );
+    let text = edit(BEES, "center = [15, 15]", "center = [15, 10, 15]");
+    expect_error(
+        &text,
+        line_of(&text, "[15, 10, 15]"),
+        "objects[1].center",
+        "[x, z]",
+    );
+}
+
+#[test]
+fn event_rules() {
+    let text = edit(ANTS, "add = \"rock\"", "add = \"boulder\"");
+    expect_error(
+        &text,
+        line_of(&text, "\"boulder\""),
+        "events[0].add",
+        "no object named `boulder`",
+    );
+    let text = edit(ANTS, "start = \"danger\"", "start = \"rock\"");
+    expect_error(
+        &text,
+        line_of(&text, "start = \"rock\""),
+        "events[1].start",
+        "applies to disturbances",
+    );
+    let text = edit(ANTS, "step = 30", "step = 100");
+    expect_error(
+        &text,
+        line_of(&text, "step = 100"),
+        "events[2].step",
+        "`steps` = 100",
+    );
+    let text = edit(ANTS, "step = 20", "step = 5");
+    expect_error(
+        &text,
+        line_of(&text, "step = 5"),
+        "events[1].step",
+        "step order",
+    );
+    let text = edit(ANTS, "to = [80, 30]", "to = [80, 30, 1]");
+    expect_error(
+        &text,
+        line_of(&text, "to = [80, 30, 1]"),
+        "events[2].move.to",
+        "expected 2 numbers",
+    );
+    let text = edit(ANTS, "to = [80, 30]", "to = [80, 300]");
+    expect_error(
+        &text,
+        line_of(&text, "to = [80, 300]"),
+        "events[2].move.to",
+        "outside the world",
+    );
+    let text = edit(ANTS, "object = \"food\"", "object = \"danger\"");
+    assert!(
+        Scenario::from_str(&text, FILE).is_ok(),
+        "a disturbance can move"
+    );
+    let text = edit(
+        ANTS,
+        "active = false\n\n[[objects]]\nname = \"danger\"",
+        "\n[[objects]]\nname = \"danger\"",
+    );
+    expect_error(
+        &text,
+        line_of(&text, "add = \"rock\""),
+        "events[0].add",
+        "already present",
+    );
+    let text = edit(ANTS, "add = \"rock\"", "remove = \"rock\"");
+    expect_error(
+        &text,
+        line_of(&text, "remove = \"rock\""),
+        "events[0].remove",
+        "not present",
+    );
+    let text = edit(ANTS, "start = \"danger\"", "stop = \"danger\"");
+    expect_error(
+        &text,
+        line_of(&text, "stop = \"danger\""),
+        "events[1].stop",
+        "not acting",
+    );
+    let text = edit(ANTS, "add = \"rock\"", "add = \"rock\"\nremove = \"food\"");
+    expect_error(
+        &text,
+        line_of(&text, "remove = \"food\""),
+        "events[0].remove",
+        "exactly one action",
+    );
+    let text = edit(ANTS, "add = \"rock\"", "");
+    expect_error(
+        &text,
+        line_of(&text, "[[events]]"),
+        "events[0]",
+        "needs one action",
+    );
+    // Bees: a shaft moves in [x, z].
+    let moved =
+        format!("{BEES}\n[[events]]\nstep = 10\nmove = {{ object = \"pole\", to = [5, 5] }}\n");
+    assert!(Scenario::from_str(&moved, FILE).is_ok());
+    let text = moved.replace("to = [5, 5]", "to = [5, 5, 5]");
+    expect_error(
+        &text,
+        line_of(&text, "to = [5, 5, 5]"),
+        "events[0].move.to",
+        "expected 2 numbers",
+    );
+}
+
+#[test]
+fn display_shows_the_source_line_and_a_caret() {
+    let text = edit(ANTS, "count = 20", "count = 0");
+    let shown = Scenario::from_str(&text, FILE).unwrap_err().to_string();
+    let line = line_of(&text, "count = 0");
+    assert!(
+        shown.starts_with(&format!(
+            "{FILE}:{line}:9: invalid scenario in `groups[0].count`: "
+        )),
+        "{shown}"
+    );
+    assert!(
+        shown.contains(&format!("\n {line} | count = 0\n")),
+        "{shown}"
+    );
+    assert!(shown.ends_with("|         ^"), "{shown:?}");
+}
+
+#[test]
+fn read_and_resolve_errors() {
+    let err = Scenario::from_path(Path::new("/no/such/dir/x.toml")).unwrap_err();
+    assert!(matches!(err, ScenarioError::Read { .. }));
+    assert!(err.to_string().contains("/no/such/dir/x.toml"));
+    let err = resolve("no-such-scenario").unwrap_err();
+    assert!(matches!(err, ScenarioError::NotFound { .. }));
+    assert!(err.to_string().contains("ants-fig7a-single-colony"));
+    // A file: errors name it.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("mine.toml");
+    std::fs::write(&path, edit(ANTS, "count = 20", "count = 0")).unwrap();
+    let err = resolve(path.to_str().unwrap()).unwrap_err();
+    let d = err.diagnostic().unwrap();
+    assert_eq!(d.file, path.display().to_string());
+    std::fs::write(&path, ANTS.replace("name = \"test\"\n", "")).unwrap();
+    let s = resolve(path.to_str().unwrap()).unwrap();
+    assert_eq!(s.name, "mine");
+    assert_eq!(s.source.as_deref(), Some(path.as_path()));
+}
+
+#[test]
+fn object_ids_and_lookups() {
+    let s = Scenario::from_str(ANTS, FILE).unwrap();
+    assert_eq!(s.object_id("nest"), Some(0));
+    assert_eq!(s.object_id("danger"), Some(3));
+    assert_eq!(s.object_id("nothing"), None);
+    assert_eq!(s.object("food").unwrap().kind.tag(), "food");
+    assert_eq!(s.group("others").unwrap().count, 10);
+    assert_eq!(s.agent_count(), 30);
+    assert!(s.object("rock").unwrap().kind.is_obstacle());
+    assert!(!s.object("rock").unwrap().active);
+}
+
+#[test]
+fn set_steps_drops_late_events() {
+    let mut s = Scenario::from_str(ANTS, FILE).unwrap();
+    s.set_steps(25);
+    assert_eq!(s.steps, 25);
+    assert_eq!(s.events.len(), 2);
+    assert!(s.validate().is_ok());
+    s.steps = 15;
+    let err = s.validate().unwrap_err();
+    let d = err.diagnostic().unwrap();
+    assert_eq!((d.field.as_str(), d.line), ("events[1].step", None));
+}
+
+#[test]
+fn overrides_apply_on_their_base() {
+    let o = AntParamsOverride {
+        speed: Some(2.0),
+        k: Some(3),
+        ..Default::default()
+    };
+    let p = o.apply(AntParams::default());
+    assert_eq!((p.speed, p.k), (2.0, 3));
+    assert_eq!(p.theta, AntParams::<f32>::default().theta);
+    assert_eq!(AntParamsOverride::FIELDS.len(), 13);
+    let b = BeeParamsOverride {
+        preset: Some(BeePreset::Grassland),
+        h: Some(2.5),
+        ..Default::default()
+    };
+    let p = b.params();
+    assert_eq!(p.h, 2.5);
+    assert_eq!(p.kappa2, BeeParams::<f32>::grassland().kappa2);
+    assert_eq!(BeeParamsOverride::default().params(), BeeParams::default());
+    assert_eq!(BeeParamsOverride::FIELDS.len(), 16);
+}
+
+#[test]
+fn target_particles_cover_the_sphere() {
+    let s = builtin("bees-fig15-nest").unwrap();
+    let nest = s.object("nest").unwrap();
+    let ObjectKind::Target {
+        center,
+        radius,
+        particles,
+    } = nest.kind
+    else {
+        panic!("the nest is a target");
+    };
+    let pts = nest.sample_particles();
+    assert_eq!(pts.len(), particles as usize);
+    assert_eq!(pts, nest.sample_particles(), "deterministic");
+    let mut mean = [0.0f64; 3];
+    for p in &pts {
+        let d: f32 = (0..3)
+            .map(|i| (p[i] - center[i]).powi(2))
+            .sum::<f32>()
+            .sqrt();
+        assert!((d - radius).abs() < 1e-4, "on the surface: {d}");
+        for i in 0..3 {
+            mean[i] += f64::from(p[i] - center[i]) / pts.len() as f64;
+        }
+    }
+    assert!(
+        mean.iter().all(|m| m.abs() < 0.05 * f64::from(radius)),
+        "evenly spread: {mean:?}"
+    );
+    assert!(s.object("ground").unwrap().sample_particles().is_empty());
+}
+
+#[test]
+fn worlds_and_kinds() {
+    let w = World::Bees3D {
+        min: [0.0; 3],
+        max: [10.0; 3],
+    };
+    assert_eq!((w.dim(), w.model()), (3, Model::Bee));
+    assert!(w.contains(&[5.0, 10.0, 0.0]));
+    assert!(!w.contains(&[5.0, 10.1, 0.0]));
+    assert!(!w.contains(&[5.0, 5.0]));
+    let mut k = ObjectKind::Shaft {
+        center: [1.0, 2.0],
+        radius: 1.0,
+        y_min: 0.0,
+        y_max: 5.0,
+    };
+    assert_eq!(k.point(), None);
+    assert!(k.set_center(&[3.0, 4.0]));
+    assert!(!k.set_center(&[3.0, 4.0, 5.0]));
+    assert_eq!(k.center(), Some(&[3.0, 4.0][..]));
+    assert_eq!(ScalarType::Fixed.kind(), swarm_core::ScalarKind::I16F16);
+}

@@ -1,0 +1,712 @@
+//! The scenario data model: what a scenario file says, checked and typed.
+//!
+//! Every type serializes to (and deserializes from) the TOML schema of the scenario files; the
+//! untyped serde shapes live in `raw.rs`. Coordinates are `f32`: ant worlds are 2D `[x, y]` in
+//! ant body lengths, bee worlds 3D `[x, y, z]` in the bee model's units with y up.
+
+use std::path::PathBuf;
+
+use serde::{Deserialize, Serialize};
+use swarm_core::ant::AntParams;
+use swarm_core::bee::BeeParams;
+
+use super::raw::{RawEvent, RawGroup, RawObject, RawScenario, RawSpawn, RawWorld};
+
+/// Largest number of agents in one group, and in a whole scenario.
+pub const MAX_AGENTS: u32 = 10_000_000;
+
+/// Largest magnitude of a world coordinate: the controllers' input range (±16000 for bees,
+/// ±16384 for ants).
+pub const MAX_COORD: f32 = swarm_core::bee::params::LIMIT;
+
+/// Largest number of virtual particles sampled on one target.
+pub const MAX_TARGET_PARTICLES: u32 = 100_000;
+
+/// A whole scenario: the world, the agents, the objects, the timed events and what to record.
+///
+/// A `Scenario` obtained from [`Scenario::from_path`], [`Scenario::from_str`],
+/// [`builtin`](super::builtin) or serde deserialization has been validated: names resolve,
+/// regions lie inside the world, parameters pass the controllers' `validate()`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "RawScenario", into = "RawScenario")]
+pub struct Scenario {
+    /// Short name (`name` in the file; defaults to the file stem).
+    pub name: String,
+    /// What the scenario shows (free text, may cite a paper figure).
+    pub description: String,
+    /// Seed of the counter-based random numbers.
+    pub seed: u32,
+    /// Number of steps (ticks) to run.
+    pub steps: u32,
+    /// World bounds; their dimension decides the model (2D ants, 3D bees).
+    pub world: World,
+    /// Agent groups, at least one.
+    pub groups: Vec<Group>,
+    /// Objects; an object's id is its index here (see [`Scenario::object_id`]).
+    pub objects: Vec<Object>,
+    /// Timed events, in step order.
+    pub events: Vec<Event>,
+    /// What a run records.
+    pub outputs: Outputs,
+    /// The file the scenario was read from (not serialized).
+    pub source: Option<PathBuf>,
+}
+
+impl Scenario {
+    /// The id of the object called `name`: its index in [`Scenario::objects`].
+    pub fn object_id(&self, name: &str) -> Option<u16> {
+        self.objects
+            .iter()
+            .position(|o| o.name == name)
+            .and_then(|i| u16::try_from(i).ok())
+    }
+
+    /// The object called `name`.
+    pub fn object(&self, name: &str) -> Option<&Object> {
+        self.objects.iter().find(|o| o.name == name)
+    }
+
+    /// The group called `name`.
+    pub fn group(&self, name: &str) -> Option<&Group> {
+        self.groups.iter().find(|g| g.name == name)
+    }
+
+    /// Total number of agents over all groups.
+    pub fn agent_count(&self) -> u64 {
+        self.groups.iter().map(|g| u64::from(g.count)).sum()
+    }
+
+    /// Shortens (or lengthens) the run to `steps` and drops the events that would fall at or
+    /// after the new end, so the scenario stays valid (what `--steps` does).
+    pub fn set_steps(&mut self, steps: u32) {
+        self.steps = steps;
+        self.events.retain(|e| e.step < steps);
+    }
+
+    /// The scenario as TOML text in the scenario-file schema (loading it again gives the same
+    /// scenario, apart from `source`).
+    pub fn to_toml(&self) -> Result<String, toml::ser::Error> {
+        toml::to_string(self)
+    }
+}
+
+/// World bounds, tagged by `dim` in the file.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "RawWorld", into = "RawWorld")]
+pub enum World {
+    /// `{ dim = 2, min = [x, y], max = [x, y] }`: a 2D ant arena, in ant body lengths.
+    Ants2D {
+        /// Lower corner.
+        min: [f32; 2],
+        /// Upper corner.
+        max: [f32; 2],
+    },
+    /// `{ dim = 3, min = [x, y, z], max = [x, y, z] }`: a 3D bee volume, y up.
+    Bees3D {
+        /// Lower corner.
+        min: [f32; 3],
+        /// Upper corner.
+        max: [f32; 3],
+    },
+}
+
+impl World {
+    /// 2 or 3.
+    pub fn dim(&self) -> usize {
+        match self {
+            World::Ants2D { .. } => 2,
+            World::Bees3D { .. } => 3,
+        }
+    }
+
+    /// The model that lives in this world.
+    pub fn model(&self) -> Model {
+        match self {
+            World::Ants2D { .. } => Model::Ant,
+            World::Bees3D { .. } => Model::Bee,
+        }
+    }
+
+    /// Lower corner (`dim` numbers).
+    pub fn min(&self) -> &[f32] {
+        match self {
+            World::Ants2D { min, .. } => min,
+            World::Bees3D { min, .. } => min,
+        }
+    }
+
+    /// Upper corner (`dim` numbers).
+    pub fn max(&self) -> &[f32] {
+        match self {
+            World::Ants2D { max, .. } => max,
+            World::Bees3D { max, .. } => max,
+        }
+    }
+
+    /// Whether `p` (with `dim` numbers) lies inside the bounds (borders included).
+    pub fn contains(&self, p: &[f32]) -> bool {
+        p.len() == self.dim()
+            && p.iter()
+                .zip(self.min().iter().zip(self.max()))
+                .all(|(v, (lo, hi))| v >= lo && v <= hi)
+    }
+}
+
+/// Which controller drives a group.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Model {
+    /// `"ant"`: xiang2018, 2D worlds.
+    Ant,
+    /// `"bee"`: chen, 3D worlds.
+    Bee,
+}
+
+impl Model {
+    /// `"ant"` or `"bee"`.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Model::Ant => "ant",
+            Model::Bee => "bee",
+        }
+    }
+}
+
+/// The scalar type a group's controllers compute in.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ScalarType {
+    /// `"f32"` (the default).
+    #[default]
+    F32,
+    /// `"fixed"`: I16F16 fixed point, bit-identical everywhere.
+    Fixed,
+}
+
+impl ScalarType {
+    /// The matching `swarm_core` kind.
+    pub fn kind(&self) -> swarm_core::ScalarKind {
+        match self {
+            ScalarType::F32 => swarm_core::ScalarKind::F32,
+            ScalarType::Fixed => swarm_core::ScalarKind::I16F16,
+        }
+    }
+}
+
+/// A group of agents of one model, sharing spawn region, parameters and scalar type.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "RawGroup", into = "RawGroup")]
+pub struct Group {
+    /// Name, unique in the scenario.
+    pub name: String,
+    /// `ant` or `bee`.
+    pub model: Model,
+    /// Number of agents, 1 to [`MAX_AGENTS`].
+    pub count: u32,
+    /// Scalar type of the controllers (default `f32`).
+    pub scalar: ScalarType,
+    /// Where the agents start.
+    pub spawn: Spawn,
+    /// Ants: the name of their home nest (a `nest` object). Required for ants.
+    pub nest: Option<String>,
+    /// Bees: the name of a `target` object they fly toward (optional).
+    pub goal: Option<String>,
+    /// Ants: parameter overrides on top of `AntParams::default()`.
+    pub ant: Option<AntParamsOverride>,
+    /// Bees: preset and parameter overrides.
+    pub bee: Option<BeeParamsOverride>,
+}
+
+impl Group {
+    /// The ant parameters of this group: `AntParams::default()` with the overrides applied.
+    pub fn ant_params(&self) -> AntParams<f32> {
+        let base = AntParams::default();
+        self.ant.as_ref().map_or(base, |o| o.apply(base))
+    }
+
+    /// The bee parameters of this group: the preset (default `optimized`) with the overrides
+    /// applied.
+    pub fn bee_params(&self) -> BeeParams<f32> {
+        self.bee
+            .as_ref()
+            .map_or_else(BeeParams::default, BeeParamsOverride::params)
+    }
+}
+
+/// Where a group's agents start, and their initial heading.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "RawSpawn", into = "RawSpawn")]
+pub struct Spawn {
+    /// The region sampled uniformly.
+    pub region: SpawnRegion,
+    /// Initial heading (a direction, `dim` numbers, not necessarily unit length); `None`: a
+    /// random heading per agent.
+    pub heading: Option<Vec<f32>>,
+}
+
+/// A spawn region.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SpawnRegion {
+    /// `{ at = "object", radius = r }`: uniform in the disc (2D) or ball (3D) of radius `r`
+    /// around the object's centre.
+    Around {
+        /// The object's name.
+        at: String,
+        /// Radius of the disc / ball.
+        radius: f32,
+    },
+    /// `{ min = [...], max = [...] }`: uniform in the box (`dim` numbers each).
+    Box {
+        /// Lower corner.
+        min: Vec<f32>,
+        /// Upper corner.
+        max: Vec<f32>,
+    },
+}
+
+/// A named object of the world; its id is its index in [`Scenario::objects`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "RawObject", into = "RawObject")]
+pub struct Object {
+    /// Name, unique in the scenario.
+    pub name: String,
+    /// Present at the start (default `true`); events add, remove, start and stop it later.
+    pub active: bool,
+    /// What it is, with its geometry (`kind` in the file).
+    pub kind: ObjectKind,
+}
+
+/// The kinds of object, with their geometry. Ant kinds are 2D, bee kinds 3D.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ObjectKind {
+    /// Ants: a nest (circle).
+    Nest {
+        /// Centre `[x, y]`.
+        center: [f32; 2],
+        /// Radius.
+        radius: f32,
+    },
+    /// Ants: a food source (circle).
+    Food {
+        /// Centre `[x, y]`.
+        center: [f32; 2],
+        /// Radius.
+        radius: f32,
+        /// Units of food; `None`: endless.
+        amount: Option<u32>,
+    },
+    /// Ants: a circular obstacle.
+    Rock {
+        /// Centre `[x, y]`.
+        center: [f32; 2],
+        /// Radius.
+        radius: f32,
+    },
+    /// Ants: a polygonal obstacle (simple polygon, at least 3 points, either orientation).
+    Polygon {
+        /// Vertices `[x, y]`.
+        points: Vec<[f32; 2]>,
+    },
+    /// Ants: an external disturbance, a dangerous circle ants flee (xiang §4.2.2).
+    Disturbance {
+        /// Centre `[x, y]`.
+        center: [f32; 2],
+        /// Radius.
+        radius: f32,
+    },
+    /// Ants: an intermediate destination (xiang Fig. 14), visited in increasing `order` like
+    /// food sources.
+    Waypoint {
+        /// Centre `[x, y]`.
+        center: [f32; 2],
+        /// Radius.
+        radius: f32,
+        /// Visiting order (unique among way points).
+        order: u32,
+    },
+    /// Bees: a spherical obstacle.
+    Sphere {
+        /// Centre `[x, y, z]`.
+        center: [f32; 3],
+        /// Radius.
+        radius: f32,
+    },
+    /// Bees: an axis-aligned box obstacle (e.g. the ground).
+    Box {
+        /// Lower corner `[x, y, z]`.
+        min: [f32; 3],
+        /// Upper corner `[x, y, z]`.
+        max: [f32; 3],
+    },
+    /// Bees: a vertical cylinder obstacle (chen Fig. 13-14).
+    Shaft {
+        /// Axis position `[x, z]`.
+        center: [f32; 2],
+        /// Radius.
+        radius: f32,
+        /// Bottom of the shaft.
+        y_min: f32,
+        /// Top of the shaft.
+        y_max: f32,
+    },
+    /// Bees: a nest or flower, sampled into `particles` static virtual particles on its
+    /// surface that repel bees like neighbours (chen §V-B, the zig-zag approach).
+    Target {
+        /// Centre `[x, y, z]`.
+        center: [f32; 3],
+        /// Radius.
+        radius: f32,
+        /// Number of virtual particles.
+        particles: u32,
+    },
+}
+
+impl ObjectKind {
+    /// The `kind` string of the file (`"nest"`, `"food"`, ...).
+    pub fn tag(&self) -> &'static str {
+        match self {
+            ObjectKind::Nest { .. } => "nest",
+            ObjectKind::Food { .. } => "food",
+            ObjectKind::Rock { .. } => "rock",
+            ObjectKind::Polygon { .. } => "polygon",
+            ObjectKind::Disturbance { .. } => "disturbance",
+            ObjectKind::Waypoint { .. } => "waypoint",
+            ObjectKind::Sphere { .. } => "sphere",
+            ObjectKind::Box { .. } => "box",
+            ObjectKind::Shaft { .. } => "shaft",
+            ObjectKind::Target { .. } => "target",
+        }
+    }
+
+    /// The world dimension the kind belongs to: 2 (ants) or 3 (bees).
+    pub fn dim(&self) -> usize {
+        match self {
+            ObjectKind::Nest { .. }
+            | ObjectKind::Food { .. }
+            | ObjectKind::Rock { .. }
+            | ObjectKind::Polygon { .. }
+            | ObjectKind::Disturbance { .. }
+            | ObjectKind::Waypoint { .. } => 2,
+            ObjectKind::Sphere { .. }
+            | ObjectKind::Box { .. }
+            | ObjectKind::Shaft { .. }
+            | ObjectKind::Target { .. } => 3,
+        }
+    }
+
+    /// Whether agents must not enter it (rock, polygon, sphere, box, shaft).
+    pub fn is_obstacle(&self) -> bool {
+        matches!(
+            self,
+            ObjectKind::Rock { .. }
+                | ObjectKind::Polygon { .. }
+                | ObjectKind::Sphere { .. }
+                | ObjectKind::Box { .. }
+                | ObjectKind::Shaft { .. }
+        )
+    }
+
+    /// The centre of the kinds that have one (`[x, y]`, `[x, y, z]`, or `[x, z]` for a
+    /// shaft); `None` for polygons and boxes.
+    pub fn center(&self) -> Option<&[f32]> {
+        match self {
+            ObjectKind::Nest { center, .. }
+            | ObjectKind::Food { center, .. }
+            | ObjectKind::Rock { center, .. }
+            | ObjectKind::Disturbance { center, .. }
+            | ObjectKind::Waypoint { center, .. }
+            | ObjectKind::Shaft { center, .. } => Some(center),
+            ObjectKind::Sphere { center, .. } | ObjectKind::Target { center, .. } => Some(center),
+            ObjectKind::Polygon { .. } | ObjectKind::Box { .. } => None,
+        }
+    }
+
+    /// The centre as a point of the world (`dim` numbers): `None` for polygons, boxes and
+    /// shafts (whose centre is an axis).
+    pub fn point(&self) -> Option<&[f32]> {
+        match self {
+            ObjectKind::Shaft { .. } => None,
+            _ => self.center(),
+        }
+    }
+
+    /// The radius of the round kinds.
+    pub fn radius(&self) -> Option<f32> {
+        match self {
+            ObjectKind::Nest { radius, .. }
+            | ObjectKind::Food { radius, .. }
+            | ObjectKind::Rock { radius, .. }
+            | ObjectKind::Disturbance { radius, .. }
+            | ObjectKind::Waypoint { radius, .. }
+            | ObjectKind::Sphere { radius, .. }
+            | ObjectKind::Shaft { radius, .. }
+            | ObjectKind::Target { radius, .. } => Some(*radius),
+            ObjectKind::Polygon { .. } | ObjectKind::Box { .. } => None,
+        }
+    }
+
+    /// Moves the centre to `to` (what a `move` event does). Returns `false`, changing
+    /// nothing, when the kind has no centre or `to` has the wrong number of coordinates.
+    pub fn set_center(&mut self, to: &[f32]) -> bool {
+        match self {
+            ObjectKind::Nest { center, .. }
+            | ObjectKind::Food { center, .. }
+            | ObjectKind::Rock { center, .. }
+            | ObjectKind::Disturbance { center, .. }
+            | ObjectKind::Waypoint { center, .. }
+            | ObjectKind::Shaft { center, .. } => set_array(center, to),
+            ObjectKind::Sphere { center, .. } | ObjectKind::Target { center, .. } => {
+                set_array(center, to)
+            }
+            ObjectKind::Polygon { .. } | ObjectKind::Box { .. } => false,
+        }
+    }
+
+    /// The virtual particles of a `target`: `particles` points spread evenly over its sphere
+    /// (a Fibonacci sphere: deterministic, same bits on every machine). Empty for other kinds.
+    pub fn sample_particles(&self) -> Vec<[f32; 3]> {
+        match self {
+            ObjectKind::Target {
+                center,
+                radius,
+                particles,
+            } => fibonacci_sphere(*center, *radius, *particles),
+            _ => Vec::new(),
+        }
+    }
+}
+
+fn set_array<const N: usize>(dst: &mut [f32; N], src: &[f32]) -> bool {
+    match <[f32; N]>::try_from(src) {
+        Ok(a) => {
+            *dst = a;
+            true
+        }
+        Err(_) => false,
+    }
+}
+
+/// `n` points on the sphere (`center`, `radius`): point i at height y = 1 − (2i + 1)/n and
+/// longitude i·golden angle. Computed in `f64` and rounded once, so the result does not depend
+/// on the platform's `f32` math.
+fn fibonacci_sphere(center: [f32; 3], radius: f32, n: u32) -> Vec<[f32; 3]> {
+    let golden_angle = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    let (r, nf) = (f64::from(radius), f64::from(n));
+    (0..n)
+        .map(|i| {
+            let fi = f64::from(i);
+            let y = 1.0 - (2.0 * fi + 1.0) / nf;
+            let ring = (1.0 - y * y).max(0.0).sqrt();
+            let phi = fi * golden_angle;
+            [
+                (f64::from(center[0]) + r * ring * phi.cos()) as f32,
+                (f64::from(center[1]) + r * y) as f32,
+                (f64::from(center[2]) + r * ring * phi.sin()) as f32,
+            ]
+        })
+        .collect()
+}
+
+impl Object {
+    /// The virtual particles of a `target` (see [`ObjectKind::sample_particles`]).
+    pub fn sample_particles(&self) -> Vec<[f32; 3]> {
+        self.kind.sample_particles()
+    }
+}
+
+/// A timed change of the world, applied before step `step` runs.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "RawEvent", into = "RawEvent")]
+pub struct Event {
+    /// The step at which it happens (`< steps`).
+    pub step: u32,
+    /// What happens.
+    pub action: Action,
+}
+
+/// What an event does.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Action {
+    /// `add = "name"`: the object appears.
+    Add(String),
+    /// `remove = "name"`: the object disappears.
+    Remove(String),
+    /// `move = { object = "name", to = [...] }`: the object's centre moves to `to`.
+    Move {
+        /// The object's name.
+        object: String,
+        /// The new centre (as many numbers as the object's `center`).
+        to: Vec<f32>,
+    },
+    /// `start = "name"`: a disturbance starts acting.
+    Start(String),
+    /// `stop = "name"`: a disturbance stops acting.
+    Stop(String),
+}
+
+impl Action {
+    /// The object the action applies to.
+    pub fn object(&self) -> &str {
+        match self {
+            Action::Add(o) | Action::Remove(o) | Action::Start(o) | Action::Stop(o) => o,
+            Action::Move { object, .. } => object,
+        }
+    }
+
+    /// The key of the action in the file: `add`, `remove`, `move`, `start` or `stop`.
+    pub fn verb(&self) -> &'static str {
+        match self {
+            Action::Add(_) => "add",
+            Action::Remove(_) => "remove",
+            Action::Move { .. } => "move",
+            Action::Start(_) => "start",
+            Action::Stop(_) => "stop",
+        }
+    }
+}
+
+/// What a run records.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Outputs {
+    /// Record every `every` steps (default 10, at least 1).
+    pub every: u32,
+    /// Trajectories as CSV (default true).
+    pub trajectories: bool,
+    /// Trajectories as `.npy` (default true).
+    pub npy: bool,
+    /// PNG snapshot (default true).
+    pub render: bool,
+    /// Animated GIF (default true).
+    pub gif: bool,
+}
+
+impl Default for Outputs {
+    fn default() -> Self {
+        Outputs {
+            every: 10,
+            trajectories: true,
+            npy: true,
+            render: true,
+            gif: true,
+        }
+    }
+}
+
+/// Declares a parameter-override struct: every field of the parameter struct as an `Option`,
+/// with `apply` and the list of field names.
+macro_rules! overrides {
+    (
+        $(#[$meta:meta])*
+        $name:ident for $params:ident { $($field:ident: $ty:ty,)* }
+        $(extra { $($(#[$xmeta:meta])* $xfield:ident: $xty:ty,)* })?
+    ) => {
+        $(#[$meta])*
+        #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub struct $name {
+            $($(
+                $(#[$xmeta])*
+                #[serde(default, skip_serializing_if = "Option::is_none")]
+                pub $xfield: Option<$xty>,
+            )*)?
+            $(
+                #[doc = concat!("Overrides `", stringify!($params), "::", stringify!($field), "`.")]
+                #[serde(default, skip_serializing_if = "Option::is_none")]
+                pub $field: Option<$ty>,
+            )*
+        }
+
+        impl $name {
+            /// The parameter names an override may set (as in the file).
+            pub const FIELDS: &'static [&'static str] = &[$(stringify!($field)),*];
+
+            /// `base` with every field given here replaced.
+            pub fn apply(&self, base: $params<f32>) -> $params<f32> {
+                let mut p = base;
+                $(
+                    if let Some(v) = self.$field {
+                        p.$field = v;
+                    }
+                )*
+                p
+            }
+        }
+    };
+}
+
+overrides! {
+    /// `[groups.ant]`: any of the `AntParams` fields (xiang2018), on top of the defaults.
+    AntParamsOverride for AntParams {
+        speed: f32,
+        dt: f32,
+        theta: f32,
+        p_stop: f32,
+        casual_stop_ticks: u16,
+        collect_ticks: u16,
+        drop_ticks: u16,
+        contact_range: f32,
+        avoid_range: f32,
+        collision_range: f32,
+        w0: f32,
+        c: f32,
+        k: u8,
+    }
+}
+
+overrides! {
+    /// `[groups.bee]`: a Table I preset plus any of the `BeeParams` fields (chen).
+    BeeParamsOverride for BeeParams {
+        h: f32,
+        grid_edge: f32,
+        kappa1: f32,
+        kappa2: f32,
+        kappa3: f32,
+        epsilon: f32,
+        mass: f32,
+        gravity: f32,
+        air_density: f32,
+        wing_area: f32,
+        radius: f32,
+        d0: f32,
+        dt: f32,
+        stiffness: f32,
+        rest_density: f32,
+        max_speed: f32,
+    }
+    extra {
+        /// The base the fields apply to (default `optimized`).
+        preset: BeePreset,
+    }
+}
+
+impl BeeParamsOverride {
+    /// The preset's parameters with the overrides applied.
+    pub fn params(&self) -> BeeParams<f32> {
+        self.apply(self.preset.unwrap_or_default().params())
+    }
+}
+
+/// A column of chen's Table I.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BeePreset {
+    /// `"optimized"`: `BeeParams::default()` (h 3, L 2.7, κ 1.4/2.3/1.2, ε 1.7).
+    #[default]
+    Optimized,
+    /// `"grassland"`: `BeeParams::grassland()` (L 2.2, κ 1.5/5/0.9, ε 2).
+    Grassland,
+    /// `"around_nest"`: `BeeParams::around_nest()` (L 2.2, κ 1/2.5/1.7, ε 2).
+    AroundNest,
+}
+
+impl BeePreset {
+    /// The preset's parameters.
+    pub fn params(&self) -> BeeParams<f32> {
+        match self {
+            BeePreset::Optimized => BeeParams::default(),
+            BeePreset::Grassland => BeeParams::grassland(),
+            BeePreset::AroundNest => BeeParams::around_nest(),
+        }
+    }
+}
