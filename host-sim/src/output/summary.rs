@@ -117,7 +117,7 @@ pub(crate) fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T
 
 /// Counts agents per motion state and per label in `frame`. The ant names ("stop", "basic",
 /// "neighbors", "environment", "nothing", "food", "nest") are always present (zero if unused);
-/// other codes appear as "motion<N>" / "label<N>".
+/// other codes appear as `motion<N>` / `label<N>`.
 pub fn state_counts_of(frame: &Frame) -> StateCounts {
     let mut motion = [0u32; 256];
     let mut label = [0u32; 256];

@@ -212,7 +212,7 @@ fn segments(path: &str) -> Vec<Seg<'_>> {
             out.push(Seg::Key(key));
         }
         while let Some(close) = rest.find(']') {
-            if let Ok(i) = rest[1..close].parse() {
+            if let Some(Ok(i)) = rest.get(1..close).map(str::parse) {
                 out.push(Seg::Index(i));
             }
             rest = &rest[close + 1..];
@@ -275,18 +275,7 @@ fn path_at(root: &Spanned<DeTable<'_>>, offset: usize) -> String {
         }
         best
     }
-    let mut best = (0, String::new());
-    for (key, child) in root.get_ref().iter() {
-        let path = key.get_ref().to_string();
-        if best.0 == 0 && (contains(&key.span(), offset) || contains(&child.span(), offset)) {
-            best = (1, path.clone());
-        }
-        let found = visit(child.get_ref(), &path, 1, offset);
-        if found.0 > best.0 {
-            best = found;
-        }
-    }
-    best.1
+    visit(&DeValue::Table(root.get_ref().clone()), "", 0, offset).1
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1024,3 +1024,104 @@ fn worlds_and_kinds() {
     assert_eq!(k.center(), Some(&[3.0, 4.0][..]));
     assert_eq!(ScalarType::Fixed.kind(), swarm_core::ScalarKind::I16F16);
 }
+
+/// Whether `p` lies inside the obstacle `kind` (2D or 3D).
+fn inside_obstacle(kind: &ObjectKind, p: &[f32]) -> bool {
+    let dist = |a: &[f32], b: &[f32]| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).powi(2))
+            .sum::<f32>()
+            .sqrt()
+    };
+    match kind {
+        ObjectKind::Rock { center, radius } => dist(p, center) <= *radius,
+        ObjectKind::Sphere { center, radius } => dist(p, center) <= *radius,
+        ObjectKind::Shaft {
+            center,
+            radius,
+            y_min,
+            y_max,
+        } => dist(&[p[0], p[2]], center) <= *radius && p[1] >= *y_min && p[1] <= *y_max,
+        ObjectKind::Box { min, max } => (0..3).all(|i| p[i] >= min[i] && p[i] <= max[i]),
+        ObjectKind::Polygon { points } => {
+            // Even-odd ray casting.
+            let mut inside = false;
+            for i in 0..points.len() {
+                let (a, b) = (points[i], points[(i + 1) % points.len()]);
+                if (a[1] > p[1]) != (b[1] > p[1])
+                    && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0])
+                {
+                    inside = !inside;
+                }
+            }
+            inside
+        }
+        _ => false,
+    }
+}
+
+#[test]
+fn builtin_spawn_regions_and_destinations_are_clear_of_obstacles() {
+    for b in BUILTINS {
+        let s = builtin(b.name).unwrap();
+        let obstacles: Vec<&Object> = s
+            .objects
+            .iter()
+            .filter(|o| o.active && o.kind.is_obstacle())
+            .collect();
+        for g in &s.groups {
+            // A grid of points over the spawn region.
+            let (lo, hi): (Vec<f32>, Vec<f32>) = match &g.spawn.region {
+                SpawnRegion::Around { at, radius } => {
+                    let c = s.object(at).unwrap().kind.point().unwrap();
+                    (
+                        c.iter().map(|v| v - radius).collect(),
+                        c.iter().map(|v| v + radius).collect(),
+                    )
+                }
+                SpawnRegion::Box { min, max } => (min.clone(), max.clone()),
+            };
+            let n = 12;
+            let axis = |i: usize, k: usize| lo[i] + (hi[i] - lo[i]) * k as f32 / n as f32;
+            let mut points = Vec::new();
+            for a in 0..=n {
+                for b2 in 0..=n {
+                    if lo.len() == 2 {
+                        points.push(vec![axis(0, a), axis(1, b2)]);
+                    } else {
+                        for c in 0..=n {
+                            points.push(vec![axis(0, a), axis(1, b2), axis(2, c)]);
+                        }
+                    }
+                }
+            }
+            for p in &points {
+                for o in &obstacles {
+                    assert!(
+                        !inside_obstacle(&o.kind, p),
+                        "{}: group `{}` may spawn at {p:?} inside `{}`",
+                        b.name,
+                        g.name,
+                        o.name
+                    );
+                }
+            }
+        }
+        // Nests, food sources, way points and targets are reachable: their centres are not
+        // inside an obstacle.
+        for o in &s.objects {
+            if let (false, Some(c)) = (o.kind.is_obstacle(), o.kind.point()) {
+                for ob in &obstacles {
+                    assert!(
+                        !inside_obstacle(&ob.kind, c),
+                        "{}: `{}` lies inside `{}`",
+                        b.name,
+                        o.name,
+                        ob.name
+                    );
+                }
+            }
+        }
+    }
+}
