@@ -37,7 +37,7 @@ pub struct BenchReport {
 /// Ants per unit² in the bench world (the density of xiang2018's 500-ant scenes).
 const DENSITY: f32 = 0.02;
 
-/// A square world holding `n` ants spread uniformly (density [`DENSITY`]), with a nest and
+/// A square world holding `n` ants spread uniformly (density `DENSITY`), with a nest and
 /// food sources and a rock, so every kind of interaction happens somewhere.
 pub fn bench_ant_world(n: usize, seed: u32) -> AntSim {
     let params = AntParams::<f32>::default();

@@ -20,9 +20,15 @@ pub enum SimError {
         /// The controller's error.
         source: swarm_core::Error,
     },
-    /// The scenario is invalid for the engine.
-    #[error("scenario: {0}")]
+    /// The scenario cannot run (its message says why).
+    #[error("{0}")]
     Invalid(String),
+    /// A scenario file could not be read or is invalid (file, line, field in the message).
+    #[error(transparent)]
+    Scenario(#[from] crate::scenario::ScenarioError),
+    /// An output could not be written or read (the path in the message).
+    #[error(transparent)]
+    Output(#[from] crate::output::OutputError),
 }
 
 impl SimError {

@@ -14,6 +14,7 @@ pub mod bench;
 mod error;
 pub mod grid;
 pub mod output;
+pub mod run;
 pub mod scalar;
 pub mod scenario;
 

@@ -1,4 +1,4 @@
-//! The `swarm` command line (in progress: `bench`).
+//! The `swarm` command line: list, run and render scenarios, benchmark the engine.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -22,6 +22,33 @@ enum Model {
 
 #[derive(Subcommand)]
 enum Command {
+    /// List the built-in scenarios.
+    List,
+    /// Run a scenario (a built-in name or a TOML file) and write its outputs.
+    Run {
+        /// Built-in scenario name (see `swarm list`) or path to a scenario file.
+        scenario: String,
+        /// Number of ticks (default: the scenario's).
+        #[arg(long)]
+        steps: Option<u32>,
+        /// Seed (default: the scenario's).
+        #[arg(long)]
+        seed: Option<u32>,
+        /// Worker threads (default: all cores; results are identical for any count).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Output folder (default: `out/<scenario name>`).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Draw a run folder again: snapshot.png and run.gif from its scene and trajectories.
+    Render {
+        /// The folder a `swarm run` wrote.
+        dir: PathBuf,
+    },
     /// Measure agent-steps per second on a synthetic world and write JSON.
     Bench {
         /// Which model.
@@ -55,6 +82,58 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
     match cli.command {
+        Command::List => {
+            for b in swarm_sim::scenario::BUILTINS {
+                println!("{:<32} {}", b.name, b.summary);
+            }
+            Ok(())
+        }
+        Command::Run {
+            scenario,
+            steps,
+            seed,
+            threads,
+            out,
+            quiet,
+        } => {
+            let sc = swarm_sim::scenario::resolve(&scenario)?;
+            let out = out.unwrap_or_else(|| PathBuf::from("out").join(&sc.name));
+            let opts = swarm_sim::run::RunOptions {
+                out: out.clone(),
+                steps,
+                seed,
+                threads,
+                progress: !quiet && std::io::IsTerminal::is_terminal(&std::io::stderr()),
+            };
+            let report = swarm_sim::run::run(&sc, &opts)?;
+            let s = &report.summary;
+            println!(
+                "{}: {} agents, {} ticks in {:.2} s ({:.3e} agent-steps/s, {} threads)",
+                s.scenario, s.agents, s.steps, s.wall_seconds, s.agent_steps_per_s, s.threads
+            );
+            for (nest, n) in &s.deliveries_per_nest {
+                println!("  delivered to {nest}: {n}");
+            }
+            if let Some(d) = s.min_distance {
+                println!(
+                    "  closest approach {d:.3}, {} collisions (< {})",
+                    s.collisions, s.collision_distance
+                );
+            }
+            for f in &report.files {
+                println!("  wrote {}", f.display());
+            }
+            Ok(())
+        }
+        Command::Render { dir } => {
+            let files = swarm_sim::output::render_dir(&dir)?;
+            println!(
+                "wrote {}\nwrote {}",
+                files.png.display(),
+                files.gif.display()
+            );
+            Ok(())
+        }
         Command::Bench {
             model,
             agents,

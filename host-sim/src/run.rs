@@ -1,0 +1,312 @@
+//! `swarm run`: a scenario from its first tick to its last, with a progress bar, a run log
+//! and every output written whole into one folder.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use indicatif::{ProgressBar, ProgressStyle};
+use swarm_core::ant::AntState;
+
+use crate::ants::{AntEvent, AntSim, AnyAntGroup};
+use crate::output::{
+    self, AgentSample, Frame, RenderOptions, RunLog, Scene, Shape, ShapeKind, Summary,
+    summary::{GroupSummary, pair_stats, state_counts_of},
+};
+use crate::scalar::SimScalar;
+use crate::scenario::{Action, Model, ObjectKind, Scenario, World};
+use crate::{Result, SimError};
+
+/// Ants closer than this (body lengths) count as a collision in the summary.
+pub const ANT_COLLISION_DISTANCE: f32 = 0.5;
+
+/// How to run a scenario.
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    /// Output folder (created).
+    pub out: PathBuf,
+    /// Override the scenario's steps.
+    pub steps: Option<u32>,
+    /// Override the scenario's seed.
+    pub seed: Option<u32>,
+    /// Worker threads (default: all cores).
+    pub threads: Option<usize>,
+    /// Show a progress bar.
+    pub progress: bool,
+}
+
+/// What a run produced.
+#[derive(Clone, Debug)]
+pub struct RunReport {
+    /// The summary also written to `summary.json`.
+    pub summary: Summary,
+    /// The files written.
+    pub files: Vec<PathBuf>,
+}
+
+/// Runs `scenario` as `opts` say and writes its outputs.
+pub fn run(scenario: &Scenario, opts: &RunOptions) -> Result<RunReport> {
+    let mut sc = scenario.clone();
+    if let Some(steps) = opts.steps {
+        sc.set_steps(steps);
+    }
+    let seed = opts.seed.unwrap_or(sc.seed);
+    let threads = opts
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| SimError::Invalid(format!("cannot start {threads} threads: {e}")))?;
+    std::fs::create_dir_all(&opts.out).map_err(|e| {
+        SimError::Output(output::OutputError::io("creating the folder", &opts.out, e))
+    })?;
+    let mut log = RunLog::create(opts.out.join(output::RUN_LOG))?;
+    log.line(format_args!(
+        "scenario {} ({} agents, {} steps, seed {seed}, {threads} threads)",
+        sc.name,
+        sc.agent_count(),
+        sc.steps
+    ))?;
+    match sc.world.model() {
+        Model::Ant => pool.install(|| run_ants(&sc, seed, threads, opts, &mut log)),
+        Model::Bee => Err(SimError::Invalid(format!(
+            "scenario `{}` is a bee swarm: the bee engine is not in the simulator yet (issue 3, \
+             in progress); ant scenarios run",
+            sc.name
+        ))),
+    }
+}
+
+fn run_ants(
+    sc: &Scenario,
+    seed: u32,
+    threads: usize,
+    opts: &RunOptions,
+    log: &mut RunLog,
+) -> Result<RunReport> {
+    let mut sim = AntSim::from_scenario(sc, seed)?;
+    let every = sc.outputs.every.max(1);
+    let nest_names: BTreeMap<u16, String> = sc
+        .objects
+        .iter()
+        .enumerate()
+        .filter(|(_, o)| matches!(o.kind, ObjectKind::Nest { .. }))
+        .map(|(i, o)| (i as u16, o.name.clone()))
+        .collect();
+    let mut summary = Summary {
+        scenario: sc.name.clone(),
+        seed: seed as u64,
+        steps: sc.steps,
+        agents: sim.agents() as u32,
+        groups: sc
+            .groups
+            .iter()
+            .map(|g| GroupSummary {
+                name: g.name.clone(),
+                model: g.model.as_str().into(),
+                count: g.count,
+                scalar: format!("{:?}", g.scalar.kind()),
+            })
+            .collect(),
+        backend: "cpu".into(),
+        threads: threads as u32,
+        collision_distance: ANT_COLLISION_DISTANCE,
+        deliveries_per_nest: nest_names.values().map(|n| (n.clone(), 0)).collect(),
+        ..Summary::default()
+    };
+    let mut frames = vec![ant_frame(&sim)];
+    record(&mut summary, &frames[0], 0);
+
+    let bar = progress_bar(opts.progress, sc.steps as u64);
+    let t0 = Instant::now();
+    let mut events = sc.events.iter().peekable();
+    let mut delivered = 0u64;
+    for step in 0..sc.steps {
+        while let Some(e) = events.next_if(|e| e.step == step) {
+            if let Some(id) = sc.object_id(e.action.object()) {
+                sim.apply(id, &e.action);
+                log.line(format_args!(
+                    "step {step}: {} {}",
+                    e.action.verb(),
+                    e.action.object()
+                ))?;
+            }
+        }
+        for e in sim.step()? {
+            if let AntEvent::Delivered { nest, .. } = e {
+                delivered += 1;
+                if let Some(name) = nest_names.get(&nest) {
+                    *summary.deliveries_per_nest.entry(name.clone()).or_default() += 1;
+                }
+            }
+        }
+        let done = step + 1;
+        if done % every == 0 || done == sc.steps {
+            let f = ant_frame(&sim);
+            record(&mut summary, &f, done);
+            summary.deliveries_over_time.push((done, delivered));
+            frames.push(f);
+        }
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    summary.wall_seconds = t0.elapsed().as_secs_f64();
+    summary.agent_steps_per_s =
+        sim.agents() as f64 * sc.steps as f64 / summary.wall_seconds.max(1e-9);
+    log.line(format_args!(
+        "done: {} ticks in {:.2} s ({:.3e} agent-steps/s), {delivered} deliveries",
+        sc.steps, summary.wall_seconds, summary.agent_steps_per_s
+    ))?;
+    let files = write_outputs(sc, &opts.out, &frames, &summary, log)?;
+    Ok(RunReport { summary, files })
+}
+
+fn record(summary: &mut Summary, frame: &Frame, step: u32) {
+    let mut counts = state_counts_of(frame);
+    counts.step = step;
+    summary.state_counts.push(counts);
+    summary.add_pair_stats(pair_stats(frame, summary.collision_distance));
+}
+
+fn progress_bar(show: bool, len: u64) -> ProgressBar {
+    if !show {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(len);
+    bar.set_style(
+        ProgressStyle::with_template(
+            "{elapsed_precise} [{bar:40}] {pos}/{len} ticks ({per_sec}, eta {eta})",
+        )
+        .unwrap_or_else(|_| ProgressStyle::default_bar())
+        .progress_chars("=> "),
+    );
+    bar
+}
+
+/// Every ant of the simulation, in id order, as recorded samples.
+pub fn ant_frame(sim: &AntSim) -> Frame {
+    fn push<S: SimScalar>(out: &mut Vec<AgentSample>, group: u16, states: Vec<(u32, AntState<S>)>) {
+        out.extend(states.into_iter().map(|(id, s)| AgentSample {
+            id,
+            pos: [s.pos.x.to_f32(), s.pos.y.to_f32(), 0.0],
+            heading: [s.heading.x.to_f32(), s.heading.y.to_f32(), 0.0],
+            group,
+            label: s.label as u8,
+            motion: s.motion as u8,
+        }));
+    }
+    let mut agents = Vec::with_capacity(sim.agents());
+    for (k, g) in sim.groups.iter().enumerate() {
+        match g {
+            AnyAntGroup::F32(g) => push(&mut agents, k as u16, g.states_by_id()),
+            AnyAntGroup::Fixed(g) => push(&mut agents, k as u16, g.states_by_id()),
+        }
+    }
+    agents.sort_unstable_by_key(|a| a.id);
+    Frame {
+        step: sim.step,
+        agents,
+    }
+}
+
+/// The scene of a scenario: every object, with the steps it is visible (events included).
+pub fn scene_of(sc: &Scenario) -> Scene {
+    let mut scene = match sc.world {
+        World::Ants2D { min, max } => Scene::new_2d(min, max),
+        World::Bees3D { min, max } => Scene::new_3d(min, max),
+    };
+    for o in &sc.objects {
+        let mut kind = o.kind.clone();
+        let mut from = if o.active { Some(0) } else { None };
+        for e in sc.events.iter().filter(|e| e.action.object() == o.name) {
+            match &e.action {
+                Action::Add(_) | Action::Start(_) => from = Some(e.step),
+                Action::Remove(_) | Action::Stop(_) => {
+                    if let Some(f) = from.take() {
+                        scene
+                            .shapes
+                            .extend(shape_of(&o.name, &kind, f, Some(e.step)));
+                    }
+                }
+                Action::Move { to, .. } => {
+                    if let Some(f) = from {
+                        scene
+                            .shapes
+                            .extend(shape_of(&o.name, &kind, f, Some(e.step)));
+                        from = Some(e.step);
+                    }
+                    kind.set_center(to);
+                }
+            }
+        }
+        if let Some(f) = from {
+            scene.shapes.extend(shape_of(&o.name, &kind, f, None));
+        }
+    }
+    scene
+}
+
+fn shape_of(name: &str, kind: &ObjectKind, from: u32, to: Option<u32>) -> Option<Shape> {
+    let c2 = |c: [f32; 2]| [c[0], c[1], 0.0];
+    let shape = match kind {
+        ObjectKind::Nest { center, radius } => Shape::circle(c2(*center), *radius, ShapeKind::Nest),
+        ObjectKind::Food { center, radius, .. } => {
+            Shape::circle(c2(*center), *radius, ShapeKind::Food)
+        }
+        ObjectKind::Rock { center, radius } => Shape::circle(c2(*center), *radius, ShapeKind::Rock),
+        ObjectKind::Polygon { points } => Shape::polygon(points.clone(), ShapeKind::Rock),
+        ObjectKind::Disturbance { center, radius } => {
+            Shape::circle(c2(*center), *radius, ShapeKind::Disturbance)
+        }
+        ObjectKind::Waypoint { center, radius, .. } => {
+            Shape::circle(c2(*center), *radius, ShapeKind::Waypoint)
+        }
+        ObjectKind::Sphere { center, radius } => Shape::circle(*center, *radius, ShapeKind::Sphere),
+        ObjectKind::Box { min, max } => Shape::cuboid(*min, *max, ShapeKind::Rock),
+        ObjectKind::Shaft { center, radius, .. } => {
+            Shape::circle([center[0], 0.0, center[1]], *radius, ShapeKind::Shaft)
+        }
+        ObjectKind::Target { center, radius, .. } => {
+            Shape::circle(*center, *radius, ShapeKind::Target)
+        }
+    };
+    let from = (from > 0).then_some(from);
+    Some(shape.named(name).during(from, to))
+}
+
+fn write_outputs(
+    sc: &Scenario,
+    out: &Path,
+    frames: &[Frame],
+    summary: &Summary,
+    log: &mut RunLog,
+) -> Result<Vec<PathBuf>> {
+    let scene = scene_of(sc);
+    let mut files = Vec::new();
+    scene.write(out.join(output::SCENE_JSON))?;
+    files.push(out.join(output::SCENE_JSON));
+    if sc.outputs.trajectories {
+        output::write_csv(out.join(output::TRAJECTORIES_CSV), frames)?;
+        files.push(out.join(output::TRAJECTORIES_CSV));
+    }
+    if sc.outputs.npy {
+        output::write_npy(out.join(output::POSITIONS_NPY), frames)?;
+        files.push(out.join(output::POSITIONS_NPY));
+    }
+    summary.write(out.join(output::SUMMARY_JSON))?;
+    files.push(out.join(output::SUMMARY_JSON));
+    let opts = RenderOptions::default();
+    if sc.outputs.render {
+        output::render_png(&scene, frames, out.join(output::SNAPSHOT_PNG), &opts)?;
+        files.push(out.join(output::SNAPSHOT_PNG));
+    }
+    if sc.outputs.gif {
+        output::render_gif(&scene, frames, out.join(output::RUN_GIF), &opts)?;
+        files.push(out.join(output::RUN_GIF));
+    }
+    for f in &files {
+        log.line(format_args!("wrote {}", f.display()))?;
+    }
+    Ok(files)
+}
