@@ -114,8 +114,9 @@ impl<S: Scalar> AntState<S> {
         check_point(self.pos, "state.pos")?;
         check_point(self.arrival, "state.arrival")?;
         self.heading.check("state.heading")?;
-        let len = self.heading.length();
-        if !(len > S::from_f32(0.99) && len < S::from_f32(1.01)) {
+        // |heading| in (0.99, 1.01), compared squared (no square root on the hot path).
+        let l2 = self.heading.length_sq();
+        if !(l2 > S::from_f32(0.9801) && l2 < S::from_f32(1.0201)) {
             return Err(Error::out_of_range("state.heading"));
         }
         if self.label == Label::Nest && self.origin != self.nest {

@@ -237,13 +237,15 @@ impl AntSim {
                 world.sensed.set(g.first + k, g.ids[k], s);
             });
         }
-        AntSim {
+        let mut sim = AntSim {
             world,
             groups,
             seed,
             step: 0,
             reorder_every: 16,
-        }
+        };
+        sim.reorder();
+        sim
     }
 
     /// Sorts every group's slots by grid cell (memory locality for the neighbour queries).
