@@ -10,6 +10,7 @@
 pub use swarm_core;
 
 pub mod ants;
+pub mod bees;
 pub mod bench;
 mod error;
 pub mod grid;

@@ -9,6 +9,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use swarm_core::ant::AntState;
 
 use crate::ants::{AntEvent, AntSim, AnyAntGroup};
+use crate::bees::{BeeSim, bee_frame_samples};
 use crate::output::{
     self, AgentSample, Frame, RenderOptions, RunLog, Scene, Shape, ShapeKind, Summary,
     summary::{GroupSummary, pair_stats, state_counts_of},
@@ -70,12 +71,81 @@ pub fn run(scenario: &Scenario, opts: &RunOptions) -> Result<RunReport> {
     ))?;
     match sc.world.model() {
         Model::Ant => pool.install(|| run_ants(&sc, seed, threads, opts, &mut log)),
-        Model::Bee => Err(SimError::Invalid(format!(
-            "scenario `{}` is a bee swarm: the bee engine is not in the simulator yet (issue 3, \
-             in progress); ant scenarios run",
-            sc.name
-        ))),
+        Model::Bee => pool.install(|| run_bees(&sc, seed, threads, opts, &mut log)),
     }
+}
+
+/// The summary fields every run shares.
+fn summary_for(sc: &Scenario, seed: u32, threads: usize, agents: usize, collision: f32) -> Summary {
+    Summary {
+        scenario: sc.name.clone(),
+        seed: seed as u64,
+        steps: sc.steps,
+        agents: agents as u32,
+        groups: sc
+            .groups
+            .iter()
+            .map(|g| GroupSummary {
+                name: g.name.clone(),
+                model: g.model.as_str().into(),
+                count: g.count,
+                scalar: format!("{:?}", g.scalar.kind()),
+            })
+            .collect(),
+        backend: "cpu".into(),
+        threads: threads as u32,
+        collision_distance: collision,
+        ..Summary::default()
+    }
+}
+
+fn run_bees(
+    sc: &Scenario,
+    seed: u32,
+    threads: usize,
+    opts: &RunOptions,
+    log: &mut RunLog,
+) -> Result<RunReport> {
+    let mut sim = BeeSim::from_scenario(sc, seed)?;
+    let every = sc.outputs.every.max(1);
+    // Two capsules (radius r) touch when their centres are 2r apart.
+    let radius = sc.groups.iter().map(|g| g.bee_params().radius).fold(0.0, f32::max);
+    let mut summary = summary_for(sc, seed, threads, sim.agents(), 2.0 * radius);
+    let mut frames = vec![bee_frame_samples(&sim)];
+    record(&mut summary, &frames[0], 0);
+    let bar = progress_bar(opts.progress, sc.steps as u64);
+    let t0 = Instant::now();
+    let mut events = sc.events.iter().peekable();
+    for step in 0..sc.steps {
+        while let Some(e) = events.next_if(|e| e.step == step) {
+            if let Some(id) = sc.object_id(e.action.object()) {
+                sim.apply(id, &e.action);
+                log.line(format_args!("step {step}: {} {}", e.action.verb(), e.action.object()))?;
+            }
+        }
+        sim.step()?;
+        let done = step + 1;
+        if done % every == 0 || done == sc.steps {
+            let f = bee_frame_samples(&sim);
+            record(&mut summary, &f, done);
+            frames.push(f);
+        }
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    summary.wall_seconds = t0.elapsed().as_secs_f64();
+    summary.agent_steps_per_s =
+        sim.agents() as f64 * sc.steps as f64 / summary.wall_seconds.max(1e-9);
+    let c = sim.contacts;
+    summary.extra.insert("world_contacts_obstacle".into(), c.obstacle.into());
+    summary.extra.insert("world_contacts_bounds".into(), c.bounds.into());
+    log.line(format_args!(
+        "done: {} steps in {:.2} s ({:.3e} agent-steps/s); the world kept bees out of obstacles \
+         {} times and inside the bounds {} times",
+        sc.steps, summary.wall_seconds, summary.agent_steps_per_s, c.obstacle, c.bounds
+    ))?;
+    let files = write_outputs(sc, &opts.out, &frames, &summary, log)?;
+    Ok(RunReport { summary, files })
 }
 
 fn run_ants(
@@ -94,27 +164,8 @@ fn run_ants(
         .filter(|(_, o)| matches!(o.kind, ObjectKind::Nest { .. }))
         .map(|(i, o)| (i as u16, o.name.clone()))
         .collect();
-    let mut summary = Summary {
-        scenario: sc.name.clone(),
-        seed: seed as u64,
-        steps: sc.steps,
-        agents: sim.agents() as u32,
-        groups: sc
-            .groups
-            .iter()
-            .map(|g| GroupSummary {
-                name: g.name.clone(),
-                model: g.model.as_str().into(),
-                count: g.count,
-                scalar: format!("{:?}", g.scalar.kind()),
-            })
-            .collect(),
-        backend: "cpu".into(),
-        threads: threads as u32,
-        collision_distance: ANT_COLLISION_DISTANCE,
-        deliveries_per_nest: nest_names.values().map(|n| (n.clone(), 0)).collect(),
-        ..Summary::default()
-    };
+    let mut summary = summary_for(sc, seed, threads, sim.agents(), ANT_COLLISION_DISTANCE);
+    summary.deliveries_per_nest = nest_names.values().map(|n| (n.clone(), 0)).collect();
     let mut frames = vec![ant_frame(&sim)];
     record(&mut summary, &frames[0], 0);
 

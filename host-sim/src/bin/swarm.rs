@@ -145,7 +145,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
             let report = match model {
                 Model::Ants => swarm_sim::bench::bench_ants(agents, steps, threads)?,
-                Model::Bees => return Err("the bee engine is not in the simulator yet".into()),
+                Model::Bees => swarm_sim::bees::bench_bees(agents, steps, threads)?,
             };
             let text = serde_json::to_string_pretty(&report)?;
             println!("{text}");

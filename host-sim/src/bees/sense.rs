@@ -1,0 +1,463 @@
+//! The sensor frame of a bee, built from the world exactly as a robot would sense it: the
+//! nearest neighbours within the SPH range with their broadcast velocity and density, the
+//! nearest target particles, the goal, and the nearest obstacle. The HIL harness feeds devices
+//! with this same function.
+
+use swarm_core::Vec3;
+use swarm_core::bee::{BeeFrame, BeeNeighbor, ObstacleSense};
+use swarm_core::wire::{WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS};
+
+use super::world::BeeWorld;
+use crate::grid::Grid;
+use crate::scalar::{SimScalar, v3};
+
+/// Neighbour capacity of a bee frame (the wire's).
+pub const N: usize = WIRE_BEE_NEIGHBOURS;
+/// Target-particle capacity of a bee frame (the wire's).
+pub const P: usize = WIRE_BEE_TARGETS;
+
+/// The sensor frame of the simulator (and of the wire).
+pub type BeeSimFrame<S> = BeeFrame<S, N, P>;
+
+/// Candidates buffered before a merge (a power of two, at least any `K` selected).
+const SCAN: usize = 64;
+
+/// The `K` nearest entries of a query, sorted by squared distance then tie key, each as
+/// `(distance bits << 32 | tie, slot)`: a deterministic selection whatever the order (or slots)
+/// candidates arrive in.
+#[derive(Debug)]
+pub(crate) struct Selected<const K: usize> {
+    items: [(u64, u32); K],
+    len: usize,
+}
+
+impl<const K: usize> Selected<K> {
+    /// The selected slots, nearest first.
+    pub(crate) fn slots(&self) -> impl Iterator<Item = usize> + '_ {
+        self.items[..self.len].iter().map(|&(_, s)| s as usize)
+    }
+
+    /// Merges buffered `(squared distance, slot)` candidates: keeps the `K` smallest
+    /// `(distance, tie(slot))`. Distances are non-negative, so their bits order like them.
+    fn merge(&mut self, cands: &[(f32, u32)], tie: &impl Fn(u32) -> u32) {
+        if cands.is_empty() {
+            return;
+        }
+        let mut keyed = [(0u64, 0u32); 2 * SCAN];
+        keyed[..self.len].copy_from_slice(&self.items[..self.len]);
+        let mut n = self.len;
+        for &(d, j) in cands {
+            keyed[n] = ((u64::from(d.to_bits()) << 32) | u64::from(tie(j)), j);
+            n += 1;
+        }
+        keyed[..n].sort_unstable();
+        self.len = n.min(K);
+        self.items[..self.len].copy_from_slice(&keyed[..self.len]);
+    }
+}
+
+/// The `K` entries of `grid` nearest to `p` strictly within `range`, `skip` excluded, ties
+/// broken by `tie(slot)`.
+///
+/// The scan appends every candidate to a small buffer and advances the buffer only for those
+/// in range (no data-dependent branch per candidate); the few in range are then sorted.
+pub(crate) fn select<const K: usize>(
+    grid: &Grid,
+    p: [f32; 3],
+    range: f32,
+    skip: u32,
+    tie: impl Fn(u32) -> u32,
+) -> Selected<K> {
+    const { assert!(K <= SCAN) };
+    let r2 = range * range;
+    let mut out = Selected {
+        items: [(0, 0); K],
+        len: 0,
+    };
+    let mut buf = [(0f32, 0u32); SCAN];
+    let mut len = 0usize;
+    grid.for_each_candidate(p, range, |j, q| {
+        let d = d2f(q, p);
+        buf[len % SCAN] = (d, j);
+        len += usize::from((d < r2) & (j != skip));
+        if len == SCAN {
+            out.merge(&buf, &tie);
+            len = 0;
+        }
+    });
+    out.merge(&buf[..len], &tie);
+    out
+}
+
+/// Squared distance, from the grid's `f32` copy of the positions (selection only: the frame
+/// itself carries the exact positions).
+#[inline]
+fn d2f(a: [f32; 3], b: [f32; 3]) -> f32 {
+    let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+}
+
+/// The `N` bees nearest to slot `i` within the world's neighbour range (strictly: capsule gap
+/// below h), nearest first, ties by stable id: the same bees whatever the slot order.
+fn neighbours(w: &BeeWorld, i: usize) -> Selected<N> {
+    let me = w.sensed.pos[i];
+    let p = [me[0] as f32, me[1] as f32, me[2] as f32];
+    let ids = &w.sensed.id;
+    select::<N>(&w.grid, p, w.range, i as u32, |j| ids[j as usize])
+}
+
+/// The sensed slots of the `N` bees nearest to slot `i` within the world's neighbour range
+/// (strictly: capsule gap below h), nearest first, ties by stable id: the same bees whatever
+/// the slot order.
+pub fn neighbour_slots(w: &BeeWorld, i: usize) -> impl Iterator<Item = usize> {
+    let near = neighbours(w, i);
+    (0..near.len).map(move |k| near.items[k].1 as usize)
+}
+
+/// The candidates of one grid cell's 3×3×3 block, gathered once and shared by the bees of that
+/// cell (slots are sorted by cell, so consecutive bees mostly share a cell), in `f32`
+/// struct-of-arrays form. Gives exactly the neighbours [`neighbour_slots`] gives: the grid's
+/// cells are a little larger than the range, so a bee two cells away is never in range.
+#[derive(Debug, Default)]
+pub(crate) struct BlockCache {
+    cell: Option<u32>,
+    x: Vec<f32>,
+    y: Vec<f32>,
+    z: Vec<f32>,
+    slot: Vec<u32>,
+    id: Vec<u32>,
+    d: Vec<f32>,
+}
+
+impl BlockCache {
+    /// The `N` neighbours of slot `i` (as [`neighbour_slots`]).
+    pub(crate) fn neighbours(&mut self, w: &BeeWorld, i: usize) -> Selected<N> {
+        let me = w.sensed.pos[i];
+        let p = [me[0] as f32, me[1] as f32, me[2] as f32];
+        let Some((cell, center)) = w.grid_geometry.cell_center(p) else {
+            return neighbours(w, i);
+        };
+        if self.cell != Some(cell) {
+            self.cell = Some(cell);
+            self.x.clear();
+            self.y.clear();
+            self.z.clear();
+            self.slot.clear();
+            self.id.clear();
+            let ids = &w.sensed.id;
+            w.grid
+                .for_each_candidate(center, w.grid_geometry.cell(), |j, q| {
+                    self.x.push(q[0]);
+                    self.y.push(q[1]);
+                    self.z.push(q[2]);
+                    self.slot.push(j);
+                    self.id.push(ids[j as usize]);
+                });
+            self.d.resize(self.x.len(), 0.0);
+        }
+        // Distances exactly as `d2f` computes them (vectorizable).
+        let xyz = self.x.iter().zip(&self.y).zip(&self.z);
+        for (d, ((&x, &y), &z)) in self.d.iter_mut().zip(xyz) {
+            let (dx, dy, dz) = (x - p[0], y - p[1], z - p[2]);
+            *d = dx * dx + dy * dy + dz * dz;
+        }
+        let r2 = w.range * w.range;
+        let (me, ids) = (i as u32, &self.id);
+        let tie = |k: u32| ids[k as usize];
+        let mut out = Selected {
+            items: [(0, 0); N],
+            len: 0,
+        };
+        let mut buf = [(0f32, 0u32); SCAN];
+        let mut len = 0usize;
+        for (k, (&d, &j)) in self.d.iter().zip(&self.slot).enumerate() {
+            buf[len % SCAN] = (d, k as u32);
+            len += usize::from((d < r2) & (j != me));
+            if len == SCAN {
+                out.merge(&buf, &tie);
+                len = 0;
+            }
+        }
+        out.merge(&buf[..len], &tie);
+        for item in &mut out.items[..out.len] {
+            item.1 = self.slot[item.1 as usize];
+        }
+        out
+    }
+}
+
+/// The sensor frame of the bee in slot `i` at time `t` (chen §IV-V):
+///
+/// * `neighbours`: the `N` nearest bees within h + 2r (the world's [`range`](BeeWorld::range)),
+///   by distance then stable id, with the position, velocity and density they broadcast;
+/// * `targets`: the `P` nearest virtual particles of the active targets within the same range
+///   (by distance, then particle index);
+/// * `goal`: `group_goal`, the centre of the group's target;
+/// * `obstacle`: the nearest active obstacle within the sensing range 2·d0 (a bee inside an
+///   obstacle is at distance 0; ties by obstacle order): its closest surface point and outward
+///   unit normal.
+pub fn bee_frame<S: SimScalar>(
+    w: &BeeWorld,
+    i: usize,
+    group_goal: Option<[f32; 3]>,
+    t: S,
+) -> BeeSimFrame<S> {
+    frame_with(w, i, &neighbours(w, i), group_goal, t)
+}
+
+/// [`bee_frame`] with the neighbours found through `cache` (the same frame, faster).
+pub(crate) fn bee_frame_cached<S: SimScalar>(
+    w: &BeeWorld,
+    i: usize,
+    group_goal: Option<[f32; 3]>,
+    t: S,
+    cache: &mut BlockCache,
+) -> BeeSimFrame<S> {
+    frame_with(w, i, &cache.neighbours(w, i), group_goal, t)
+}
+
+fn frame_with<S: SimScalar>(
+    w: &BeeWorld,
+    i: usize,
+    near: &Selected<N>,
+    group_goal: Option<[f32; 3]>,
+    t: S,
+) -> BeeSimFrame<S> {
+    let s = &w.sensed;
+    let me = s.pos[i];
+    let mut frame = BeeFrame::new(t);
+    for j in near.slots() {
+        let _ = frame.neighbours.push(BeeNeighbor {
+            pos: v3(s.pos[j]),
+            vel: v3(s.vel[j]),
+            density: S::from_f64(s.density[j]),
+        });
+    }
+
+    let p = [me[0] as f32, me[1] as f32, me[2] as f32];
+    // Particles lie on their targets' spheres: query only near one (a margin for rounding).
+    let near_target = w.target_spheres.iter().any(|&(c, r)| {
+        let reach = r + w.range + 1e-3 * (1.0 + r);
+        d2f(c, p) <= reach * reach
+    });
+    if near_target {
+        let near = select::<P>(&w.particle_grid, p, w.range, u32::MAX, |j| j);
+        for j in near.slots() {
+            let q = w.particles[j];
+            let _ = frame.targets.push(Vec3::from_f32(q[0], q[1], q[2]));
+        }
+    }
+
+    frame.goal = group_goal.map(|g| Vec3::from_f32(g[0], g[1], g[2]));
+
+    let range = f64::from(w.sense_range);
+    let mut best: Option<(f64, ObstacleSense<S>)> = None;
+    for o in w.obstacles.iter().filter(|o| o.active) {
+        if !o.may_be_within(me, range) {
+            continue;
+        }
+        let surf = w.surface(o, me);
+        let dist = if surf.inside { 0.0 } else { surf.distance };
+        if dist <= range && best.as_ref().is_none_or(|(b, _)| dist < *b) {
+            let sensed = ObstacleSense {
+                point: v3(surf.point),
+                normal: v3(surf.normal),
+            };
+            best = Some((dist, sensed));
+        }
+    }
+    frame.obstacle = best.map(|(_, o)| o);
+    frame
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bees::world::{BeeObstacle, BeeTarget, Shape3};
+
+    #[test]
+    fn select_keeps_the_k_nearest_in_order_even_past_the_scan_buffer() {
+        // 300 points, many in range and many at exactly equal distances (a lattice), so the
+        // buffer overflows and ties are broken by the tie key.
+        let pts: Vec<[f32; 3]> = (0..300u32)
+            .map(|i| {
+                let u = |k| (swarm_core::rand::rand(9, i, 0, k) % 8) as f32 * 0.25;
+                [5.0 + u(0), 5.0 + u(1), 5.0 + u(2)]
+            })
+            .collect();
+        let mut grid = Grid::new([0.0; 3], [10.0; 3], 1.0);
+        grid.rebuild(pts.iter().copied());
+        let tie = |j: u32| 1000 - j;
+        let p = [5.5, 5.5, 5.5];
+        for range in [0.3f32, 1.0, 3.0] {
+            let got: Vec<usize> = select::<16>(&grid, p, range, 7, tie).slots().collect();
+            let mut want: Vec<(f32, u32, usize)> = (0..pts.len())
+                .filter(|&j| j != 7)
+                .map(|j| (d2f(pts[j], p), tie(j as u32), j))
+                .filter(|e| e.0 < range * range)
+                .collect();
+            want.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            let want: Vec<usize> = want.iter().take(16).map(|e| e.2).collect();
+            assert_eq!(got, want, "range {range}");
+        }
+    }
+
+    /// A dense random world: 3000 bees in a 24³ box (about 35 within range of each), stored in
+    /// a shuffled slot order with ids unrelated to slots.
+    fn dense_world(shuffle: u32) -> BeeWorld {
+        let mut w = BeeWorld::new([0.0; 3], [24.0; 3], 3.5, 4.0);
+        let n = 3000u32;
+        w.sensed.resize(n as usize);
+        for slot in 0..n {
+            // A permutation of ids over slots.
+            let id = (slot * 1237 + shuffle * 17) % n;
+            let u = |k| swarm_core::rand::rand(5, id, 0, k) as f64 / 4_294_967_296.0 * 24.0;
+            // Snap a few bees onto a lattice so exact distance ties happen.
+            let pos = if id % 10 == 0 {
+                [(id % 7) as f64, 4.0, 4.0]
+            } else {
+                [u(0), u(1), u(2)]
+            };
+            let s = slot as usize;
+            w.sensed.pos[s] = pos;
+            w.sensed.vel[s] = [id as f64, 0.0, 0.0];
+            w.sensed.density[s] = 0.01 * id as f64;
+            w.sensed.id[s] = id;
+        }
+        w.size_grids(n as usize);
+        w.index_positions();
+        w
+    }
+
+    #[test]
+    fn neighbour_selection_matches_brute_force_whatever_the_slot_order() {
+        let r2 = 3.5f32 * 3.5;
+        let ids_of = |w: &BeeWorld, slot: usize| -> Vec<u32> {
+            neighbour_slots(w, slot).map(|j| w.sensed.id[j]).collect()
+        };
+        let (a, b) = (dense_world(0), dense_world(5));
+        let slot_of = |w: &BeeWorld, id: u32| w.sensed.id.iter().position(|&x| x == id).unwrap();
+        for id in (0..3000u32).step_by(7) {
+            let i = slot_of(&a, id);
+            let p = a.sensed.pos[i].map(|x| x as f32);
+            let mut want: Vec<(f32, u32)> = (0..a.len())
+                .filter(|&j| j != i)
+                .map(|j| (d2f(a.sensed.pos[j].map(|x| x as f32), p), a.sensed.id[j]))
+                .filter(|&(d, _)| d < r2)
+                .collect();
+            want.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+            want.truncate(N);
+            let want: Vec<u32> = want.into_iter().map(|(_, id)| id).collect();
+            assert_eq!(ids_of(&a, i), want, "bee {id}");
+            assert_eq!(ids_of(&b, slot_of(&b, id)), want, "bee {id}, other slot order");
+            // The frame carries exactly those bees, nearest first, with their broadcast data.
+            let f = bee_frame::<f32>(&a, i, None, 0.0);
+            let got: Vec<u32> = f.neighbours.iter().map(|n| n.vel.x as u32).collect();
+            assert_eq!(got, want);
+            for n in &f.neighbours {
+                let j = slot_of(&a, n.vel.x as u32);
+                assert_eq!(n.density, a.sensed.density[j] as f32);
+                assert_eq!(n.pos.x, a.sensed.pos[j][0] as f32);
+            }
+        }
+    }
+
+    #[test]
+    fn the_block_cache_gives_the_same_frames() {
+        for shuffle in [0, 3] {
+            let mut w = dense_world(shuffle);
+            // A few bees on the box's faces and outside it (the uncached path).
+            w.sensed.pos[10] = [24.0, 24.0, 24.0];
+            w.sensed.pos[11] = [0.0, 12.0, 24.0];
+            w.sensed.pos[12] = [-3.0, 12.0, 5.0];
+            w.sensed.pos[13] = [25.0, 30.0, 5.0];
+            w.index_positions();
+            let mut cache = BlockCache::default();
+            for i in 0..w.len() {
+                let a = bee_frame::<f32>(&w, i, None, 1.0);
+                let b = bee_frame_cached::<f32>(&w, i, None, 1.0, &mut cache);
+                assert_eq!(a, b, "slot {i}");
+            }
+            let mut cache = BlockCache::default();
+            for i in (0..w.len()).rev().step_by(3) {
+                let a = bee_frame::<swarm_core::Fx>(&w, i, None, <swarm_core::Fx as swarm_core::Scalar>::ONE);
+                let b = bee_frame_cached(&w, i, None, <swarm_core::Fx as swarm_core::Scalar>::ONE, &mut cache);
+                assert_eq!(a, b, "slot {i}");
+            }
+        }
+    }
+
+    #[test]
+    fn frame_senses_targets_goal_and_the_nearest_obstacle() {
+        let mut w = BeeWorld::new([0.0; 3], [40.0, 20.0, 40.0], 3.5, 4.0);
+        w.sensed.resize(1);
+        w.sensed.pos[0] = [10.0, 5.0, 10.0];
+        w.obstacles = vec![
+            BeeObstacle::new(
+                0,
+                "far",
+                Shape3::Sphere {
+                    center: [30.0, 5.0, 30.0],
+                    radius: 2.0,
+                },
+                true,
+            ),
+            BeeObstacle::new(
+                1,
+                "shaft",
+                Shape3::Shaft {
+                    center: [13.0, 10.0],
+                    radius: 1.0,
+                    y_min: 0.0,
+                    y_max: 20.0,
+                },
+                true,
+            ),
+            BeeObstacle::new(
+                2,
+                "closer but removed",
+                Shape3::Box {
+                    min: [10.5, 0.0, 9.0],
+                    max: [11.0, 20.0, 11.0],
+                },
+                false,
+            ),
+        ];
+        w.targets = vec![BeeTarget {
+            id: 3,
+            name: "nest".into(),
+            center: [10.0, 5.0, 14.0],
+            radius: 1.5,
+            particles: 100,
+            active: true,
+        }];
+        w.size_grids(1);
+        w.index_positions();
+        w.index_targets();
+        let f = bee_frame::<f32>(&w, 0, w.target_center(3), 2.5);
+        assert_eq!(f.t, 2.5);
+        assert!(f.neighbours.is_empty());
+        assert_eq!(f.goal, Some(Vec3::new(10.0, 5.0, 14.0)));
+        let ob = f.obstacle.unwrap();
+        assert_eq!(ob.point, Vec3::new(12.0, 5.0, 10.0));
+        assert_eq!(ob.normal, Vec3::new(-1.0, 0.0, 0.0));
+        // The P nearest particles, all within range, nearest first.
+        assert_eq!(f.targets.len(), P);
+        let me = Vec3::new(10.0f32, 5.0, 10.0);
+        let d: Vec<f32> = f.targets.iter().map(|&q| (q - me).length()).collect();
+        assert!(d.windows(2).all(|x| x[0] <= x[1]) && d[P - 1] < 3.5);
+        assert!((d[0] - 2.5).abs() < 0.1);
+        // The removed box in place of the shaft once active; inside it: distance 0, normal out.
+        w.obstacles[2].active = true;
+        w.sensed.pos[0] = [10.9, 5.0, 10.0];
+        let f = bee_frame::<f32>(&w, 0, None, 0.0);
+        let ob = f.obstacle.unwrap();
+        assert_eq!(ob.normal, Vec3::new(1.0, 0.0, 0.0));
+        assert_eq!(ob.point, Vec3::new(11.0, 5.0, 10.0));
+        // Beyond the sensing range: nothing.
+        w.sensed.pos[0] = [3.0, 10.0, 3.0];
+        w.index_positions();
+        let f = bee_frame::<f32>(&w, 0, None, 0.0);
+        assert!(f.obstacle.is_none() && f.targets.is_empty());
+    }
+}

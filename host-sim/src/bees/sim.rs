@@ -1,0 +1,472 @@
+//! The bee engine: every bee goes through `swarm_core::bee::step_checked` each step, in
+//! parallel (rayon) and deterministically: a step reads only the previous step's sensed world,
+//! so any thread count gives the same bits. Then the world keeps the new states physical (no
+//! bee inside an obstacle or outside the bounds) and counts every correction it had to make.
+
+use rayon::prelude::*;
+use swarm_core::bee::{self, BeeDecision, BeeParams, BeeState};
+use swarm_core::{Checked, Fx, Scalar, Vec3};
+
+use super::sense::{BlockCache, bee_frame_cached};
+use super::world::BeeWorld;
+use crate::error::{Result, SimError};
+use crate::scalar::SimScalar;
+
+/// Corrections the world made because the controller's move would have left a bee inside an
+/// obstacle or outside the bounds (one count per bee and kind per step).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Contacts {
+    /// Bees put back on an obstacle's surface.
+    pub obstacle: u64,
+    /// Bees clamped into the bounds.
+    pub bounds: u64,
+}
+
+impl Contacts {
+    /// Both kinds.
+    pub fn total(&self) -> u64 {
+        self.obstacle + self.bounds
+    }
+}
+
+impl std::ops::AddAssign for Contacts {
+    fn add_assign(&mut self, o: Contacts) {
+        self.obstacle += o.obstacle;
+        self.bounds += o.bounds;
+    }
+}
+
+/// A decision before the first step: nothing decided yet.
+fn no_decision<S: Scalar>(s: &BeeState<S>) -> BeeDecision<S> {
+    BeeDecision {
+        accel: Vec3::zero(),
+        velocity: s.vel,
+        roll: s.roll,
+        pitch: s.pitch,
+        avoiding: s.avoiding,
+        density: s.density,
+    }
+}
+
+/// A group of bees sharing parameters, a goal and a scalar type. The group owns the world slots
+/// `first..first + len`; slots are reordered now and then so that bees near each other in the
+/// world are near each other in memory, and `ids` keeps each bee's stable id.
+#[derive(Clone, Debug)]
+pub struct BeeGroup<S> {
+    /// Group name.
+    pub name: String,
+    /// First world slot of the group.
+    pub first: usize,
+    /// Controller parameters (validated).
+    pub params: Checked<BeeParams<S>>,
+    /// Object id of the target the group flies to (its centre is the frames' goal while it is
+    /// active).
+    pub goal: Option<u16>,
+    /// Current states, by slot.
+    pub states: Vec<BeeState<S>>,
+    /// Stable agent id of each slot.
+    pub ids: Vec<u32>,
+    /// The last step's decisions, by slot (roll, pitch, avoiding, ...).
+    pub decisions: Vec<BeeDecision<S>>,
+    next: Vec<BeeState<S>>,
+    corrected: Vec<u8>,
+}
+
+impl<S: SimScalar> BeeGroup<S> {
+    /// A group of bees starting in `states`, occupying slots (and ids) from `first` on.
+    pub fn new(
+        name: String,
+        first: usize,
+        params: Checked<BeeParams<S>>,
+        goal: Option<u16>,
+        states: Vec<BeeState<S>>,
+    ) -> Self {
+        BeeGroup {
+            name,
+            first,
+            params,
+            goal,
+            ids: (first as u32..(first + states.len()) as u32).collect(),
+            decisions: states.iter().map(no_decision).collect(),
+            next: states.clone(),
+            corrected: vec![0; states.len()],
+            states,
+        }
+    }
+
+    /// Runs every bee's controller on its frame and keeps the result physical.
+    fn decide(&mut self, w: &BeeWorld, step: u32) -> Result<()> {
+        let (first, params) = (self.first, &self.params);
+        let goal = self.goal.and_then(|g| w.target_center(g));
+        let t = S::from_f64(f64::from(step) * params.dt.to_f64());
+        self.next
+            .par_iter_mut()
+            .zip(self.decisions.par_iter_mut())
+            .zip(self.corrected.par_iter_mut())
+            .zip(self.states.par_iter().zip(self.ids.par_iter()))
+            .enumerate()
+            .try_for_each_init(BlockCache::default, |cache, (k, (((out, dec), fix), (s, &id)))| {
+                let frame = bee_frame_cached::<S>(w, first + k, goal, t, cache);
+                let (d, mut next) = bee::step_checked(s, &frame, params)
+                    .map_err(|e| SimError::controller("bee step", step, id, e))?;
+                *fix = w.confine(&mut next);
+                *dec = d;
+                *out = next;
+                Ok(())
+            })
+    }
+
+    /// Makes the new states current, writes the sensed world and counts the corrections.
+    fn commit(&mut self, w: &mut BeeWorld) -> Contacts {
+        let mut c = Contacts::default();
+        for (k, (s, &fix)) in self.next.iter().zip(&self.corrected).enumerate() {
+            w.sensed.set(self.first + k, self.ids[k], s);
+            c.obstacle += u64::from(fix & 1);
+            c.bounds += u64::from(fix >> 1 & 1);
+        }
+        std::mem::swap(&mut self.states, &mut self.next);
+        c
+    }
+
+    /// Sorts the group's slots by `key` (then id): a permutation of the slots that changes no
+    /// result, only memory locality. Rewrites the group's part of the sensed world.
+    fn reorder(&mut self, key: impl Fn(&BeeState<S>) -> u32, w: &mut BeeWorld) {
+        let mut perm: Vec<u32> = (0..self.states.len() as u32).collect();
+        perm.sort_unstable_by_key(|&k| (key(&self.states[k as usize]), self.ids[k as usize]));
+        let take = |v: &[u32]| perm.iter().map(|&k| v[k as usize]).collect::<Vec<u32>>();
+        self.ids = take(&self.ids);
+        self.states = perm.iter().map(|&k| self.states[k as usize]).collect();
+        self.decisions = perm.iter().map(|&k| self.decisions[k as usize]).collect();
+        for (k, s) in self.states.iter().enumerate() {
+            w.sensed.set(self.first + k, self.ids[k], s);
+        }
+    }
+
+    /// The states in id order, with their last decisions.
+    pub fn by_id(&self) -> Vec<(u32, BeeState<S>, BeeDecision<S>)> {
+        let mut v: Vec<_> = (0..self.states.len())
+            .map(|k| (self.ids[k], self.states[k], self.decisions[k]))
+            .collect();
+        v.sort_unstable_by_key(|e| e.0);
+        v
+    }
+}
+
+/// A group of either scalar type.
+#[derive(Clone, Debug)]
+pub enum AnyBeeGroup {
+    /// `f32` controllers.
+    F32(BeeGroup<f32>),
+    /// I16F16 controllers.
+    Fixed(BeeGroup<Fx>),
+}
+
+/// Runs `$body` with `$g` bound to the group, whatever its scalar type.
+macro_rules! with_group {
+    ($group:expr, $g:ident => $body:expr) => {
+        match $group {
+            AnyBeeGroup::F32($g) => $body,
+            AnyBeeGroup::Fixed($g) => $body,
+        }
+    };
+}
+pub(crate) use with_group;
+
+impl AnyBeeGroup {
+    /// Group name.
+    pub fn name(&self) -> &str {
+        with_group!(self, g => &g.name)
+    }
+    /// Number of bees.
+    pub fn len(&self) -> usize {
+        with_group!(self, g => g.states.len())
+    }
+    /// Whether the group is empty.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// First world slot.
+    pub fn first(&self) -> usize {
+        with_group!(self, g => g.first)
+    }
+}
+
+impl From<BeeGroup<f32>> for AnyBeeGroup {
+    fn from(g: BeeGroup<f32>) -> Self {
+        AnyBeeGroup::F32(g)
+    }
+}
+impl From<BeeGroup<Fx>> for AnyBeeGroup {
+    fn from(g: BeeGroup<Fx>) -> Self {
+        AnyBeeGroup::Fixed(g)
+    }
+}
+
+/// A bee swarm (or several) in its world.
+#[derive(Clone, Debug)]
+pub struct BeeSim {
+    /// The world and the sensed state of every bee.
+    pub world: BeeWorld,
+    /// The groups, in agent-index order.
+    pub groups: Vec<AnyBeeGroup>,
+    /// The run's seed (the spawn draws; the bee controller itself draws no random numbers).
+    pub seed: u32,
+    /// The next step to run; frame time is `step · dt`.
+    pub step: u32,
+    /// Re-sort the slots by grid cell every this many steps (0: never). Changes no result.
+    pub reorder_every: u32,
+    /// Corrections made at the last step.
+    pub last_contacts: Contacts,
+    /// Corrections made since the start.
+    pub contacts: Contacts,
+}
+
+impl BeeSim {
+    /// A simulation of `groups` (contiguous agent indices, in order) in `world`.
+    pub fn new(mut world: BeeWorld, groups: Vec<AnyBeeGroup>, seed: u32) -> Self {
+        let n = groups.iter().map(AnyBeeGroup::len).sum();
+        world.sensed.resize(n);
+        world.size_grids(n);
+        world.index_targets();
+        for g in &groups {
+            with_group!(g, g => for (k, s) in g.states.iter().enumerate() {
+                world.sensed.set(g.first + k, g.ids[k], s);
+            });
+        }
+        let mut sim = BeeSim {
+            world,
+            groups,
+            seed,
+            step: 0,
+            reorder_every: 16,
+            last_contacts: Contacts::default(),
+            contacts: Contacts::default(),
+        };
+        // Spatial slot order from the start (changes no result).
+        sim.reorder();
+        sim
+    }
+
+    /// Number of bees.
+    pub fn agents(&self) -> usize {
+        self.world.len()
+    }
+
+    /// Sorts every group's slots by grid cell (memory locality for the neighbour queries).
+    pub fn reorder(&mut self) {
+        let grid = self.world.grid.clone_geometry();
+        for g in &mut self.groups {
+            with_group!(g, g => g.reorder(
+                |s| grid.cell_of([s.pos.x.to_f32(), s.pos.y.to_f32(), s.pos.z.to_f32()]),
+                &mut self.world,
+            ));
+        }
+    }
+
+    /// One step: every bee runs `bee::step_checked` on its frame (built from the previous
+    /// step's sensed world), the world confines the new states (see [`BeeWorld::confine`]),
+    /// then the sensed world takes them (positions, velocities, densities broadcast). Returns
+    /// the corrections of this step (also added to [`BeeSim::contacts`]).
+    pub fn step(&mut self) -> Result<Contacts> {
+        let step = self.step;
+        self.world.index_positions();
+        for g in &mut self.groups {
+            with_group!(g, g => g.decide(&self.world, step))?;
+        }
+        let mut c = Contacts::default();
+        for g in &mut self.groups {
+            c += with_group!(g, g => g.commit(&mut self.world));
+        }
+        self.last_contacts = c;
+        self.contacts += c;
+        if self.reorder_every > 0 && (step + 1) % self.reorder_every == 0 {
+            self.reorder();
+        }
+        self.step += 1;
+        Ok(c)
+    }
+
+    /// Every bee's position, in id order.
+    pub fn positions_by_id(&self) -> Vec<[f64; 3]> {
+        let s = &self.world.sensed;
+        let mut out = vec![[0.0; 3]; s.pos.len()];
+        for (p, &id) in s.pos.iter().zip(&s.id) {
+            out[id as usize] = *p;
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bees::world::{BeeObstacle, BeeTarget, Shape3};
+
+    /// 600 bees of each scalar type around a nest, between two shafts, over a ground.
+    fn world_sim(n: usize) -> BeeSim {
+        let p = BeeParams::<f32>::around_nest();
+        let mut w = BeeWorld::new([0.0; 3], [40.0, 20.0, 40.0], 3.5, 4.0);
+        w.obstacles = vec![
+            BeeObstacle::new(
+                0,
+                "ground",
+                Shape3::Box {
+                    min: [0.0; 3],
+                    max: [40.0, 1.0, 40.0],
+                },
+                true,
+            ),
+            BeeObstacle::new(
+                1,
+                "shaft",
+                Shape3::Shaft {
+                    center: [20.0, 16.0],
+                    radius: 1.5,
+                    y_min: 0.0,
+                    y_max: 20.0,
+                },
+                true,
+            ),
+            BeeObstacle::new(
+                2,
+                "ball",
+                Shape3::Sphere {
+                    center: [14.0, 8.0, 24.0],
+                    radius: 2.0,
+                },
+                true,
+            ),
+        ];
+        w.targets = vec![BeeTarget {
+            id: 3,
+            name: "nest".into(),
+            center: [28.0, 8.0, 20.0],
+            radius: 2.0,
+            particles: 150,
+            active: true,
+        }];
+        let spawn = |i: usize| {
+            let r = |k| swarm_core::rand::rand(3, i as u32, u32::MAX, k) as f32 / 4.3e9;
+            [4.0 + 12.0 * r(0), 3.0 + 12.0 * r(1), 8.0 + 24.0 * r(2)]
+        };
+        let f32s: Vec<BeeState<f32>> = (0..n)
+            .map(|i| {
+                let q = spawn(i);
+                BeeState::new(Vec3::from_f32(q[0], q[1], q[2]), Vec3::zero())
+            })
+            .collect();
+        let fxs: Vec<BeeState<Fx>> = (n..2 * n)
+            .map(|i| {
+                let q = spawn(i);
+                BeeState::new(Vec3::from_f32(q[0], q[1], q[2]), Vec3::zero())
+            })
+            .collect();
+        let g1 = BeeGroup::new("f32".into(), 0, p.checked().unwrap(), Some(3), f32s);
+        let g2 = BeeGroup::new("fx".into(), n, p.cast::<Fx>().checked().unwrap(), Some(3), fxs);
+        BeeSim::new(w, vec![g1.into(), g2.into()], 7)
+    }
+
+    /// Hash of every bee's full state (f64 bits of the sensed world plus roll/pitch/avoiding of
+    /// the decisions), in id order.
+    fn hash(sim: &BeeSim) -> u64 {
+        let mut h = 0xcbf2_9ce4_8422_2325u64;
+        let mut mix = |x: u64| h = (h ^ x).wrapping_mul(0x100_0000_01b3);
+        for g in &sim.groups {
+            with_group!(g, g => for (id, s, d) in g.by_id() {
+                mix(u64::from(id));
+                for v in [s.pos, s.vel, s.forward, s.u0] {
+                    for c in [v.x, v.y, v.z] {
+                        mix(c.to_f64().to_bits());
+                    }
+                }
+                for c in [s.density, d.roll, d.pitch] {
+                    mix(c.to_f64().to_bits());
+                }
+                mix(u64::from(d.avoiding));
+            });
+        }
+        mix(sim.contacts.obstacle);
+        mix(sim.contacts.bounds);
+        h
+    }
+
+    fn run(threads: usize, every: u32, steps: u32) -> u64 {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut sim = world_sim(300);
+            sim.reorder_every = every;
+            for _ in 0..steps {
+                sim.step().unwrap();
+            }
+            hash(&sim)
+        })
+    }
+
+    #[test]
+    fn bit_identical_for_any_thread_count() {
+        assert_eq!(run(1, 16, 200), run(2, 16, 200));
+        assert_eq!(run(1, 16, 200), run(3, 16, 200));
+    }
+
+    #[test]
+    fn reordering_slots_changes_no_result() {
+        let base = run(2, 0, 200);
+        assert_eq!(base, run(2, 1, 200));
+        assert_eq!(base, run(2, 16, 200));
+    }
+
+    #[test]
+    fn no_bee_ends_a_step_inside_an_obstacle_or_outside_the_bounds() {
+        let mut sim = world_sim(300);
+        for _ in 0..300 {
+            sim.step().unwrap();
+            for p in &sim.world.sensed.pos {
+                assert!(sim.world.inside_obstacle(*p).is_none(), "{p:?}");
+                assert!((0..3).all(|k| p[k] >= f64::from(sim.world.min[k])
+                    && p[k] <= f64::from(sim.world.max[k])));
+            }
+        }
+    }
+
+    /// One bee flying +x at 1 unit/s with a shaft ahead, on its left (−z) or right (+z).
+    fn roll_toward_shaft<S: SimScalar>(side_z: f32) -> (f32, f32)
+    where
+        AnyBeeGroup: From<BeeGroup<S>>,
+    {
+        let p = BeeParams::<S>::default();
+        let mut w = BeeWorld::new([-10.0, 0.0, -10.0], [10.0, 10.0, 10.0], 3.5, 4.0);
+        let shaft = Shape3::Shaft {
+            center: [2.5, side_z],
+            radius: 1.0,
+            y_min: 0.0,
+            y_max: 10.0,
+        };
+        w.obstacles = vec![BeeObstacle::new(0, "shaft", shaft, true)];
+        let bee = BeeState::new(Vec3::from_f32(0.0, 5.0, 0.0), Vec3::from_f32(1.0, 0.0, 0.0));
+        let g = BeeGroup::new("one".into(), 0, p.checked().unwrap(), None, vec![bee]);
+        let mut sim = BeeSim::new(w, vec![g.into()], 0);
+        sim.step().unwrap();
+        let d = with_group!(&sim.groups[0], g => (g.decisions[0].avoiding, g.decisions[0].roll.to_f32()));
+        assert!(d.0, "the bee avoids the shaft");
+        // Eq. 6 at d = |closest point − bee| = hypot(2.5, 0.8) − 1.
+        let dist = 2.5f64.hypot(f64::from(side_z)) - 1.0;
+        let want = (-(2.0 - dist).powi(2) / 2.0).exp() * 45f64.to_radians();
+        (d.1, want as f32)
+    }
+
+    #[test]
+    fn roll_to_avoidance_has_opposite_signs_left_and_right_and_the_eq6_magnitude() {
+        for (tol, (left, want_l), (right, want_r)) in [
+            (1e-5, roll_toward_shaft::<f32>(-0.8), roll_toward_shaft::<f32>(0.8)),
+            (1e-3, roll_toward_shaft::<Fx>(-0.8), roll_toward_shaft::<Fx>(0.8)),
+        ] {
+            // Facing +x with y up, −z is the bee's left: roll right (positive), and vice versa.
+            assert!(left > 0.0 && right < 0.0, "left {left}, right {right}");
+            assert!((left - want_l).abs() < tol, "left {left}, eq. 6 {want_l}");
+            assert!((right + want_r).abs() < tol, "right {right}, eq. 6 {}", -want_r);
+        }
+    }
+}
