@@ -238,8 +238,12 @@ pub fn bench_bee_world(n: usize, seed: u32) -> BeeSim {
             y_min: 0.0,
             y_max: wy,
         };
-        w.obstacles
-            .push(BeeObstacle::new(k as u16 + 1, format!("shaft-{k}"), shaft, true));
+        w.obstacles.push(BeeObstacle::new(
+            k as u16 + 1,
+            format!("shaft-{k}"),
+            shaft,
+            true,
+        ));
     }
     w.targets.push(BeeTarget {
         id: 5,

@@ -19,12 +19,20 @@ pub const P: usize = WIRE_BEE_TARGETS;
 /// The sensor frame of the simulator (and of the wire).
 pub type BeeSimFrame<S> = BeeFrame<S, N, P>;
 
-/// Candidates buffered before a merge (a power of two, at least any `K` selected).
-const SCAN: usize = 64;
+/// Candidates buffered before a merge.
+const SCAN: usize = 48;
+/// Room for a merge: `SCAN` candidates plus the `K ≤ 16` kept so far.
+const KEYED: usize = 64;
+
+/// Selection key: squared distance bits (non-negative, so they order like the distances), then
+/// the tie key.
+#[inline]
+fn key(d: f32, tie: u32) -> u64 {
+    (u64::from(d.to_bits()) << 32) | u64::from(tie)
+}
 
 /// The `K` nearest entries of a query, sorted by squared distance then tie key, each as
-/// `(distance bits << 32 | tie, slot)`: a deterministic selection whatever the order (or slots)
-/// candidates arrive in.
+/// `(key, slot)`: a deterministic selection whatever the order (or slots) candidates arrive in.
 #[derive(Debug)]
 pub(crate) struct Selected<const K: usize> {
     items: [(u64, u32); K],
@@ -32,28 +40,57 @@ pub(crate) struct Selected<const K: usize> {
 }
 
 impl<const K: usize> Selected<K> {
+    fn new() -> Self {
+        const { assert!(K + SCAN <= KEYED) };
+        Selected {
+            items: [(0, 0); K],
+            len: 0,
+        }
+    }
+
     /// The selected slots, nearest first.
     pub(crate) fn slots(&self) -> impl Iterator<Item = usize> + '_ {
         self.items[..self.len].iter().map(|&(_, s)| s as usize)
     }
 
     /// Merges buffered `(squared distance, slot)` candidates: keeps the `K` smallest
-    /// `(distance, tie(slot))`. Distances are non-negative, so their bits order like them.
+    /// `(distance, tie(slot))`.
     fn merge(&mut self, cands: &[(f32, u32)], tie: &impl Fn(u32) -> u32) {
         if cands.is_empty() {
             return;
         }
-        let mut keyed = [(0u64, 0u32); 2 * SCAN];
+        let mut keyed = [(0u64, 0u32); KEYED];
         keyed[..self.len].copy_from_slice(&self.items[..self.len]);
         let mut n = self.len;
         for &(d, j) in cands {
-            keyed[n] = ((u64::from(d.to_bits()) << 32) | u64::from(tie(j)), j);
+            keyed[n] = (key(d, tie(j)), j);
             n += 1;
         }
-        keyed[..n].sort_unstable();
-        self.len = n.min(K);
+        self.take(&mut keyed[..n]);
+    }
+
+    /// Keeps the `K` smallest of `keyed` (keys are unique: the tie keys are).
+    fn take(&mut self, keyed: &mut [(u64, u32)]) {
+        keyed.sort_unstable_by_key(|e| e.0);
+        self.len = keyed.len().min(K);
         self.items[..self.len].copy_from_slice(&keyed[..self.len]);
     }
+}
+
+/// Sorts distinct keys: by rank (for each key, how many are smaller: no data-dependent
+/// branch) when there are few, else the standard sort.
+fn sort_small(keys: &mut [u64], scratch: &mut Vec<u64>) {
+    if keys.len() > 32 {
+        keys.sort_unstable();
+        return;
+    }
+    scratch.clear();
+    scratch.resize(keys.len(), 0);
+    for &a in keys.iter() {
+        let rank: usize = keys.iter().map(|&b| usize::from(b < a)).sum();
+        scratch[rank] = a;
+    }
+    keys.copy_from_slice(scratch);
 }
 
 /// The `K` entries of `grid` nearest to `p` strictly within `range`, `skip` excluded, ties
@@ -68,20 +105,16 @@ pub(crate) fn select<const K: usize>(
     skip: u32,
     tie: impl Fn(u32) -> u32,
 ) -> Selected<K> {
-    const { assert!(K <= SCAN) };
     let r2 = range * range;
-    let mut out = Selected {
-        items: [(0, 0); K],
-        len: 0,
-    };
-    let mut buf = [(0f32, 0u32); SCAN];
+    let mut out = Selected::new();
+    let mut buf = [(0f32, 0u32); SCAN + 1];
     let mut len = 0usize;
     grid.for_each_candidate(p, range, |j, q| {
         let d = d2f(q, p);
-        buf[len % SCAN] = (d, j);
+        buf[len.min(SCAN)] = (d, j);
         len += usize::from((d < r2) & (j != skip));
         if len == SCAN {
-            out.merge(&buf, &tie);
+            out.merge(&buf[..SCAN], &tie);
             len = 0;
         }
     });
@@ -115,18 +148,17 @@ pub fn neighbour_slots(w: &BeeWorld, i: usize) -> impl Iterator<Item = usize> {
 }
 
 /// The candidates of one grid cell's 3×3×3 block, gathered once and shared by the bees of that
-/// cell (slots are sorted by cell, so consecutive bees mostly share a cell), in `f32`
-/// struct-of-arrays form. Gives exactly the neighbours [`neighbour_slots`] gives: the grid's
-/// cells are a little larger than the range, so a bee two cells away is never in range.
+/// cell (slots are sorted by cell, so consecutive bees mostly share one). Gives exactly the
+/// neighbours [`neighbour_slots`] gives: the grid's cells are a little larger than the range,
+/// so a bee two cells away is never in range, even after `f32` rounding. The engine's frames
+/// go through it ([`bee_frame`] is the same frame without it).
 #[derive(Debug, Default)]
 pub(crate) struct BlockCache {
     cell: Option<u32>,
-    x: Vec<f32>,
-    y: Vec<f32>,
-    z: Vec<f32>,
-    slot: Vec<u32>,
-    id: Vec<u32>,
     d: Vec<f32>,
+    keys: Vec<u64>,
+    sorted: Vec<u64>,
+    gathered: Vec<([f32; 3], u32)>,
 }
 
 impl BlockCache {
@@ -137,52 +169,72 @@ impl BlockCache {
         let Some((cell, center)) = w.grid_geometry.cell_center(p) else {
             return neighbours(w, i);
         };
+        debug_assert_eq!(cell, w.grid.cell_of(p));
         if self.cell != Some(cell) {
-            self.cell = Some(cell);
-            self.x.clear();
-            self.y.clear();
-            self.z.clear();
-            self.slot.clear();
-            self.id.clear();
-            let ids = &w.sensed.id;
-            w.grid
-                .for_each_candidate(center, w.grid_geometry.cell(), |j, q| {
-                    self.x.push(q[0]);
-                    self.y.push(q[1]);
-                    self.z.push(q[2]);
-                    self.slot.push(j);
-                    self.id.push(ids[j as usize]);
-                });
-            self.d.resize(self.x.len(), 0.0);
+            self.fill(w, cell, center);
         }
-        // Distances exactly as `d2f` computes them (vectorizable).
-        let xyz = self.x.iter().zip(&self.y).zip(&self.z);
-        for (d, ((&x, &y), &z)) in self.d.iter_mut().zip(xyz) {
-            let (dx, dy, dz) = (x - p[0], y - p[1], z - p[2]);
-            *d = dx * dx + dy * dy + dz * dz;
+        // Distances exactly as `d2f` computes them.
+        for (d, (q, _)) in self.d.iter_mut().zip(&self.gathered) {
+            *d = d2f(*q, p);
         }
-        let r2 = w.range * w.range;
-        let (me, ids) = (i as u32, &self.id);
-        let tie = |k: u32| ids[k as usize];
-        let mut out = Selected {
-            items: [(0, 0); N],
-            len: 0,
-        };
-        let mut buf = [(0f32, 0u32); SCAN];
+        // Keys (distance bits, block index) of those in range: a bit mask per 64 candidates
+        // (vectorizable), then one step per set bit.
+        let (r2, me) = (w.range * w.range, i as u32);
         let mut len = 0usize;
-        for (k, (&d, &j)) in self.d.iter().zip(&self.slot).enumerate() {
-            buf[len % SCAN] = (d, k as u32);
-            len += usize::from((d < r2) & (j != me));
-            if len == SCAN {
-                out.merge(&buf, &tie);
-                len = 0;
+        for (c, ds) in self.d.chunks(64).enumerate() {
+            let mut flags = [0u8; 64];
+            for (f, &d) in flags.iter_mut().zip(ds) {
+                *f = u8::from(d < r2);
+            }
+            // Eight 0/1 bytes to eight bits at a time.
+            let mut mask = 0u64;
+            for (g, bytes) in flags.chunks_exact(8).enumerate() {
+                let v = u64::from_le_bytes(bytes.try_into().unwrap_or([0; 8]));
+                mask |= (v.wrapping_mul(0x0102_0408_1020_4080) >> 56) << (8 * g);
+            }
+            while mask != 0 {
+                let k = c * 64 + mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                self.keys[len] = key(self.d[k], k as u32);
+                len += usize::from(self.gathered[k].1 != me);
             }
         }
-        out.merge(&buf[..len], &tie);
-        for item in &mut out.items[..out.len] {
-            item.1 = self.slot[item.1 as usize];
+        let keys = &mut self.keys[..len];
+        sort_small(keys, &mut self.sorted);
+        // Equal distances: the block order depends on the slots, so order by stable id.
+        let ids = &w.sensed.id;
+        let slot = |k: u64| self.gathered[(k & 0xffff_ffff) as usize].1;
+        let mut a = 0;
+        while a + 1 < keys.len() && a < N {
+            let d = keys[a] >> 32;
+            let mut b = a + 1;
+            while b < keys.len() && keys[b] >> 32 == d {
+                b += 1;
+            }
+            if b - a > 1 {
+                keys[a..b].sort_unstable_by_key(|&k| ids[slot(k) as usize]);
+            }
+            a = b;
+        }
+        let mut out = Selected::new();
+        out.len = keys.len().min(N);
+        for (item, &k) in out.items.iter_mut().zip(keys.iter()) {
+            *item = (k, slot(k));
         }
         out
+    }
+
+    /// Gathers the candidates of `cell`'s 3×3×3 block.
+    fn fill(&mut self, w: &BeeWorld, cell: u32, center: [f32; 3]) {
+        self.cell = Some(cell);
+        self.gathered.clear();
+        w.grid
+            .for_each_candidate(center, w.grid_geometry.cell(), |j, q| {
+                self.gathered.push((q, j));
+            });
+        let n = self.gathered.len();
+        self.d.resize(n, 0.0);
+        self.keys.resize(n, 0);
     }
 }
 
@@ -313,7 +365,7 @@ mod tests {
             let id = (slot * 1237 + shuffle * 17) % n;
             let u = |k| swarm_core::rand::rand(5, id, 0, k) as f64 / 4_294_967_296.0 * 24.0;
             // Snap a few bees onto a lattice so exact distance ties happen.
-            let pos = if id % 10 == 0 {
+            let pos = if id.is_multiple_of(10) {
                 [(id % 7) as f64, 4.0, 4.0]
             } else {
                 [u(0), u(1), u(2)]
@@ -349,7 +401,11 @@ mod tests {
             want.truncate(N);
             let want: Vec<u32> = want.into_iter().map(|(_, id)| id).collect();
             assert_eq!(ids_of(&a, i), want, "bee {id}");
-            assert_eq!(ids_of(&b, slot_of(&b, id)), want, "bee {id}, other slot order");
+            assert_eq!(
+                ids_of(&b, slot_of(&b, id)),
+                want,
+                "bee {id}, other slot order"
+            );
             // The frame carries exactly those bees, nearest first, with their broadcast data.
             let f = bee_frame::<f32>(&a, i, None, 0.0);
             let got: Vec<u32> = f.neighbours.iter().map(|n| n.vel.x as u32).collect();
@@ -380,8 +436,19 @@ mod tests {
             }
             let mut cache = BlockCache::default();
             for i in (0..w.len()).rev().step_by(3) {
-                let a = bee_frame::<swarm_core::Fx>(&w, i, None, <swarm_core::Fx as swarm_core::Scalar>::ONE);
-                let b = bee_frame_cached(&w, i, None, <swarm_core::Fx as swarm_core::Scalar>::ONE, &mut cache);
+                let a = bee_frame::<swarm_core::Fx>(
+                    &w,
+                    i,
+                    None,
+                    <swarm_core::Fx as swarm_core::Scalar>::ONE,
+                );
+                let b = bee_frame_cached(
+                    &w,
+                    i,
+                    None,
+                    <swarm_core::Fx as swarm_core::Scalar>::ONE,
+                    &mut cache,
+                );
                 assert_eq!(a, b, "slot {i}");
             }
         }

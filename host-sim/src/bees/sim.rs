@@ -68,8 +68,10 @@ pub struct BeeGroup<S> {
     pub ids: Vec<u32>,
     /// The last step's decisions, by slot (roll, pitch, avoiding, ...).
     pub decisions: Vec<BeeDecision<S>>,
+    /// What the world corrected at the last step, by slot: bit 0 the bee was put back out of
+    /// an obstacle, bit 1 into the bounds (see [`BeeWorld::confine`]).
+    pub corrected: Vec<u8>,
     next: Vec<BeeState<S>>,
-    corrected: Vec<u8>,
 }
 
 impl<S: SimScalar> BeeGroup<S> {
@@ -105,41 +107,62 @@ impl<S: SimScalar> BeeGroup<S> {
             .zip(self.corrected.par_iter_mut())
             .zip(self.states.par_iter().zip(self.ids.par_iter()))
             .enumerate()
-            .try_for_each_init(BlockCache::default, |cache, (k, (((out, dec), fix), (s, &id)))| {
-                let frame = bee_frame_cached::<S>(w, first + k, goal, t, cache);
-                let (d, mut next) = bee::step_checked(s, &frame, params)
-                    .map_err(|e| SimError::controller("bee step", step, id, e))?;
-                *fix = w.confine(&mut next);
-                *dec = d;
-                *out = next;
-                Ok(())
-            })
+            .try_for_each_init(
+                BlockCache::default,
+                |cache, (k, (((out, dec), fix), (s, &id)))| {
+                    let frame = bee_frame_cached::<S>(w, first + k, goal, t, cache);
+                    let (d, mut next) = bee::step_checked(s, &frame, params)
+                        .map_err(|e| SimError::controller("bee step", step, id, e))?;
+                    *fix = w.confine(&mut next);
+                    *dec = d;
+                    *out = next;
+                    Ok(())
+                },
+            )
     }
 
     /// Makes the new states current, writes the sensed world and counts the corrections.
     fn commit(&mut self, w: &mut BeeWorld) -> Contacts {
-        let mut c = Contacts::default();
-        for (k, (s, &fix)) in self.next.iter().zip(&self.corrected).enumerate() {
-            w.sensed.set(self.first + k, self.ids[k], s);
-            c.obstacle += u64::from(fix & 1);
-            c.bounds += u64::from(fix >> 1 & 1);
+        w.sensed.write(self.first, &self.ids, &self.next);
+        let (mut obstacle, mut bounds) = (0u64, 0u64);
+        for &fix in &self.corrected {
+            obstacle += u64::from(fix & 1);
+            bounds += u64::from(fix >> 1 & 1);
         }
         std::mem::swap(&mut self.states, &mut self.next);
-        c
+        Contacts { obstacle, bounds }
     }
 
-    /// Sorts the group's slots by `key` (then id): a permutation of the slots that changes no
+    /// Sorts the group's slots by `cell` (then id): a permutation of the slots that changes no
     /// result, only memory locality. Rewrites the group's part of the sensed world.
-    fn reorder(&mut self, key: impl Fn(&BeeState<S>) -> u32, w: &mut BeeWorld) {
-        let mut perm: Vec<u32> = (0..self.states.len() as u32).collect();
-        perm.sort_unstable_by_key(|&k| (key(&self.states[k as usize]), self.ids[k as usize]));
-        let take = |v: &[u32]| perm.iter().map(|&k| v[k as usize]).collect::<Vec<u32>>();
-        self.ids = take(&self.ids);
-        self.states = perm.iter().map(|&k| self.states[k as usize]).collect();
-        self.decisions = perm.iter().map(|&k| self.decisions[k as usize]).collect();
-        for (k, s) in self.states.iter().enumerate() {
-            w.sensed.set(self.first + k, self.ids[k], s);
-        }
+    fn reorder(&mut self, cell: impl Fn(&BeeState<S>) -> u32 + Sync, w: &mut BeeWorld) {
+        // Keys are unique (ids are): any sort gives the same order.
+        let mut keyed: Vec<(u64, u32)> = self
+            .states
+            .par_iter()
+            .zip(self.ids.par_iter())
+            .enumerate()
+            .map(|(k, (s, &id))| ((u64::from(cell(s)) << 32) | u64::from(id), k as u32))
+            .collect();
+        keyed.par_sort_unstable();
+        let states = &self.states;
+        self.next
+            .par_iter_mut()
+            .zip(keyed.par_iter())
+            .for_each(|(out, &(_, k))| *out = states[k as usize]);
+        std::mem::swap(&mut self.states, &mut self.next);
+        let decisions = &self.decisions;
+        self.decisions = keyed
+            .par_iter()
+            .map(|&(_, k)| decisions[k as usize])
+            .collect();
+        self.corrected = keyed
+            .iter()
+            .map(|&(_, k)| self.corrected[k as usize])
+            .collect();
+        // The low half of a key is the id.
+        self.ids = keyed.iter().map(|&(key, _)| key as u32).collect();
+        w.sensed.write(self.first, &self.ids, &self.states);
     }
 
     /// The states in id order, with their last decisions.
@@ -279,7 +302,7 @@ impl BeeSim {
         }
         self.last_contacts = c;
         self.contacts += c;
-        if self.reorder_every > 0 && (step + 1) % self.reorder_every == 0 {
+        if self.reorder_every > 0 && (step + 1).is_multiple_of(self.reorder_every) {
             self.reorder();
         }
         self.step += 1;
@@ -300,6 +323,7 @@ impl BeeSim {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bees::sense::bee_frame;
     use crate::bees::world::{BeeObstacle, BeeTarget, Shape3};
 
     /// 600 bees of each scalar type around a nest, between two shafts, over a ground.
@@ -362,7 +386,13 @@ mod tests {
             })
             .collect();
         let g1 = BeeGroup::new("f32".into(), 0, p.checked().unwrap(), Some(3), f32s);
-        let g2 = BeeGroup::new("fx".into(), n, p.cast::<Fx>().checked().unwrap(), Some(3), fxs);
+        let g2 = BeeGroup::new(
+            "fx".into(),
+            n,
+            p.cast::<Fx>().checked().unwrap(),
+            Some(3),
+            fxs,
+        );
         BeeSim::new(w, vec![g1.into(), g2.into()], 7)
     }
 
@@ -412,6 +442,34 @@ mod tests {
     }
 
     #[test]
+    fn the_test_world_exercises_avoidance_targets_and_corrections() {
+        let mut sim = world_sim(300);
+        let (mut avoiding, mut with_targets) = (0usize, 0usize);
+        for _ in 0..200 {
+            sim.step().unwrap();
+            for g in &sim.groups {
+                avoiding += with_group!(g, g => g.decisions.iter().filter(|d| d.avoiding).count());
+            }
+            with_targets += (0..sim.agents())
+                .filter(|&i| {
+                    !bee_frame::<f32>(&sim.world, i, None, 0.0)
+                        .targets
+                        .is_empty()
+                })
+                .count();
+        }
+        assert!(
+            avoiding > 0 && with_targets > 0,
+            "{avoiding} {with_targets}"
+        );
+        assert!(
+            sim.contacts.obstacle > 0 && sim.contacts.bounds > 0,
+            "{:?}",
+            sim.contacts
+        );
+    }
+
+    #[test]
     fn reordering_slots_changes_no_result() {
         let base = run(2, 0, 200);
         assert_eq!(base, run(2, 1, 200));
@@ -425,8 +483,10 @@ mod tests {
             sim.step().unwrap();
             for p in &sim.world.sensed.pos {
                 assert!(sim.world.inside_obstacle(*p).is_none(), "{p:?}");
-                assert!((0..3).all(|k| p[k] >= f64::from(sim.world.min[k])
-                    && p[k] <= f64::from(sim.world.max[k])));
+                assert!(
+                    (0..3).all(|k| p[k] >= f64::from(sim.world.min[k])
+                        && p[k] <= f64::from(sim.world.max[k]))
+                );
             }
         }
     }
@@ -460,13 +520,25 @@ mod tests {
     #[test]
     fn roll_to_avoidance_has_opposite_signs_left_and_right_and_the_eq6_magnitude() {
         for (tol, (left, want_l), (right, want_r)) in [
-            (1e-5, roll_toward_shaft::<f32>(-0.8), roll_toward_shaft::<f32>(0.8)),
-            (1e-3, roll_toward_shaft::<Fx>(-0.8), roll_toward_shaft::<Fx>(0.8)),
+            (
+                1e-5,
+                roll_toward_shaft::<f32>(-0.8),
+                roll_toward_shaft::<f32>(0.8),
+            ),
+            (
+                1e-3,
+                roll_toward_shaft::<Fx>(-0.8),
+                roll_toward_shaft::<Fx>(0.8),
+            ),
         ] {
             // Facing +x with y up, −z is the bee's left: roll right (positive), and vice versa.
             assert!(left > 0.0 && right < 0.0, "left {left}, right {right}");
             assert!((left - want_l).abs() < tol, "left {left}, eq. 6 {want_l}");
-            assert!((right + want_r).abs() < tol, "right {right}, eq. 6 {}", -want_r);
+            assert!(
+                (right + want_r).abs() < tol,
+                "right {right}, eq. 6 {}",
+                -want_r
+            );
         }
     }
 }

@@ -4,6 +4,7 @@
 //! Obstacle geometry is computed in `f64`: the closest point of a surface and its outward unit
 //! normal, for points outside and inside the solid ([`Surface`]).
 
+use rayon::prelude::*;
 use swarm_core::bee::BeeState;
 
 use crate::grid::Grid;
@@ -143,7 +144,13 @@ pub fn box_surface_open(min: [f64; 3], max: [f64; 3], p: [f64; 3], open: [bool; 
 
 /// The vertical cylinder with axis `center = [x, z]`, `radius`, from `y_min` to `y_max`, both
 /// caps open (see [`shaft_surface_open`]).
-pub fn shaft_surface(center: [f64; 2], radius: f64, y_min: f64, y_max: f64, p: [f64; 3]) -> Surface {
+pub fn shaft_surface(
+    center: [f64; 2],
+    radius: f64,
+    y_min: f64,
+    y_max: f64,
+    p: [f64; 3],
+) -> Surface {
     shaft_surface_open(center, radius, y_min, y_max, p, [true; 2])
 }
 
@@ -263,7 +270,9 @@ impl Shape3 {
     /// The bounding box.
     pub fn aabb(&self) -> ([f32; 3], [f32; 3]) {
         match *self {
-            Shape3::Sphere { center, radius } => (center.map(|c| c - radius), center.map(|c| c + radius)),
+            Shape3::Sphere { center, radius } => {
+                (center.map(|c| c - radius), center.map(|c| c + radius))
+            }
             Shape3::Box { min, max } => (min, max),
             Shape3::Shaft {
                 center,
@@ -281,9 +290,7 @@ impl Shape3 {
     /// `[lo, hi]` closed (a bee is never pushed out of the world through them).
     pub fn surface(&self, p: [f64; 3], lo: [f32; 3], hi: [f32; 3]) -> Surface {
         match *self {
-            Shape3::Sphere { center, radius } => {
-                sphere_surface(f64s(center), f64::from(radius), p)
-            }
+            Shape3::Sphere { center, radius } => sphere_surface(f64s(center), f64::from(radius), p),
             Shape3::Box { min, max } => {
                 let open = std::array::from_fn(|face| {
                     let k = face / 2;
@@ -416,6 +423,24 @@ impl Sensed {
         self.id[i] = id;
     }
 
+    /// Writes slots `first..first + states.len()` (bees `ids`), in parallel.
+    pub fn write<S: SimScalar>(&mut self, first: usize, ids: &[u32], states: &[BeeState<S>]) {
+        let r = first..first + states.len();
+        self.pos[r.clone()]
+            .par_iter_mut()
+            .zip(self.vel[r.clone()].par_iter_mut())
+            .zip(self.density[r.clone()].par_iter_mut())
+            .zip(self.id[r].par_iter_mut())
+            .zip(states.par_iter().zip(ids.par_iter()))
+            .with_min_len(4096)
+            .for_each(|((((p, v), d), i), (s, &id))| {
+                *p = a3(s.pos);
+                *v = a3(s.vel);
+                *d = s.density.to_f64();
+                *i = id;
+            });
+    }
+
     /// Room for `n` bees.
     pub fn resize(&mut self, n: usize) {
         self.pos.resize(n, [0.0; 3]);
@@ -493,8 +518,7 @@ impl GridGeometry {
             let c = ((p[k] - self.origin[k]) * self.inv_cell).max(0.0);
             (c as u32).min(self.dims[k] - 1)
         });
-        let index = (c[2] as usize * self.dims[1] as usize + c[1] as usize)
-            * self.dims[0] as usize
+        let index = (c[2] as usize * self.dims[1] as usize + c[1] as usize) * self.dims[0] as usize
             + c[0] as usize;
         let center = std::array::from_fn(|k| self.origin[k] + (c[k] as f32 + 0.5) * self.cell);
         Some((index as u32, center))
@@ -532,7 +556,9 @@ impl BeeWorld {
     /// (a query reads 3×3×3 cells, and a bee two cells away is out of range even after `f32`
     /// rounding), and about one bee per cell in sparse worlds.
     pub fn size_grids(&mut self, n: usize) {
-        let volume: f32 = (0..3).map(|k| (self.max[k] - self.min[k]).max(1e-3)).product();
+        let volume: f32 = (0..3)
+            .map(|k| (self.max[k] - self.min[k]).max(1e-3))
+            .product();
         let cell = (self.range * 1.001).max((volume / n.max(1) as f32).cbrt());
         self.grid = Grid::new(self.min, self.max, cell);
         self.grid_geometry = GridGeometry::new(self.min, self.max, cell);
@@ -735,6 +761,39 @@ mod tests {
         for p in [[3.0, -4.0, 25.0], [10.0, 20.0, 20.0], [11.0, 1.5, 21.0]] {
             let s = shaft_surface(c, r, y0, y1, p);
             assert!((norm(s.normal) - 1.0).abs() < 1e-12, "{p:?}");
+        }
+    }
+
+    #[test]
+    fn grid_geometry_matches_the_grid() {
+        for (min, max, n) in [
+            ([0.0; 3], [60.0, 30.0, 60.0], 1000),
+            ([-7.5, 0.25, 3.0], [205.7, 73.7, 205.7], 100_000),
+            ([0.0; 3], [7.0, 7.0, 7.0], 5),
+        ] {
+            let mut w = BeeWorld::new(min, max, 3.5, 4.0);
+            w.size_grids(n);
+            assert!(w.grid.cell() >= 3.5 * 1.001);
+            for i in 0..5000u32 {
+                let u = |k| swarm_core::rand::rand(2, i, 0, k) as f32 / 4_294_967_296.0;
+                let mut p: [f32; 3] =
+                    std::array::from_fn(|k| min[k] + (max[k] - min[k]) * u(k as u32));
+                // Some points exactly on cell boundaries and on the box faces.
+                if i % 3 == 0 {
+                    p[0] = (min[0] + (i % 40) as f32 * w.grid.cell()).min(max[0]);
+                }
+                if i % 7 == 0 {
+                    p[1] = max[1];
+                }
+                let (cell, center) = w.grid_geometry.cell_center(p).unwrap();
+                assert_eq!(cell, w.grid.cell_of(p), "{p:?}");
+                assert_eq!(w.grid.cell_of(center), cell, "{p:?}");
+            }
+            assert!(
+                w.grid_geometry
+                    .cell_center([min[0] - 1.0, min[1], min[2]])
+                    .is_none()
+            );
         }
     }
 
