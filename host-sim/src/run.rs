@@ -109,7 +109,11 @@ fn run_bees(
     let mut sim = BeeSim::from_scenario(sc, seed)?;
     let every = sc.outputs.every.max(1);
     // Two capsules (radius r) touch when their centres are 2r apart.
-    let radius = sc.groups.iter().map(|g| g.bee_params().radius).fold(0.0, f32::max);
+    let radius = sc
+        .groups
+        .iter()
+        .map(|g| g.bee_params().radius)
+        .fold(0.0, f32::max);
     let mut summary = summary_for(sc, seed, threads, sim.agents(), 2.0 * radius);
     let mut frames = vec![bee_frame_samples(&sim)];
     record(&mut summary, &frames[0], 0);
@@ -120,7 +124,11 @@ fn run_bees(
         while let Some(e) = events.next_if(|e| e.step == step) {
             if let Some(id) = sc.object_id(e.action.object()) {
                 sim.apply(id, &e.action);
-                log.line(format_args!("step {step}: {} {}", e.action.verb(), e.action.object()))?;
+                log.line(format_args!(
+                    "step {step}: {} {}",
+                    e.action.verb(),
+                    e.action.object()
+                ))?;
             }
         }
         sim.step()?;
@@ -137,8 +145,12 @@ fn run_bees(
     summary.agent_steps_per_s =
         sim.agents() as f64 * sc.steps as f64 / summary.wall_seconds.max(1e-9);
     let c = sim.contacts;
-    summary.extra.insert("world_contacts_obstacle".into(), c.obstacle.into());
-    summary.extra.insert("world_contacts_bounds".into(), c.bounds.into());
+    summary
+        .extra
+        .insert("world_contacts_obstacle".into(), c.obstacle.into());
+    summary
+        .extra
+        .insert("world_contacts_bounds".into(), c.bounds.into());
     log.line(format_args!(
         "done: {} steps in {:.2} s ({:.3e} agent-steps/s); the world kept bees out of obstacles \
          {} times and inside the bounds {} times",

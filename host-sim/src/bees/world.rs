@@ -546,7 +546,7 @@ impl BeeWorld {
             target_spheres: Vec::new(),
             grid: Grid::default(),
             grid_geometry: GridGeometry::default(),
-            particle_grid: Grid::new(min, max, range),
+            particle_grid: Grid::new(min, min, range),
         };
         w.size_grids(0);
         w
@@ -595,7 +595,19 @@ impl BeeWorld {
             .filter(|t| t.active)
             .map(|t| (t.center, t.radius))
             .collect();
-        self.particle_grid = Grid::new(self.min, self.max, self.range);
+        // Over the particles' bounding box, not the world's: a few cells whatever the world's
+        // size (queries from outside it read its border cells).
+        let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+        for p in &self.particles {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        if self.particles.is_empty() {
+            (lo, hi) = (self.min, self.min);
+        }
+        self.particle_grid = Grid::new(lo, hi, self.range);
         self.particle_grid.rebuild(self.particles.iter().copied());
     }
 
