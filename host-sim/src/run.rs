@@ -99,65 +99,83 @@ fn summary_for(sc: &Scenario, seed: u32, threads: usize, agents: usize, collisio
     }
 }
 
-fn run_bees(
-    sc: &Scenario,
-    seed: u32,
-    threads: usize,
-    opts: &RunOptions,
-    log: &mut RunLog,
-) -> Result<RunReport> {
-    let mut sim = BeeSim::from_scenario(sc, seed)?;
-    let every = sc.outputs.every.max(1);
-    // Two capsules (radius r) touch when their centres are 2r apart.
-    let radius = sc
-        .groups
-        .iter()
-        .map(|g| g.bee_params().radius)
-        .fold(0.0, f32::max);
-    let mut summary = summary_for(sc, seed, threads, sim.agents(), 2.0 * radius);
-    let mut frames = vec![bee_frame_samples(&sim)];
-    record(&mut summary, &frames[0], 0);
-    let bar = progress_bar(opts.progress, sc.steps as u64);
-    let t0 = Instant::now();
-    let mut events = sc.events.iter().peekable();
-    for step in 0..sc.steps {
-        while let Some(e) = events.next_if(|e| e.step == step) {
-            if let Some(id) = sc.object_id(e.action.object()) {
-                sim.apply(id, &e.action);
-                log.line(format_args!(
-                    "step {step}: {} {}",
-                    e.action.verb(),
-                    e.action.object()
-                ))?;
+/// What the run loop needs from an engine.
+trait Engine {
+    fn agents(&self) -> usize;
+    fn apply(&mut self, object: u16, action: &Action);
+    /// One tick; model-specific counters go into `summary`.
+    fn tick(&mut self, summary: &mut Summary) -> Result<()>;
+    /// Every agent, in id order.
+    fn frame(&self) -> Frame;
+    /// Called at each recorded step, after [`Engine::frame`].
+    fn on_record(&self, _summary: &mut Summary, _step: u32) {}
+    /// The closing line of the run log (after the timing).
+    fn closing(&self, summary: &mut Summary) -> String;
+}
+
+struct Ants {
+    sim: AntSim,
+    nest_names: BTreeMap<u16, String>,
+    delivered: u64,
+}
+
+impl Engine for Ants {
+    fn agents(&self) -> usize {
+        self.sim.agents()
+    }
+    fn apply(&mut self, object: u16, action: &Action) {
+        self.sim.apply(object, action);
+    }
+    fn tick(&mut self, summary: &mut Summary) -> Result<()> {
+        for e in self.sim.step()? {
+            if let AntEvent::Delivered { nest, .. } = e {
+                self.delivered += 1;
+                if let Some(name) = self.nest_names.get(&nest) {
+                    *summary.deliveries_per_nest.entry(name.clone()).or_default() += 1;
+                }
             }
         }
-        sim.step()?;
-        let done = step + 1;
-        if done % every == 0 || done == sc.steps {
-            let f = bee_frame_samples(&sim);
-            record(&mut summary, &f, done);
-            frames.push(f);
-        }
-        bar.inc(1);
+        Ok(())
     }
-    bar.finish_and_clear();
-    summary.wall_seconds = t0.elapsed().as_secs_f64();
-    summary.agent_steps_per_s =
-        sim.agents() as f64 * sc.steps as f64 / summary.wall_seconds.max(1e-9);
-    let c = sim.contacts;
-    summary
-        .extra
-        .insert("world_contacts_obstacle".into(), c.obstacle.into());
-    summary
-        .extra
-        .insert("world_contacts_bounds".into(), c.bounds.into());
-    log.line(format_args!(
-        "done: {} steps in {:.2} s ({:.3e} agent-steps/s); the world kept bees out of obstacles \
-         {} times and inside the bounds {} times",
-        sc.steps, summary.wall_seconds, summary.agent_steps_per_s, c.obstacle, c.bounds
-    ))?;
-    let files = write_outputs(sc, &opts.out, &frames, &summary, log)?;
-    Ok(RunReport { summary, files })
+    fn frame(&self) -> Frame {
+        ant_frame(&self.sim)
+    }
+    fn on_record(&self, summary: &mut Summary, step: u32) {
+        if step > 0 {
+            summary.deliveries_over_time.push((step, self.delivered));
+        }
+    }
+    fn closing(&self, _summary: &mut Summary) -> String {
+        format!("{} deliveries", self.delivered)
+    }
+}
+
+impl Engine for BeeSim {
+    fn agents(&self) -> usize {
+        BeeSim::agents(self)
+    }
+    fn apply(&mut self, object: u16, action: &Action) {
+        BeeSim::apply(self, object, action);
+    }
+    fn tick(&mut self, _summary: &mut Summary) -> Result<()> {
+        self.step().map(|_| ())
+    }
+    fn frame(&self) -> Frame {
+        bee_frame_samples(self)
+    }
+    fn closing(&self, summary: &mut Summary) -> String {
+        let c = self.contacts;
+        summary
+            .extra
+            .insert("world_contacts_obstacle".into(), c.obstacle.into());
+        summary
+            .extra
+            .insert("world_contacts_bounds".into(), c.bounds.into());
+        format!(
+            "the world kept bees out of obstacles {} times and inside the bounds {} times",
+            c.obstacle, c.bounds
+        )
+    }
 }
 
 fn run_ants(
@@ -167,8 +185,7 @@ fn run_ants(
     opts: &RunOptions,
     log: &mut RunLog,
 ) -> Result<RunReport> {
-    let mut sim = AntSim::from_scenario(sc, seed)?;
-    let every = sc.outputs.every.max(1);
+    let sim = AntSim::from_scenario(sc, seed)?;
     let nest_names: BTreeMap<u16, String> = sc
         .objects
         .iter()
@@ -178,37 +195,61 @@ fn run_ants(
         .collect();
     let mut summary = summary_for(sc, seed, threads, sim.agents(), ANT_COLLISION_DISTANCE);
     summary.deliveries_per_nest = nest_names.values().map(|n| (n.clone(), 0)).collect();
-    let mut frames = vec![ant_frame(&sim)];
-    record(&mut summary, &frames[0], 0);
+    let engine = Ants {
+        sim,
+        nest_names,
+        delivered: 0,
+    };
+    run_loop(sc, engine, summary, opts, log)
+}
 
+fn run_bees(
+    sc: &Scenario,
+    seed: u32,
+    threads: usize,
+    opts: &RunOptions,
+    log: &mut RunLog,
+) -> Result<RunReport> {
+    let sim = BeeSim::from_scenario(sc, seed)?;
+    // Two capsules (radius r) touch when their centres are 2r apart.
+    let radius = sc
+        .groups
+        .iter()
+        .map(|g| g.bee_params().radius)
+        .fold(0.0, f32::max);
+    let summary = summary_for(sc, seed, threads, sim.agents(), 2.0 * radius);
+    run_loop(sc, sim, summary, opts, log)
+}
+
+/// The run loop every model shares: events before each tick, the tick, recording every
+/// `outputs.every` ticks (and the last), a progress bar, then the outputs.
+fn run_loop(
+    sc: &Scenario,
+    mut engine: impl Engine,
+    mut summary: Summary,
+    opts: &RunOptions,
+    log: &mut RunLog,
+) -> Result<RunReport> {
+    let every = sc.outputs.every.max(1);
+    let mut frames = vec![engine.frame()];
+    record(&mut summary, &frames[0], 0);
     let bar = progress_bar(opts.progress, sc.steps as u64);
     let t0 = Instant::now();
     let mut events = sc.events.iter().peekable();
-    let mut delivered = 0u64;
     for step in 0..sc.steps {
         while let Some(e) = events.next_if(|e| e.step == step) {
             if let Some(id) = sc.object_id(e.action.object()) {
-                sim.apply(id, &e.action);
-                log.line(format_args!(
-                    "step {step}: {} {}",
-                    e.action.verb(),
-                    e.action.object()
-                ))?;
+                engine.apply(id, &e.action);
+                let (verb, object) = (e.action.verb(), e.action.object());
+                log.line(format_args!("step {step}: {verb} {object}"))?;
             }
         }
-        for e in sim.step()? {
-            if let AntEvent::Delivered { nest, .. } = e {
-                delivered += 1;
-                if let Some(name) = nest_names.get(&nest) {
-                    *summary.deliveries_per_nest.entry(name.clone()).or_default() += 1;
-                }
-            }
-        }
+        engine.tick(&mut summary)?;
         let done = step + 1;
         if done % every == 0 || done == sc.steps {
-            let f = ant_frame(&sim);
+            let f = engine.frame();
             record(&mut summary, &f, done);
-            summary.deliveries_over_time.push((done, delivered));
+            engine.on_record(&mut summary, done);
             frames.push(f);
         }
         bar.inc(1);
@@ -216,9 +257,10 @@ fn run_ants(
     bar.finish_and_clear();
     summary.wall_seconds = t0.elapsed().as_secs_f64();
     summary.agent_steps_per_s =
-        sim.agents() as f64 * sc.steps as f64 / summary.wall_seconds.max(1e-9);
+        engine.agents() as f64 * sc.steps as f64 / summary.wall_seconds.max(1e-9);
+    let closing = engine.closing(&mut summary);
     log.line(format_args!(
-        "done: {} ticks in {:.2} s ({:.3e} agent-steps/s), {delivered} deliveries",
+        "done: {} ticks in {:.2} s ({:.3e} agent-steps/s), {closing}",
         sc.steps, summary.wall_seconds, summary.agent_steps_per_s
     ))?;
     let files = write_outputs(sc, &opts.out, &frames, &summary, log)?;
