@@ -14,28 +14,57 @@ pub fn gap<S: Scalar>(dist: S, radius: S) -> S {
     (dist - radius - radius).max(S::ZERO)
 }
 
-/// Müller's poly6 kernel (eq. 10, \[61\]): W(s, h) = 315/(64π h³)·(1 − q²)³ for q = s/h < 1,
-/// else 0 (s ≥ 0).
-pub fn poly6<S: Scalar>(s: S, h: S) -> S {
-    let q = s / h;
-    if q >= S::ONE || q < S::ZERO {
-        return S::ZERO;
-    }
-    let c = S::from_f32(315.0) / (S::from_i32(64) * pi::<S>()) / h / h / h;
-    let w = S::ONE - q * q;
-    c * w * w * w
+/// The two kernels for one smoothing radius h, with their normalisations computed once (a
+/// step evaluates them for every neighbour; the results are the same bits as [`poly6`] and
+/// [`spiky_grad`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Kernels<S> {
+    h: S,
+    poly6_c: S,
+    spiky_c: S,
 }
 
-/// Magnitude of Desbrun's spiky-kernel gradient (eq. 11, \[61\]):
-/// |∇W_spiky(s, h)| = 45/(π h⁴)·(1 − q)² for q = s/h < 1, else 0 (s ≥ 0).
-pub fn spiky_grad<S: Scalar>(s: S, h: S) -> S {
-    let q = s / h;
-    if q >= S::ONE || q < S::ZERO {
-        return S::ZERO;
+impl<S: Scalar> Kernels<S> {
+    /// The kernels of radius `h`.
+    pub fn new(h: S) -> Self {
+        Kernels {
+            h,
+            poly6_c: S::from_f32(315.0) / (S::from_i32(64) * pi::<S>()) / h / h / h,
+            spiky_c: S::from_i32(45) / pi::<S>() / h / h / h / h,
+        }
     }
-    let c = S::from_i32(45) / pi::<S>() / h / h / h / h;
-    let w = S::ONE - q;
-    c * w * w
+
+    /// Müller's poly6 kernel (eq. 10, \[61\]): W(s, h) = 315/(64π h³)·(1 − q²)³ for
+    /// q = s/h < 1, else 0 (s ≥ 0).
+    pub fn poly6(&self, s: S) -> S {
+        let q = s / self.h;
+        if q >= S::ONE || q < S::ZERO {
+            return S::ZERO;
+        }
+        let w = S::ONE - q * q;
+        self.poly6_c * w * w * w
+    }
+
+    /// Magnitude of Desbrun's spiky-kernel gradient (eq. 11, \[61\]):
+    /// |∇W_spiky(s, h)| = 45/(π h⁴)·(1 − q)² for q = s/h < 1, else 0 (s ≥ 0).
+    pub fn spiky_grad(&self, s: S) -> S {
+        let q = s / self.h;
+        if q >= S::ONE || q < S::ZERO {
+            return S::ZERO;
+        }
+        let w = S::ONE - q;
+        self.spiky_c * w * w
+    }
+}
+
+/// [`Kernels::poly6`] for one evaluation.
+pub fn poly6<S: Scalar>(s: S, h: S) -> S {
+    Kernels::new(h).poly6(s)
+}
+
+/// [`Kernels::spiky_grad`] for one evaluation.
+pub fn spiky_grad<S: Scalar>(s: S, h: S) -> S {
+    Kernels::new(h).spiky_grad(s)
 }
 
 /// Pressure from density (§V-B: "use the density to update the pressure"):
@@ -58,9 +87,10 @@ pub fn density<S: Scalar>(
         .iter()
         .map(|n| n.pos)
         .chain(targets.iter().copied());
+    let k = Kernels::new(p.h);
     others
         .fold(self_density(p), |rho, r_j| {
-            rho + p.mass * poly6(gap((pos - r_j).length(), p.radius), p.h)
+            rho + p.mass * k.poly6(gap((pos - r_j).length(), p.radius))
         })
         .min(S::from_f32(LIMIT))
 }
@@ -96,13 +126,14 @@ pub fn repulsion<S: Scalar>(
 ) -> Vec3<S> {
     let p_i = pressure(rho_i, p);
     let floor = self_density(p);
+    let k = Kernels::new(p.h);
     let from_bees = neighbours.iter().map(|n| {
         let rho_j = n.density.max(floor);
-        pair_force(pos, n.pos, p_i, pressure(rho_j, p), rho_j, p)
+        pair_force(&k, pos, n.pos, p_i, pressure(rho_j, p), rho_j, p)
     });
     let from_targets = targets
         .iter()
-        .map(|&t| pair_force(pos, t, p_i, p_i, rho_i, p));
+        .map(|&t| pair_force(&k, pos, t, p_i, p_i, rho_i, p));
     from_bees
         .chain(from_targets)
         .fold(Vec3::zero(), |f, t| f + t)
@@ -110,6 +141,7 @@ pub fn repulsion<S: Scalar>(
 
 /// One term of [`repulsion`]: m·(p_i + p_j)/(2ρ_j)·|∇W_spiky|·r̂_ji.
 fn pair_force<S: Scalar>(
+    k: &Kernels<S>,
     r_i: Vec3<S>,
     r_j: Vec3<S>,
     p_i: S,
@@ -119,7 +151,7 @@ fn pair_force<S: Scalar>(
 ) -> Vec3<S> {
     let diff = r_i - r_j;
     let dist = diff.length();
-    let grad = spiky_grad(gap(dist, p.radius), p.h);
+    let grad = k.spiky_grad(gap(dist, p.radius));
     if dist <= S::ZERO || grad <= S::ZERO {
         return Vec3::zero();
     }
