@@ -18,5 +18,6 @@ pub mod output;
 pub mod run;
 pub mod scalar;
 pub mod scenario;
+pub mod spawn;
 
 pub use error::{Result, SimError};

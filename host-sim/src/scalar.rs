@@ -71,3 +71,51 @@ mod tests {
         }
     }
 }
+
+/// One value per scalar type: a group of agents runs either `f32` or I16F16 controllers. The
+/// engines alias it (`AnyAntGroup`, `AnyBeeGroup`); [`by_scalar!`](crate::by_scalar) runs one generic body on
+/// either variant.
+#[derive(Clone, Debug)]
+pub enum ByScalar<F, X> {
+    /// `f32` controllers.
+    F32(F),
+    /// I16F16 controllers.
+    Fixed(X),
+}
+
+/// Runs `$body` with `$g` bound to the value inside a [`ByScalar`], whatever its variant.
+#[macro_export]
+macro_rules! by_scalar {
+    ($value:expr, $g:ident => $body:expr) => {
+        match $value {
+            $crate::scalar::ByScalar::F32($g) => $body,
+            $crate::scalar::ByScalar::Fixed($g) => $body,
+        }
+    };
+}
+
+/// What every agent group tells about itself.
+pub trait AgentGroup {
+    /// Group name.
+    fn name(&self) -> &str;
+    /// Number of agents.
+    fn len(&self) -> usize;
+    /// First world slot.
+    fn first(&self) -> usize;
+    /// Whether the group is empty.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+impl<F: AgentGroup, X: AgentGroup> AgentGroup for ByScalar<F, X> {
+    fn name(&self) -> &str {
+        by_scalar!(self, g => g.name())
+    }
+    fn len(&self) -> usize {
+        by_scalar!(self, g => g.len())
+    }
+    fn first(&self) -> usize {
+        by_scalar!(self, g => g.first())
+    }
+}

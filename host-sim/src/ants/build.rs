@@ -1,17 +1,14 @@
 //! Builds an [`AntSim`] from a 2D [`Scenario`], and applies its timed events.
 
 use swarm_core::ant::{AntParams, AntState};
-use swarm_core::rand::rand;
 use swarm_core::{Fx, Vec2};
 
 use super::sim::{AntGroup, AntSim, AnyAntGroup};
 use super::world::{AntObjectDef, AntObjectKind, AntWorld, Shape2};
-use crate::scalar::SimScalar;
+use crate::scalar::{AgentGroup, SimScalar};
 use crate::scenario::{Action, Group, ObjectKind, ScalarType, Scenario, SpawnRegion, World};
+use crate::spawn::{around_center, draw};
 use crate::{Result, SimError};
-
-/// Random-number stream of the spawn draws (tick `u32::MAX`, never a simulated tick).
-const SPAWN_STEP: u32 = u32::MAX;
 
 impl AntSim {
     /// The ant simulation of `scenario` (a 2D world), with seed `seed`.
@@ -128,13 +125,10 @@ fn spawn<S: SimScalar>(
     let states = (0..g.count)
         .map(|k| {
             let id = (first + k as usize) as u32;
-            let u = |s| rand(seed, id, SPAWN_STEP, s) as f32 / 4_294_967_296.0;
+            let u = |k| draw(seed, id, k);
             let pos = match &g.spawn.region {
                 SpawnRegion::Around { at, radius } => {
-                    let c = scenario
-                        .object(at)
-                        .and_then(|o| o.kind.point())
-                        .map_or([0.0, 0.0], |c| [c[0], c[1]]);
+                    let c: [f32; 2] = around_center(scenario, at);
                     let (r, a) = (radius * u(0).sqrt(), u(1) * std::f32::consts::TAU);
                     [c[0] + r * a.cos(), c[1] + r * a.sin()]
                 }

@@ -8,8 +8,9 @@ use swarm_core::{Checked, Fx, Scalar, StepCtx};
 
 use super::sense::{plan_frame, resolve_frame};
 use super::world::{AntObjectKind, AntWorld};
+use crate::by_scalar;
 use crate::error::{Result, SimError};
-use crate::scalar::{SimScalar, a2};
+use crate::scalar::{AgentGroup, ByScalar, SimScalar, a2};
 
 /// A group of ants sharing parameters and a scalar type. The group owns the world slots
 /// `first..first + len`; slots are reordered now and then so that ants near each other in the
@@ -147,47 +148,28 @@ impl<S: SimScalar> AntGroup<S> {
 }
 
 /// A group of either scalar type.
-#[derive(Clone, Debug)]
-pub enum AnyAntGroup {
-    /// `f32` controllers.
-    F32(AntGroup<f32>),
-    /// I16F16 controllers.
-    Fixed(AntGroup<Fx>),
-}
+pub type AnyAntGroup = ByScalar<AntGroup<f32>, AntGroup<Fx>>;
 
-/// Runs `$body` with `$g` bound to the group, whatever its scalar type.
-macro_rules! with_group {
-    ($group:expr, $g:ident => $body:expr) => {
-        match $group {
-            AnyAntGroup::F32($g) => $body,
-            AnyAntGroup::Fixed($g) => $body,
-        }
-    };
-}
-
-impl AnyAntGroup {
-    /// Group name.
-    pub fn name(&self) -> &str {
-        with_group!(self, g => &g.name)
+impl<S> AgentGroup for AntGroup<S> {
+    fn name(&self) -> &str {
+        &self.name
     }
-    /// Number of ants.
-    pub fn len(&self) -> usize {
-        with_group!(self, g => g.states.len())
+    fn len(&self) -> usize {
+        self.states.len()
     }
-    /// Whether the group is empty.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
+    fn first(&self) -> usize {
+        self.first
     }
 }
 
 impl From<AntGroup<f32>> for AnyAntGroup {
     fn from(g: AntGroup<f32>) -> Self {
-        AnyAntGroup::F32(g)
+        ByScalar::F32(g)
     }
 }
 impl From<AntGroup<Fx>> for AnyAntGroup {
     fn from(g: AntGroup<Fx>) -> Self {
-        AnyAntGroup::Fixed(g)
+        ByScalar::Fixed(g)
     }
 }
 
@@ -233,7 +215,7 @@ impl AntSim {
         world.size_grids(n);
         world.predicted.resize(n, [0.0; 2]);
         for g in &groups {
-            with_group!(g, g => for (k, s) in g.states.iter().enumerate() {
+            by_scalar!(g, g => for (k, s) in g.states.iter().enumerate() {
                 world.sensed.set(g.first + k, g.ids[k], s);
             });
         }
@@ -252,7 +234,7 @@ impl AntSim {
     pub fn reorder(&mut self) {
         let grid = self.world.grid.clone_geometry();
         for g in &mut self.groups {
-            with_group!(g, g => g.reorder(|s| grid.cell_of([s.pos.x.to_f32(), s.pos.y.to_f32(), 0.0]), &mut self.world));
+            by_scalar!(g, g => g.reorder(|s| grid.cell_of([s.pos.x.to_f32(), s.pos.y.to_f32(), 0.0]), &mut self.world));
         }
     }
 
@@ -268,18 +250,18 @@ impl AntSim {
         let (seed, step) = (self.seed, self.step);
         self.world.index_positions();
         for g in &mut self.groups {
-            with_group!(g, g => g.plan(&self.world, seed, step))?;
+            by_scalar!(g, g => g.plan(&self.world, seed, step))?;
         }
         for g in &self.groups {
-            with_group!(g, g => g.write_predictions(&mut self.world.predicted));
+            by_scalar!(g, g => g.write_predictions(&mut self.world.predicted));
         }
         self.world.index_predictions();
         for g in &mut self.groups {
-            with_group!(g, g => g.resolve(&self.world, step))?;
+            by_scalar!(g, g => g.resolve(&self.world, step))?;
         }
         let mut events = Vec::new();
         for g in &mut self.groups {
-            with_group!(g, g => g.commit(&mut self.world, &mut events));
+            by_scalar!(g, g => g.commit(&mut self.world, &mut events));
         }
         if self.reorder_every > 0 && (step + 1) % self.reorder_every == 0 {
             self.reorder();

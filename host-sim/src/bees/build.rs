@@ -4,19 +4,17 @@
 use std::time::Instant;
 
 use swarm_core::bee::{BeeParams, BeeState};
-use swarm_core::rand::rand;
 use swarm_core::{Fx, Vec3};
 
-use super::sim::{AnyBeeGroup, BeeGroup, BeeSim, with_group};
+use super::sim::{AnyBeeGroup, BeeGroup, BeeSim};
 use super::world::{BeeObstacle, BeeTarget, BeeWorld, Shape3};
 use crate::bench::{BenchReport, machine, peak_rss_bytes};
+use crate::by_scalar;
 use crate::output::{AgentSample, Frame};
-use crate::scalar::SimScalar;
+use crate::scalar::{AgentGroup, SimScalar};
 use crate::scenario::{Action, Group, ObjectKind, ScalarType, Scenario, SpawnRegion, World};
+use crate::spawn::{around_center, draw};
 use crate::{Result, SimError};
-
-/// Random-number stream of the spawn draws (step `u32::MAX`, never a simulated step).
-const SPAWN_STEP: u32 = u32::MAX;
 
 /// The neighbour range h + 2r and the obstacle sensing range 2·d0 of `params`.
 fn ranges(params: &BeeParams<f32>) -> (f32, f32) {
@@ -137,14 +135,10 @@ fn spawn<S: SimScalar>(
     let states = (0..g.count)
         .map(|k| {
             let id = (first + k as usize) as u32;
-            let u = |s| rand(seed, id, SPAWN_STEP, s) as f32 / 4_294_967_296.0;
+            let u = |k| draw(seed, id, k);
             let pos = match &g.spawn.region {
                 SpawnRegion::Around { at, radius } => {
-                    let c = scenario
-                        .object(at)
-                        .and_then(|o| o.kind.point())
-                        .and_then(|c| <[f32; 3]>::try_from(c).ok())
-                        .unwrap_or([0.0; 3]);
+                    let c: [f32; 3] = around_center(scenario, at);
                     // Uniform in the ball: radius ∝ ∛u, direction uniform on the sphere.
                     let r = radius * u(0).cbrt();
                     let cos_t = 1.0 - 2.0 * u(1);
@@ -196,7 +190,7 @@ pub fn bee_frame_samples(sim: &BeeSim) -> Frame {
     }
     let mut agents = vec![AgentSample::default(); sim.agents()];
     for (k, g) in sim.groups.iter().enumerate() {
-        with_group!(g, g => push(&mut agents, k as u16, g));
+        by_scalar!(g, g => push(&mut agents, k as u16, g));
     }
     Frame {
         step: sim.step,
@@ -255,7 +249,7 @@ pub fn bench_bee_world(n: usize, seed: u32) -> BeeSim {
     });
     let states = (0..n as u32)
         .map(|i| {
-            let r = |k| rand(seed, i, SPAWN_STEP, k) as f32 / 4_294_967_296.0;
+            let r = |k| draw(seed, i, k);
             BeeState::new(
                 Vec3::new(10.0 + r(0) * sx, 4.0 + r(1) * sy, 10.0 + r(2) * sx),
                 Vec3::zero(),

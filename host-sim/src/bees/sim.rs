@@ -9,8 +9,9 @@ use swarm_core::{Checked, Fx, Scalar, Vec3};
 
 use super::sense::{BlockCache, bee_frame_cached};
 use super::world::BeeWorld;
+use crate::by_scalar;
 use crate::error::{Result, SimError};
-use crate::scalar::SimScalar;
+use crate::scalar::{AgentGroup, ByScalar, SimScalar};
 
 /// Corrections the world made because the controller's move would have left a bee inside an
 /// obstacle or outside the bounds (one count per bee and kind per step).
@@ -176,52 +177,28 @@ impl<S: SimScalar> BeeGroup<S> {
 }
 
 /// A group of either scalar type.
-#[derive(Clone, Debug)]
-pub enum AnyBeeGroup {
-    /// `f32` controllers.
-    F32(BeeGroup<f32>),
-    /// I16F16 controllers.
-    Fixed(BeeGroup<Fx>),
-}
+pub type AnyBeeGroup = ByScalar<BeeGroup<f32>, BeeGroup<Fx>>;
 
-/// Runs `$body` with `$g` bound to the group, whatever its scalar type.
-macro_rules! with_group {
-    ($group:expr, $g:ident => $body:expr) => {
-        match $group {
-            AnyBeeGroup::F32($g) => $body,
-            AnyBeeGroup::Fixed($g) => $body,
-        }
-    };
-}
-pub(crate) use with_group;
-
-impl AnyBeeGroup {
-    /// Group name.
-    pub fn name(&self) -> &str {
-        with_group!(self, g => &g.name)
+impl<S> AgentGroup for BeeGroup<S> {
+    fn name(&self) -> &str {
+        &self.name
     }
-    /// Number of bees.
-    pub fn len(&self) -> usize {
-        with_group!(self, g => g.states.len())
+    fn len(&self) -> usize {
+        self.states.len()
     }
-    /// Whether the group is empty.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-    /// First world slot.
-    pub fn first(&self) -> usize {
-        with_group!(self, g => g.first)
+    fn first(&self) -> usize {
+        self.first
     }
 }
 
 impl From<BeeGroup<f32>> for AnyBeeGroup {
     fn from(g: BeeGroup<f32>) -> Self {
-        AnyBeeGroup::F32(g)
+        ByScalar::F32(g)
     }
 }
 impl From<BeeGroup<Fx>> for AnyBeeGroup {
     fn from(g: BeeGroup<Fx>) -> Self {
-        AnyBeeGroup::Fixed(g)
+        ByScalar::Fixed(g)
     }
 }
 
@@ -252,7 +229,7 @@ impl BeeSim {
         world.size_grids(n);
         world.index_targets();
         for g in &groups {
-            with_group!(g, g => for (k, s) in g.states.iter().enumerate() {
+            by_scalar!(g, g => for (k, s) in g.states.iter().enumerate() {
                 world.sensed.set(g.first + k, g.ids[k], s);
             });
         }
@@ -279,7 +256,7 @@ impl BeeSim {
     pub fn reorder(&mut self) {
         let grid = self.world.grid.clone_geometry();
         for g in &mut self.groups {
-            with_group!(g, g => g.reorder(
+            by_scalar!(g, g => g.reorder(
                 |s| grid.cell_of([s.pos.x.to_f32(), s.pos.y.to_f32(), s.pos.z.to_f32()]),
                 &mut self.world,
             ));
@@ -294,11 +271,11 @@ impl BeeSim {
         let step = self.step;
         self.world.index_positions();
         for g in &mut self.groups {
-            with_group!(g, g => g.decide(&self.world, step))?;
+            by_scalar!(g, g => g.decide(&self.world, step))?;
         }
         let mut c = Contacts::default();
         for g in &mut self.groups {
-            c += with_group!(g, g => g.commit(&mut self.world));
+            c += by_scalar!(g, g => g.commit(&mut self.world));
         }
         self.last_contacts = c;
         self.contacts += c;
@@ -402,7 +379,7 @@ mod tests {
         let mut h = 0xcbf2_9ce4_8422_2325u64;
         let mut mix = |x: u64| h = (h ^ x).wrapping_mul(0x100_0000_01b3);
         for g in &sim.groups {
-            with_group!(g, g => for (id, s, d) in g.by_id() {
+            by_scalar!(g, g => for (id, s, d) in g.by_id() {
                 mix(u64::from(id));
                 for v in [s.pos, s.vel, s.forward, s.u0] {
                     for c in [v.x, v.y, v.z] {
@@ -448,7 +425,7 @@ mod tests {
         for _ in 0..200 {
             sim.step().unwrap();
             for g in &sim.groups {
-                avoiding += with_group!(g, g => g.decisions.iter().filter(|d| d.avoiding).count());
+                avoiding += by_scalar!(g, g => g.decisions.iter().filter(|d| d.avoiding).count());
             }
             with_targets += (0..sim.agents())
                 .filter(|&i| {
@@ -509,7 +486,7 @@ mod tests {
         let g = BeeGroup::new("one".into(), 0, p.checked().unwrap(), None, vec![bee]);
         let mut sim = BeeSim::new(w, vec![g.into()], 0);
         sim.step().unwrap();
-        let d = with_group!(&sim.groups[0], g => (g.decisions[0].avoiding, g.decisions[0].roll.to_f32()));
+        let d = by_scalar!(&sim.groups[0], g => (g.decisions[0].avoiding, g.decisions[0].roll.to_f32()));
         assert!(d.0, "the bee avoids the shaft");
         // Eq. 6 at d = |closest point − bee| = hypot(2.5, 0.8) − 1.
         let dist = 2.5f64.hypot(f64::from(side_z)) - 1.0;
