@@ -98,13 +98,14 @@ impl<S: Scalar> Vec2<S> {
     /// Rotated counter-clockwise by `angle` radians.
     #[inline]
     pub fn rotated(self, angle: S) -> Self {
-        let (s, c) = (angle.sin(), angle.cos());
+        let (s, c) = angle.sin_cos();
         Vec2::new(self.x * c - self.y * s, self.x * s + self.y * c)
     }
     /// The unit vector at `angle` radians from the x axis.
     #[inline]
     pub fn from_angle(angle: S) -> Self {
-        Vec2::new(angle.cos(), angle.sin())
+        let (s, c) = angle.sin_cos();
+        Vec2::new(c, s)
     }
     /// `Err(NonFinite(field))` if a component is NaN or infinite.
     #[inline]

@@ -4,6 +4,8 @@
 //! Agents are stored cell by cell; within a cell in increasing index order, so every query is
 //! deterministic whatever the thread count.
 
+use rayon::prelude::*;
+
 /// A uniform grid over an axis-aligned box, with cells of edge `cell`.
 #[derive(Clone, Debug, Default)]
 pub struct Grid {
@@ -84,14 +86,17 @@ impl Grid {
             + c[0] as usize
     }
 
-    /// Rebuilds the grid for `positions` (agent `i` at `positions[i]`): counting sort.
-    pub fn rebuild(&mut self, positions: impl ExactSizeIterator<Item = [f32; 3]> + Clone) {
-        self.starts.iter_mut().for_each(|s| *s = 0);
-        self.cells.clear();
+    /// Rebuilds the grid for `items` (agent `i` at `pos(&items[i])`): counting sort. The cells
+    /// and the sorted positions are computed in parallel; the histogram and the scatter, which
+    /// fix the within-cell order (increasing index), run in index order.
+    pub fn rebuild<T: Sync>(&mut self, items: &[T], pos: impl Fn(&T) -> [f32; 3] + Sync) {
         let probe = self.clone_geometry();
-        self.cells
-            .extend(positions.clone().map(|p| probe.cell_of(p)));
+        items
+            .par_iter()
+            .map(|t| probe.cell_of(pos(t)))
+            .collect_into_vec(&mut self.cells);
         // Histogram (shifted by one), then the exclusive prefix sum.
+        self.starts.iter_mut().for_each(|s| *s = 0);
         for &c in &self.cells {
             self.starts[c as usize + 1] += 1;
         }
@@ -102,27 +107,28 @@ impl Grid {
         self.fill.clear();
         self.fill.extend_from_slice(&self.starts);
         self.order.resize(self.cells.len(), 0);
-        self.sorted.resize(self.cells.len(), [0.0; 3]);
-        for ((i, &c), p) in self.cells.iter().enumerate().zip(positions) {
+        for (i, &c) in self.cells.iter().enumerate() {
             let slot = &mut self.fill[c as usize];
             self.order[*slot as usize] = i as u32;
-            self.sorted[*slot as usize] = p;
             *slot += 1;
         }
+        self.order
+            .par_iter()
+            .map(|&i| pos(&items[i as usize]))
+            .collect_into_vec(&mut self.sorted);
     }
 
     /// Calls `f` with every agent whose cell overlaps the cube of half-edge `radius` around
     /// `p` (a superset of the agents within `radius`; the caller checks the distance).
+    #[inline]
     pub fn for_each_candidate(&self, p: [f32; 3], radius: f32, mut f: impl FnMut(u32, [f32; 3])) {
         let lo = self.coord([p[0] - radius, p[1] - radius, p[2] - radius]);
         let hi = self.coord([p[0] + radius, p[1] + radius, p[2] + radius]);
+        let width = (hi[0] - lo[0]) as usize + 1;
         for z in lo[2]..=hi[2] {
             for y in lo[1]..=hi[1] {
                 let row = self.index([lo[0], y, z]);
-                let (a, b) = (
-                    self.starts[row] as usize,
-                    self.starts[row + (hi[0] - lo[0]) as usize + 1] as usize,
-                );
+                let (a, b) = (self.starts[row] as usize, self.starts[row + width] as usize);
                 // Cells of one row are contiguous in `order`.
                 for (&i, &q) in self.order[a..b].iter().zip(&self.sorted[a..b]) {
                     f(i, q);
@@ -146,7 +152,7 @@ mod tests {
             })
             .collect();
         let mut grid = Grid::new([0.0, 0.0, 0.0], [200.0, 100.0, 0.0], 3.0);
-        grid.rebuild(pts.iter().copied());
+        grid.rebuild(&pts, |p| *p);
         for (i, p) in pts.iter().enumerate().step_by(37) {
             for r in [0.5f32, 2.0, 7.5] {
                 let mut got = Vec::new();
@@ -171,7 +177,7 @@ mod tests {
     #[test]
     fn out_of_box_and_nan_positions_land_in_border_cells() {
         let mut grid = Grid::new([0.0; 3], [10.0, 10.0, 10.0], 1.0);
-        grid.rebuild([[-5.0, 50.0, 3.0], [f32::NAN, 1.0, 1.0]].into_iter());
+        grid.rebuild(&[[-5.0, 50.0, 3.0], [f32::NAN, 1.0, 1.0]], |p| *p);
         let mut seen = Vec::new();
         grid.for_each_candidate([0.0, 9.9, 3.0], 0.5, |i, _| seen.push(i));
         assert_eq!(seen, vec![0]);

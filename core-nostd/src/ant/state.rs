@@ -113,10 +113,11 @@ impl<S: Scalar> AntState<S> {
     pub fn validate(&self) -> Result<()> {
         check_point(self.pos, "state.pos")?;
         check_point(self.arrival, "state.arrival")?;
-        self.heading.check("state.heading")?;
-        // |heading| in (0.99, 1.01), compared squared (no square root on the hot path).
+        // |heading| in (0.99, 1.01), compared squared (no square root on the hot path); a NaN
+        // or infinite component fails the comparison too.
         let l2 = self.heading.length_sq();
         if !(l2 > S::from_f32(0.9801) && l2 < S::from_f32(1.0201)) {
+            self.heading.check("state.heading")?;
             return Err(Error::out_of_range("state.heading"));
         }
         if self.label == Label::Nest && self.origin != self.nest {
@@ -142,14 +143,15 @@ impl<S: Scalar> AntState<S> {
 }
 
 /// `Err` unless `p` is finite and inside ±[`COORD_LIMIT`].
+#[inline]
 pub(crate) fn check_point<S: Scalar>(p: Vec2<S>, field: &'static str) -> Result<Vec2<S>> {
-    p.check(field)?;
     let lim = S::from_f32(COORD_LIMIT);
+    // NaN fails the comparison too; which error it is, is worked out off the hot path.
     if p.x.abs() <= lim && p.y.abs() <= lim {
-        Ok(p)
-    } else {
-        Err(Error::out_of_range(field))
+        return Ok(p);
     }
+    p.check(field)?;
+    Err(Error::out_of_range(field))
 }
 
 /// `Err` unless `v` is finite and within `[lo, hi]`.

@@ -99,6 +99,11 @@ pub trait Scalar:
     fn sin(self) -> Self;
     /// Cosine of an angle in radians.
     fn cos(self) -> Self;
+    /// `(self.sin(), self.cos())`, bit for bit, computed together where that is cheaper.
+    #[inline]
+    fn sin_cos(self) -> (Self, Self) {
+        (self.sin(), self.cos())
+    }
     /// Four-quadrant arctangent of `self / x`, in (-π, π]; `atan2(0, 0) = 0`.
     fn atan2(self, x: Self) -> Self;
     /// e^self (saturating for `Fx`).

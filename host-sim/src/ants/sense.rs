@@ -64,7 +64,8 @@ fn d2f(a: [f32; 3], b: [f32; 3]) -> f32 {
     (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1])
 }
 
-fn bounds<S: SimScalar>(w: &AntWorld) -> Rect<S> {
+/// The arena as a robot senses it.
+pub(crate) fn bounds<S: SimScalar>(w: &AntWorld) -> Rect<S> {
     Rect::new(
         Vec2::new(S::from_f32(w.min[0]), S::from_f32(w.min[1])),
         Vec2::new(S::from_f32(w.max[0]), S::from_f32(w.max[1])),
@@ -75,8 +76,16 @@ fn bounds<S: SimScalar>(w: &AntWorld) -> Rect<S> {
 /// the world's contact range (by distance, then id) and its `O` nearest active objects within
 /// sensing range (an object the ant is inside counts as distance 0).
 pub fn plan_frame<S: SimScalar>(w: &AntWorld, i: usize) -> AntPlanFrame<S> {
-    let me = w.sensed.pos[i];
     let mut frame = PlanFrame::new(bounds(w));
+    fill_plan_frame(w, i, &mut frame);
+    frame
+}
+
+/// [`plan_frame`] written into `frame` (whose bounds are the world's), reusing its storage.
+pub(crate) fn fill_plan_frame<S: SimScalar>(w: &AntWorld, i: usize, frame: &mut AntPlanFrame<S>) {
+    frame.neighbours.clear();
+    frame.objects.clear();
+    let me = w.sensed.pos[i];
     let r2 = w.contact_range * w.contact_range;
     let mut near = Nearest::<N>::new();
     let p = [me[0] as f32, me[1] as f32, 0.0];
@@ -140,14 +149,24 @@ pub fn plan_frame<S: SimScalar>(w: &AntWorld, i: usize) -> AntPlanFrame<S> {
         };
         let _ = frame.objects.push(sensed);
     }
-    frame
 }
 
 /// The resolve-phase sensor frame of ant `i` (xiang2018 eq. 2-4): the predictions p*(t+1) of
 /// its `N` nearest neighbours within the world's collision range of its own prediction.
 pub fn resolve_frame<S: SimScalar>(w: &AntWorld, i: usize) -> AntResolveFrame<S> {
-    let me = w.predicted[i];
     let mut frame = ResolveFrame::new(bounds(w));
+    fill_resolve_frame(w, i, &mut frame);
+    frame
+}
+
+/// [`resolve_frame`] written into `frame` (whose bounds are the world's), reusing its storage.
+pub(crate) fn fill_resolve_frame<S: SimScalar>(
+    w: &AntWorld,
+    i: usize,
+    frame: &mut AntResolveFrame<S>,
+) {
+    frame.neighbours.clear();
+    let me = w.predicted[i];
     let r2 = w.collision_range * w.collision_range;
     let mut near = Nearest::<N>::new();
     let p = [me[0] as f32, me[1] as f32, 0.0];
@@ -161,7 +180,6 @@ pub fn resolve_frame<S: SimScalar>(w: &AntWorld, i: usize) -> AntResolveFrame<S>
     for j in near.slots() {
         let _ = frame.neighbours.push(v2(w.predicted[j]));
     }
-    frame
 }
 
 #[cfg(test)]

@@ -3,10 +3,12 @@
 //! world, so any thread count gives the same bits.
 
 use rayon::prelude::*;
-use swarm_core::ant::{self, AntParams, AntPlan, AntState, Label, StopReason};
+use swarm_core::ant::{
+    self, AntParams, AntPlan, AntState, Label, PlanFrame, ResolveFrame, StopReason,
+};
 use swarm_core::{Checked, Fx, Scalar, StepCtx};
 
-use super::sense::{plan_frame, resolve_frame};
+use super::sense::{bounds, fill_plan_frame, fill_resolve_frame};
 use super::world::{AntObjectKind, AntWorld};
 use crate::by_scalar;
 use crate::error::{Result, SimError};
@@ -60,78 +62,97 @@ impl<S: SimScalar> AntGroup<S> {
 
     fn plan(&mut self, w: &AntWorld, seed: u32, step: u32) -> Result<()> {
         let (first, params) = (self.first, &self.params);
+        let idle = PlanFrame::new(bounds::<S>(w));
         self.plans
             .par_iter_mut()
             .zip(self.states.par_iter().zip(self.ids.par_iter()))
             .enumerate()
-            .try_for_each(|(k, (out, (s, &id)))| {
-                let ctx = StepCtx {
-                    seed,
-                    agent: id,
-                    step,
-                };
-                *out = ant::plan_checked(s, &plan_frame::<S>(w, first + k), params, ctx)
-                    .map_err(|e| SimError::controller("ant plan", step, id, e))?;
-                Ok(())
-            })
+            .try_for_each_init(
+                || idle.clone(),
+                |frame, (k, (out, (s, &id)))| {
+                    let ctx = StepCtx {
+                        seed,
+                        agent: id,
+                        step,
+                    };
+                    // An ant that stays stopped this tick reads nothing of its frame
+                    // (xiang2018 §4.1): an empty one changes no result and saves the queries.
+                    let stays = s.stop.is_some_and(|t| t.remaining > 1);
+                    let frame = if stays {
+                        &idle
+                    } else {
+                        fill_plan_frame(w, first + k, frame);
+                        &*frame
+                    };
+                    *out = ant::plan_checked(s, frame, params, ctx)
+                        .map_err(|e| SimError::controller("ant plan", step, id, e))?;
+                    Ok(())
+                },
+            )
     }
 
     fn write_predictions(&self, predicted: &mut [[f64; 2]]) {
-        for (k, p) in self.plans.iter().enumerate() {
-            predicted[self.first + k] = a2(p.predicted);
-        }
+        predicted[self.first..self.first + self.plans.len()]
+            .par_iter_mut()
+            .zip(&self.plans)
+            .for_each(|(out, p)| *out = a2(p.predicted));
     }
 
     fn resolve(&mut self, w: &AntWorld, step: u32) -> Result<()> {
         let (first, params) = (self.first, &self.params);
+        let idle = ResolveFrame::new(bounds::<S>(w));
         self.next
             .par_iter_mut()
             .zip(self.plans.par_iter().zip(self.ids.par_iter()))
             .enumerate()
-            .try_for_each(|(k, (out, (p, &id)))| {
-                *out = ant::resolve_checked(p, &resolve_frame::<S>(w, first + k), params)
-                    .map_err(|e| SimError::controller("ant resolve", step, id, e))?;
-                Ok(())
-            })
+            .try_for_each_init(
+                || idle.clone(),
+                |frame, (k, (out, (p, &id)))| {
+                    // A stopped ant does not move: its resolve frame is never read.
+                    let frame = if p.state.is_stopped() {
+                        &idle
+                    } else {
+                        fill_resolve_frame(w, first + k, frame);
+                        &*frame
+                    };
+                    *out = ant::resolve_checked(p, frame, params)
+                        .map_err(|e| SimError::controller("ant resolve", step, id, e))?;
+                    Ok(())
+                },
+            )
     }
 
-    /// Makes the resolved states current, recording what happened in `events`, and writes the
-    /// sensed world.
-    fn commit(&mut self, w: &mut AntWorld, events: &mut Vec<AntEvent>) {
-        for (k, (old, new)) in self.states.iter().zip(&self.next).enumerate() {
-            let agent = self.ids[k];
-            if let Some(t) = old.stop {
-                let finished = new.stop.is_none();
-                match t.reason {
-                    StopReason::CollectingFood if finished && new.label == Label::Food => events
-                        .push(AntEvent::Collected {
-                            agent,
-                            food: t.place,
-                        }),
-                    StopReason::DroppingFood if finished && new.label == Label::Nest => events
-                        .push(AntEvent::Delivered {
-                            agent,
-                            nest: t.place,
-                        }),
-                    _ => {}
-                }
-            }
-            w.sensed.set(self.first + k, self.ids[k], new);
-        }
+    /// Makes the resolved states current and writes the sensed world; returns what happened,
+    /// in slot order.
+    fn commit(&mut self, w: &mut AntWorld) -> Vec<AntEvent> {
+        let events = (
+            self.states.par_iter(),
+            self.next.par_iter(),
+            self.ids.par_iter(),
+        )
+            .into_par_iter()
+            .filter_map(|(old, new, &agent)| event(agent, old, new))
+            .collect();
+        w.sensed.write(self.first, &self.ids, &self.next);
         std::mem::swap(&mut self.states, &mut self.next);
+        events
     }
 
     /// Sorts the group's slots by `key` (then id): a permutation of the slots that changes no
     /// result, only memory locality. Rewrites the group's part of the sensed world.
-    fn reorder(&mut self, key: impl Fn(&AntState<S>) -> u32, w: &mut AntWorld) {
-        let mut perm: Vec<u32> = (0..self.states.len() as u32).collect();
-        perm.sort_unstable_by_key(|&k| (key(&self.states[k as usize]), self.ids[k as usize]));
-        let states: Vec<AntState<S>> = perm.iter().map(|&k| self.states[k as usize]).collect();
-        self.ids = perm.iter().map(|&k| self.ids[k as usize]).collect();
-        self.states = states;
-        for (k, s) in self.states.iter().enumerate() {
-            w.sensed.set(self.first + k, self.ids[k], s);
-        }
+    fn reorder(&mut self, key: impl Fn(&AntState<S>) -> u32 + Sync, w: &mut AntWorld) {
+        let mut keys: Vec<(u32, u32, u32)> = (self.states.par_iter(), self.ids.par_iter())
+            .into_par_iter()
+            .enumerate()
+            .map(|(k, (s, &id))| (key(s), id, k as u32))
+            .collect();
+        keys.par_sort_unstable();
+        (self.next.par_iter_mut(), keys.par_iter())
+            .into_par_iter()
+            .for_each(|(out, &(_, _, k))| *out = self.states[k as usize]);
+        self.ids = keys.into_iter().map(|(_, id, _)| id).collect();
+        std::mem::swap(&mut self.states, &mut self.next);
+        w.sensed.write(self.first, &self.ids, &self.states);
     }
 
     /// The states in id order.
@@ -170,6 +191,28 @@ impl From<AntGroup<f32>> for AnyAntGroup {
 impl From<AntGroup<Fx>> for AnyAntGroup {
     fn from(g: AntGroup<Fx>) -> Self {
         ByScalar::Fixed(g)
+    }
+}
+
+/// The event, if any, of ant `agent` going from `old` to `new`: the end of a collecting or
+/// dropping stop that changed its label.
+fn event<S>(agent: u32, old: &AntState<S>, new: &AntState<S>) -> Option<AntEvent> {
+    let t = old.stop?;
+    let finished = new.stop.is_none();
+    match t.reason {
+        StopReason::CollectingFood if finished && new.label == Label::Food => {
+            Some(AntEvent::Collected {
+                agent,
+                food: t.place,
+            })
+        }
+        StopReason::DroppingFood if finished && new.label == Label::Nest => {
+            Some(AntEvent::Delivered {
+                agent,
+                nest: t.place,
+            })
+        }
+        _ => None,
     }
 }
 
@@ -215,9 +258,7 @@ impl AntSim {
         world.size_grids(n);
         world.predicted.resize(n, [0.0; 2]);
         for g in &groups {
-            by_scalar!(g, g => for (k, s) in g.states.iter().enumerate() {
-                world.sensed.set(g.first + k, g.ids[k], s);
-            });
+            by_scalar!(g, g => world.sensed.write(g.first, &g.ids, &g.states));
         }
         let mut sim = AntSim {
             world,
@@ -261,7 +302,7 @@ impl AntSim {
         }
         let mut events = Vec::new();
         for g in &mut self.groups {
-            by_scalar!(g, g => g.commit(&mut self.world, &mut events));
+            events.extend(by_scalar!(g, g => g.commit(&mut self.world)));
         }
         if self.reorder_every > 0 && (step + 1) % self.reorder_every == 0 {
             self.reorder();

@@ -1,6 +1,7 @@
 //! The ant world: the arena, its objects, and the *sensed* state of every ant (struct of
 //! arrays, `f64`, as of the previous step) from which sensor frames are built.
 
+use rayon::prelude::*;
 use swarm_core::ant::{AntState, Label};
 
 use crate::grid::Grid;
@@ -159,14 +160,27 @@ pub struct Sensed {
 }
 
 impl Sensed {
-    /// Writes the sensed state of slot `i`, ant `id`.
-    pub fn set<S: SimScalar>(&mut self, i: usize, id: u32, s: &AntState<S>) {
-        self.id[i] = id;
-        self.pos[i] = a2(s.pos);
-        self.arrival[i] = a2(s.arrival);
-        self.label[i] = s.label;
-        self.nest[i] = s.nest;
-        self.origin[i] = s.origin;
+    /// Writes the sensed state of slots `first..first + states.len()`, ants `ids`, in parallel.
+    pub fn write<S: SimScalar>(&mut self, first: usize, ids: &[u32], states: &[AntState<S>]) {
+        let r = first..first + states.len();
+        (
+            self.pos[r.clone()].par_iter_mut(),
+            self.arrival[r.clone()].par_iter_mut(),
+            self.id[r.clone()].par_iter_mut(),
+            self.label[r.clone()].par_iter_mut(),
+            self.nest[r.clone()].par_iter_mut(),
+            self.origin[r].par_iter_mut(),
+            ids.par_iter().zip(states),
+        )
+            .into_par_iter()
+            .for_each(|(pos, arrival, id, label, nest, origin, (&i, s))| {
+                *pos = a2(s.pos);
+                *arrival = a2(s.arrival);
+                *id = i;
+                *label = s.label;
+                *nest = s.nest;
+                *origin = s.origin;
+            });
     }
 
     /// Room for `n` ants.
@@ -226,15 +240,13 @@ impl AntWorld {
 
     /// Rebuilds the neighbour grid from the sensed positions.
     pub fn index_positions(&mut self) {
-        let pos = &self.sensed.pos;
         self.grid
-            .rebuild(pos.iter().map(|p| [p[0] as f32, p[1] as f32, 0.0]));
+            .rebuild(&self.sensed.pos, |p| [p[0] as f32, p[1] as f32, 0.0]);
     }
 
     /// Rebuilds the grid of predicted positions.
     pub fn index_predictions(&mut self) {
-        let pred = &self.predicted;
         self.predicted_grid
-            .rebuild(pred.iter().map(|p| [p[0] as f32, p[1] as f32, 0.0]));
+            .rebuild(&self.predicted, |p| [p[0] as f32, p[1] as f32, 0.0]);
     }
 }

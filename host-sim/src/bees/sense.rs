@@ -338,7 +338,7 @@ mod tests {
             })
             .collect();
         let mut grid = Grid::new([0.0; 3], [10.0; 3], 1.0);
-        grid.rebuild(pts.iter().copied());
+        grid.rebuild(&pts, |p| *p);
         let tie = |j: u32| 1000 - j;
         let p = [5.5, 5.5, 5.5];
         for range in [0.3f32, 1.0, 3.0] {

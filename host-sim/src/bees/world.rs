@@ -576,9 +576,9 @@ impl BeeWorld {
 
     /// Rebuilds the neighbour grid from the sensed positions.
     pub fn index_positions(&mut self) {
-        let pos = &self.sensed.pos;
-        self.grid
-            .rebuild(pos.iter().map(|p| [p[0] as f32, p[1] as f32, p[2] as f32]));
+        self.grid.rebuild(&self.sensed.pos, |p| {
+            [p[0] as f32, p[1] as f32, p[2] as f32]
+        });
     }
 
     /// Samples the active targets into particles and indexes them.
@@ -608,7 +608,7 @@ impl BeeWorld {
             (lo, hi) = (self.min, self.min);
         }
         self.particle_grid = Grid::new(lo, hi, self.range);
-        self.particle_grid.rebuild(self.particles.iter().copied());
+        self.particle_grid.rebuild(&self.particles, |p| *p);
     }
 
     /// The centre of the active target with object id `id`.
