@@ -29,6 +29,7 @@ impl AntSim {
             .enumerate()
             .filter_map(|(id, o)| object_def(id as u16, &o.name, &o.kind, o.active))
             .collect();
+        world.set_route();
 
         let mut groups = Vec::new();
         let mut first = 0usize;
@@ -78,10 +79,13 @@ fn object_def(id: u16, name: &str, kind: &ObjectKind, active: bool) -> Option<An
             AntObjectKind::Food { amount: *amount },
             circle(*center, *radius),
         ),
-        // Way points (xiang Fig. 14) act as endless food sources: intermediate destinations
-        // the colony's information transfer leads to.
-        ObjectKind::Waypoint { center, radius, .. } => (
-            AntObjectKind::Food { amount: None },
+        // Way points (xiang Fig. 14): legs of the route, see `AntWorld::target_of`.
+        ObjectKind::Waypoint {
+            center,
+            radius,
+            order,
+        } => (
+            AntObjectKind::Waypoint { order: *order },
             circle(*center, *radius),
         ),
         ObjectKind::Rock { center, radius } => (AntObjectKind::Obstacle, circle(*center, *radius)),

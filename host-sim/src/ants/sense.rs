@@ -7,7 +7,7 @@ use swarm_core::ant::{AntNeighbor, AntObject, PlanFrame, ResolveFrame};
 use swarm_core::wire::{WIRE_ANT_NEIGHBOURS, WIRE_ANT_OBJECTS};
 use swarm_core::{Rect, Vec2};
 
-use super::world::{AntObjectKind, AntWorld};
+use super::world::{AntObjectDef, AntObjectKind, AntWorld};
 use crate::scalar::{SimScalar, v2};
 
 /// Neighbour capacity of an ant frame (the wire's).
@@ -74,7 +74,10 @@ pub(crate) fn bounds<S: SimScalar>(w: &AntWorld) -> Rect<S> {
 
 /// The plan-phase sensor frame of ant `i` (xiang2018 §4.2): its `N` nearest neighbours within
 /// the world's contact range (by distance, then id) and its `O` nearest active objects within
-/// sensing range (an object the ant is inside counts as distance 0).
+/// sensing range (an object the ant is inside counts as distance 0). On a route of way points
+/// ([`AntWorld::target_of`]) the ant senses its leg's two ends, the start as a nest and the
+/// destination as a food source, and no other way point; the food sources only on the last leg;
+/// and only the neighbours on its own leg.
 pub fn plan_frame<S: SimScalar>(w: &AntWorld, i: usize) -> AntPlanFrame<S> {
     let mut frame = PlanFrame::new(bounds(w));
     fill_plan_frame(w, i, &mut frame);
@@ -86,12 +89,15 @@ pub(crate) fn fill_plan_frame<S: SimScalar>(w: &AntWorld, i: usize, frame: &mut 
     frame.neighbours.clear();
     frame.objects.clear();
     let me = w.sensed.pos[i];
+    let home = w.sensed.nest[i];
+    // On a route, only the ants of the same leg (same nest) have news of this leg's ends.
+    let same_leg = |j: usize| w.route.is_empty() || w.sensed.nest[j] == home;
     let r2 = w.contact_range * w.contact_range;
     let mut near = Nearest::<N>::new();
     let p = [me[0] as f32, me[1] as f32, 0.0];
     w.grid.for_each_candidate(p, w.contact_range, |j, q| {
         let d = d2f(q, p);
-        if j as usize != i && d <= r2 {
+        if j as usize != i && d <= r2 && same_leg(j as usize) {
             near.offer(d, w.sensed.id[j as usize], j);
         }
     });
@@ -109,8 +115,14 @@ pub(crate) fn fill_plan_frame<S: SimScalar>(w: &AntWorld, i: usize, frame: &mut 
 
     let mut objects = Nearest::<O>::new();
     let p2 = [me[0] as f32, me[1] as f32];
+    let target = w.target_of(home);
+    let on_leg = |o: &AntObjectDef| match o.kind {
+        AntObjectKind::Waypoint { .. } => o.id == home || Some(o.id) == target,
+        AntObjectKind::Food { .. } => target.is_none(),
+        _ => true,
+    };
     for (k, o) in w.objects.iter().enumerate().filter(|(_, o)| o.active) {
-        if !o.may_be_within(p2, w.sense_range) {
+        if !o.may_be_within(p2, w.sense_range) || !on_leg(o) {
             continue;
         }
         let (closest, inside) = o.closest(p2);
@@ -130,12 +142,22 @@ pub(crate) fn fill_plan_frame<S: SimScalar>(w: &AntWorld, i: usize, frame: &mut 
             (AntObjectKind::Obstacle, _) => AntObject::Obstacle {
                 closest: c(o.closest(p2).0),
             },
+            (AntObjectKind::Waypoint { .. }, Some((center, radius))) if o.id == home => {
+                AntObject::Nest {
+                    id: o.id,
+                    center: c(center),
+                    radius: S::from_f32(radius),
+                }
+            }
             (AntObjectKind::Nest, Some((center, radius))) => AntObject::Nest {
                 id: o.id,
                 center: c(center),
                 radius: S::from_f32(radius),
             },
-            (AntObjectKind::Food { .. }, Some((center, radius))) => AntObject::Food {
+            (
+                AntObjectKind::Food { .. } | AntObjectKind::Waypoint { .. },
+                Some((center, radius)),
+            ) => AntObject::Food {
                 id: o.id,
                 center: c(center),
                 radius: S::from_f32(radius),

@@ -6,6 +6,7 @@ use rayon::prelude::*;
 use swarm_core::ant::{
     self, AntParams, AntPlan, AntState, Label, PlanFrame, ResolveFrame, StopReason,
 };
+use swarm_core::rand;
 use swarm_core::{Checked, Fx, Scalar, StepCtx};
 
 use super::sense::{bounds, fill_plan_frame, fill_resolve_frame};
@@ -123,15 +124,26 @@ impl<S: SimScalar> AntGroup<S> {
     }
 
     /// Makes the resolved states current and writes the sensed world; returns what happened,
-    /// in slot order.
-    fn commit(&mut self, w: &mut AntWorld) -> Vec<AntEvent> {
+    /// in slot order. An ant that finished collecting at its leg's way point moves on to the
+    /// next leg with probability [`ROUTE_ADVANCE`] (see [`AntWorld::target_of`]).
+    fn commit(&mut self, w: &mut AntWorld, seed: u32, step: u32) -> Vec<AntEvent> {
+        let route = &w.route;
         let events = (
             self.states.par_iter(),
-            self.next.par_iter(),
+            self.next.par_iter_mut(),
             self.ids.par_iter(),
         )
             .into_par_iter()
-            .filter_map(|(old, new, &agent)| event(agent, old, new))
+            .filter_map(|(old, new, &agent)| {
+                let e = event(agent, old, new)?;
+                if let AntEvent::Collected { food, .. } = e
+                    && route.contains(&food)
+                    && rand::chance(StepCtx { seed, agent, step }, ROUTE_STREAM, ROUTE_ADVANCE)
+                {
+                    advance(new, food);
+                }
+                Some(e)
+            })
             .collect();
         w.sensed.write(self.first, &self.ids, &self.next);
         std::mem::swap(&mut self.states, &mut self.next);
@@ -214,6 +226,24 @@ fn event<S>(agent: u32, old: &AntState<S>, new: &AntState<S>) -> Option<AntEvent
         }
         _ => None,
     }
+}
+
+/// The probability that an ant which reached its leg's way point goes on to the next leg
+/// instead of returning (ours: the paper gives no rule; half the ants move on at each way point,
+/// so every leg stays foraged while the colony stretches along the route).
+pub const ROUTE_ADVANCE: f32 = 0.5;
+
+/// The random stream of the route decisions (the controllers use streams below 16).
+const ROUTE_STREAM: u32 = 0x5200;
+
+/// Ant `s` has just reached way point `wp` and takes the next leg: `wp` becomes its nest,
+/// it knows where it is (S_nest, arrived here) and keeps going forward instead of turning back.
+fn advance<S: SimScalar>(s: &mut AntState<S>, wp: u16) {
+    s.nest = wp;
+    s.origin = wp;
+    s.label = Label::Nest;
+    s.arrival = s.pos;
+    s.heading = -s.heading;
 }
 
 /// Something an ant did this tick that the world keeps count of.
@@ -302,7 +332,7 @@ impl AntSim {
         }
         let mut events = Vec::new();
         for g in &mut self.groups {
-            events.extend(by_scalar!(g, g => g.commit(&mut self.world)));
+            events.extend(by_scalar!(g, g => g.commit(&mut self.world, seed, step)));
         }
         if self.reorder_every > 0 && (step + 1) % self.reorder_every == 0 {
             self.reorder();

@@ -38,6 +38,11 @@ pub enum AntObjectKind {
     Obstacle,
     /// An external disturbance (a dangerous circle).
     Disturbance,
+    /// A way point of the route (xiang2018 Fig. 14), visited in increasing `order`.
+    Waypoint {
+        /// Place on the route.
+        order: u32,
+    },
 }
 
 /// An object of the ant world.
@@ -134,6 +139,8 @@ pub struct AntWorld {
     pub contact_range: f32,
     /// Largest collision range of any group (query radius of the resolve frame).
     pub collision_range: f32,
+    /// The way points in visiting order (object ids; empty: no route). See [`AntWorld::target_of`].
+    pub route: Vec<u16>,
     /// Sensed state of every ant at the previous step.
     pub sensed: Sensed,
     /// Predicted positions p*(t+1) of the current step's plans.
@@ -206,6 +213,7 @@ impl AntWorld {
             sense_range: 2.0 * contact_range.max(collision_range),
             contact_range,
             collision_range,
+            route: Vec::new(),
             sensed: Sensed::default(),
             predicted: Vec::new(),
             predicted_grid: grid.clone(),
@@ -226,6 +234,33 @@ impl AntWorld {
         );
         self.grid = Grid::new(lo, hi, cell);
         self.predicted_grid = Grid::new(lo, hi, cell);
+    }
+
+    /// Sets the route from the world's way points, in increasing `order`.
+    pub fn set_route(&mut self) {
+        let mut wps: Vec<(u32, u16)> = self
+            .objects
+            .iter()
+            .filter_map(|o| match o.kind {
+                AntObjectKind::Waypoint { order } => Some((order, o.id)),
+                _ => None,
+            })
+            .collect();
+        wps.sort_unstable();
+        self.route = wps.into_iter().map(|(_, id)| id).collect();
+    }
+
+    /// Way points (xiang2018 Fig. 14: "the way points act as intermediate transit
+    /// destinations"): the route nest → way point 1 → … → way point n → food is travelled leg by
+    /// leg, each leg foraged like a nest and a food source (§4). An ant's leg is given by its
+    /// nest: the destination of an ant whose nest is `home` is the next way point after `home`
+    /// (the first one for a real nest), or `None` past the last one: the food sources. Without a
+    /// route every ant's destination is the food.
+    pub fn target_of(&self, home: u16) -> Option<u16> {
+        match self.route.iter().position(|&w| w == home) {
+            Some(k) => self.route.get(k + 1).copied(),
+            None => self.route.first().copied(),
+        }
     }
 
     /// The number of ants.

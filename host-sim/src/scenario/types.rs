@@ -314,8 +314,9 @@ pub enum ObjectKind {
         /// Radius.
         radius: f32,
     },
-    /// Ants: an intermediate destination (xiang Fig. 14), visited in increasing `order` like
-    /// food sources.
+    /// Ants: an intermediate destination (xiang Fig. 14): the way points, in increasing `order`,
+    /// make the route nest → way points → food that the colony travels leg by leg (see
+    /// `ants::AntWorld::target_of`).
     Waypoint {
         /// Centre `[x, y]`.
         center: [f32; 2],
