@@ -222,7 +222,8 @@ fn run_bees(
 }
 
 /// The run loop every model shares: events before each tick, the tick, recording every
-/// `outputs.every` ticks (and the last), a progress bar, then the outputs.
+/// `outputs.every` ticks (and the last), a progress bar, then the outputs. Trajectories stream
+/// to their files as they are recorded; only the frames the pictures need stay in memory.
 fn run_loop(
     sc: &Scenario,
     mut engine: impl Engine,
@@ -231,8 +232,10 @@ fn run_loop(
     log: &mut RunLog,
 ) -> Result<RunReport> {
     let every = sc.outputs.every.max(1);
-    let mut frames = vec![engine.frame()];
-    record(&mut summary, &frames[0], 0);
+    let mut rec = Recorder::new(sc, &opts.out, engine.agents())?;
+    let first = engine.frame();
+    record(&mut summary, &first, 0);
+    rec.push(first)?;
     let bar = progress_bar(opts.progress, sc.steps as u64);
     let t0 = Instant::now();
     let mut events = sc.events.iter().peekable();
@@ -250,7 +253,7 @@ fn run_loop(
             let f = engine.frame();
             record(&mut summary, &f, done);
             engine.on_record(&mut summary, done);
-            frames.push(f);
+            rec.push(f)?;
         }
         bar.inc(1);
     }
@@ -263,8 +266,107 @@ fn run_loop(
         "done: {} ticks in {:.2} s ({:.3e} agent-steps/s), {closing}",
         sc.steps, summary.wall_seconds, summary.agent_steps_per_s
     ))?;
-    let files = write_outputs(sc, &opts.out, &frames, &summary, log)?;
+    let files = rec.finish(sc, &opts.out, &summary, log)?;
     Ok(RunReport { summary, files })
+}
+
+/// The most frames kept in memory for the pictures: longer runs keep every k-th recorded frame
+/// (and the last), so memory stays bounded however long the run.
+const MAX_PICTURE_FRAMES: u32 = 1000;
+
+/// Where recorded frames go: the trajectory files (streamed, each committed whole at the end)
+/// and the frames kept for the pictures.
+struct Recorder {
+    csv: Option<output::CsvWriter>,
+    npy: Option<output::NpyWriter>,
+    /// Keep every `stride`-th frame for the pictures (0: keep none).
+    stride: u32,
+    /// Frames recorded so far.
+    count: u32,
+    kept: Vec<Frame>,
+    /// The latest frame not kept, in case it is the last one.
+    last: Option<Frame>,
+}
+
+impl Recorder {
+    fn new(sc: &Scenario, out: &Path, agents: usize) -> Result<Self> {
+        let o = &sc.outputs;
+        let frames = sc.steps / o.every.max(1) + 2;
+        Ok(Recorder {
+            csv: o
+                .trajectories
+                .then(|| output::CsvWriter::create(out.join(output::TRAJECTORIES_CSV)))
+                .transpose()?,
+            npy: o
+                .npy
+                .then(|| output::NpyWriter::create(out.join(output::POSITIONS_NPY), agents))
+                .transpose()?,
+            stride: if o.render || o.gif {
+                frames.div_ceil(MAX_PICTURE_FRAMES)
+            } else {
+                0
+            },
+            count: 0,
+            kept: Vec::new(),
+            last: None,
+        })
+    }
+
+    fn push(&mut self, frame: Frame) -> Result<()> {
+        if let Some(w) = &mut self.csv {
+            w.push(&frame)?;
+        }
+        if let Some(w) = &mut self.npy {
+            w.push(&frame)?;
+        }
+        if self.stride > 0 && self.count % self.stride == 0 {
+            self.kept.push(frame);
+            self.last = None;
+        } else if self.stride > 0 {
+            self.last = Some(frame);
+        }
+        self.count += 1;
+        Ok(())
+    }
+
+    /// Writes the scene, commits the trajectory files, writes the summary and the pictures;
+    /// returns the files written, in that order.
+    fn finish(
+        mut self,
+        sc: &Scenario,
+        out: &Path,
+        summary: &Summary,
+        log: &mut RunLog,
+    ) -> Result<Vec<PathBuf>> {
+        let scene = scene_of(sc);
+        let mut files = Vec::new();
+        scene.write(out.join(output::SCENE_JSON))?;
+        files.push(out.join(output::SCENE_JSON));
+        if let Some(w) = self.csv {
+            w.finish()?;
+            files.push(out.join(output::TRAJECTORIES_CSV));
+        }
+        if let Some(w) = self.npy {
+            w.finish()?;
+            files.push(out.join(output::POSITIONS_NPY));
+        }
+        summary.write(out.join(output::SUMMARY_JSON))?;
+        files.push(out.join(output::SUMMARY_JSON));
+        self.kept.extend(self.last.take());
+        let opts = RenderOptions::default();
+        if sc.outputs.render {
+            output::render_png(&scene, &self.kept, out.join(output::SNAPSHOT_PNG), &opts)?;
+            files.push(out.join(output::SNAPSHOT_PNG));
+        }
+        if sc.outputs.gif {
+            output::render_gif(&scene, &self.kept, out.join(output::RUN_GIF), &opts)?;
+            files.push(out.join(output::RUN_GIF));
+        }
+        for f in &files {
+            log.line(format_args!("wrote {}", f.display()))?;
+        }
+        Ok(files)
+    }
 }
 
 fn record(summary: &mut Summary, frame: &Frame, step: u32) {
@@ -380,38 +482,30 @@ fn shape_of(name: &str, kind: &ObjectKind, from: u32, to: Option<u32>) -> Option
     Some(shape.named(name).during(from, to))
 }
 
-fn write_outputs(
-    sc: &Scenario,
-    out: &Path,
-    frames: &[Frame],
-    summary: &Summary,
-    log: &mut RunLog,
-) -> Result<Vec<PathBuf>> {
-    let scene = scene_of(sc);
-    let mut files = Vec::new();
-    scene.write(out.join(output::SCENE_JSON))?;
-    files.push(out.join(output::SCENE_JSON));
-    if sc.outputs.trajectories {
-        output::write_csv(out.join(output::TRAJECTORIES_CSV), frames)?;
-        files.push(out.join(output::TRAJECTORIES_CSV));
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_runs_keep_a_bounded_number_of_picture_frames_and_the_last_one() {
+        let mut sc = crate::scenario::builtin("ants-fig7a-single-colony").unwrap();
+        sc.set_steps(10_000);
+        sc.outputs.every = 1;
+        sc.outputs.trajectories = false;
+        sc.outputs.npy = false;
+        let dir = tempfile::tempdir().unwrap();
+        let mut rec = Recorder::new(&sc, dir.path(), 0).unwrap();
+        for step in 0..=10_000 {
+            rec.push(Frame {
+                step,
+                agents: Vec::new(),
+            })
+            .unwrap();
+        }
+        rec.kept.extend(rec.last.take());
+        assert!(rec.kept.len() <= MAX_PICTURE_FRAMES as usize + 1);
+        assert!(rec.kept.len() >= MAX_PICTURE_FRAMES as usize / 2);
+        assert_eq!(rec.kept.last().map(|f| f.step), Some(10_000));
+        assert!(rec.kept.windows(2).all(|w| w[0].step < w[1].step));
     }
-    if sc.outputs.npy {
-        output::write_npy(out.join(output::POSITIONS_NPY), frames)?;
-        files.push(out.join(output::POSITIONS_NPY));
-    }
-    summary.write(out.join(output::SUMMARY_JSON))?;
-    files.push(out.join(output::SUMMARY_JSON));
-    let opts = RenderOptions::default();
-    if sc.outputs.render {
-        output::render_png(&scene, frames, out.join(output::SNAPSHOT_PNG), &opts)?;
-        files.push(out.join(output::SNAPSHOT_PNG));
-    }
-    if sc.outputs.gif {
-        output::render_gif(&scene, frames, out.join(output::RUN_GIF), &opts)?;
-        files.push(out.join(output::RUN_GIF));
-    }
-    for f in &files {
-        log.line(format_args!("wrote {}", f.display()))?;
-    }
-    Ok(files)
 }
