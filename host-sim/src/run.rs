@@ -319,11 +319,13 @@ impl Recorder {
         if let Some(w) = &mut self.npy {
             w.push(&frame)?;
         }
-        if self.stride > 0 && self.count % self.stride == 0 {
-            self.kept.push(frame);
-            self.last = None;
-        } else if self.stride > 0 {
-            self.last = Some(frame);
+        if self.stride > 0 {
+            if self.count.is_multiple_of(self.stride) {
+                self.kept.push(frame);
+                self.last = None;
+            } else {
+                self.last = Some(frame);
+            }
         }
         self.count += 1;
         Ok(())

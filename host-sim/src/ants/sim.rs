@@ -316,8 +316,18 @@ impl AntSim {
 
     /// One tick (xiang2018 Algorithm 1): every ant plans (steps 1-3, eq. 1), the predictions
     /// are shared, every ant resolves (eq. 2-5); then food taken and delivered is accounted.
-    /// Returns what happened, in agent order.
+    /// Returns what happened, in agent order. The same as [`AntSim::plan_phase`] then
+    /// [`AntSim::resolve_phase`].
     pub fn step(&mut self) -> Result<Vec<AntEvent>> {
+        self.plan_phase()?;
+        self.resolve_phase()
+    }
+
+    /// The first half of a tick: every ant plans from the sensed world, and the predictions
+    /// p*(t+1) are published in [`AntWorld::predicted`]. Between the halves the world holds
+    /// both frames of every ant ([`plan_frame`](super::plan_frame) and
+    /// [`resolve_frame`](super::resolve_frame)): what the HIL harness sends to a device.
+    pub fn plan_phase(&mut self) -> Result<()> {
         let (seed, step) = (self.seed, self.step);
         self.world.index_positions();
         for g in &mut self.groups {
@@ -327,6 +337,13 @@ impl AntSim {
             by_scalar!(g, g => g.write_predictions(&mut self.world.predicted));
         }
         self.world.index_predictions();
+        Ok(())
+    }
+
+    /// The second half of a tick (after [`AntSim::plan_phase`]): every ant resolves, the
+    /// states advance, the tick counter moves on.
+    pub fn resolve_phase(&mut self) -> Result<Vec<AntEvent>> {
+        let (seed, step) = (self.seed, self.step);
         for g in &mut self.groups {
             by_scalar!(g, g => g.resolve(&self.world, step))?;
         }

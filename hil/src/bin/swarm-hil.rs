@@ -1,0 +1,281 @@
+//! `swarm-hil`: mirror a device's decisions against the simulator, over a serial port, TCP, or
+//! a loopback to the soft device; or run the soft device on a serial port.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::atomic::AtomicBool;
+use std::time::Duration;
+
+use clap::{Parser, Subcommand, ValueEnum};
+use swarm_core::Fx;
+use swarm_core::wire::AntDevice;
+use swarm_hil::client::{Client, ClientOptions};
+use swarm_hil::loopback::{LinkKind, loopback_ants, with_scalar};
+use swarm_hil::mirror::{GroupsOf, MirrorOptions, MirrorReport, mirror_ants};
+use swarm_hil::transport::{FaultSpec, SerialTransport, TcpTransport, Transport};
+use swarm_sim::ants::AntSim;
+use swarm_sim::scenario::{ScalarType, Scenario};
+
+#[derive(Parser)]
+#[command(
+    name = "swarm-hil",
+    version,
+    about = "Prove that a device decides exactly what the simulation decides",
+    long_about = "Runs a swarm-sim scenario and, for the chosen agents, sends every step's sensor \
+                  frames to a device (a board on a serial port, QEMU over TCP, or the soft device) \
+                  and compares its decisions with the host's, bit for bit. Exits non-zero on any \
+                  mismatch or protocol failure."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum Scalar {
+    /// IEEE f32 (libm).
+    F32,
+    /// I16F16 fixed point.
+    Fixed,
+}
+
+impl From<Scalar> for ScalarType {
+    fn from(s: Scalar) -> Self {
+        match s {
+            Scalar::F32 => ScalarType::F32,
+            Scalar::Fixed => ScalarType::Fixed,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum Link {
+    /// In-memory channels.
+    Memory,
+    /// A pseudo-terminal pair made for the run.
+    Pty,
+}
+
+/// What every mirroring command takes.
+#[derive(clap::Args)]
+struct Run {
+    /// Scenario: a built-in name (`swarm list`) or a TOML file.
+    #[arg(long)]
+    scenario: String,
+    /// Agents to mirror, spread evenly over the ids (default: all).
+    #[arg(long)]
+    agents: Option<usize>,
+    /// Steps to run.
+    #[arg(long, default_value_t = 100)]
+    steps: u32,
+    /// Number type of the device (every group of the scenario runs in it).
+    #[arg(long, value_enum, default_value_t = Scalar::F32)]
+    scalar: Scalar,
+    /// Requests in flight at once.
+    #[arg(long, default_value_t = 8)]
+    window: usize,
+    /// Milliseconds before a request is sent again.
+    #[arg(long, default_value_t = 200)]
+    timeout_ms: u64,
+    /// Times a request is sent again before the run fails.
+    #[arg(long, default_value_t = 1000)]
+    retries: u32,
+    /// Seconds without any intact reply before the device is declared lost.
+    #[arg(long, default_value_t = 5.0)]
+    dead_after: f64,
+    /// Write the report as JSON here.
+    #[arg(long)]
+    json: Option<PathBuf>,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Mirror against the soft device over an in-memory link or a pseudo-terminal pair.
+    Loopback {
+        /// The link to the soft device.
+        #[arg(long, value_enum, default_value_t = Link::Memory)]
+        transport: Link,
+        /// Damage the link: `drop=R,flip=R,insert=R,garbage=R,delay=MS@R` (rates per byte).
+        #[arg(long, default_value = "")]
+        inject: String,
+        /// Seed of the injected faults.
+        #[arg(long, default_value_t = 1)]
+        fault_seed: u64,
+        #[command(flatten)]
+        run: Run,
+    },
+    /// Mirror against a device on a serial port (`--port`) or a TCP socket (`--tcp`).
+    Mirror {
+        /// Serial port of the device (`/dev/ttyUSB0`, `/dev/pts/3`, `COM3`).
+        #[arg(long, conflicts_with = "tcp", required_unless_present = "tcp")]
+        port: Option<String>,
+        /// Baud rate of the serial port.
+        #[arg(long, default_value_t = 115_200)]
+        baud: u32,
+        /// `HOST:PORT` of a TCP link (QEMU `-serial tcp:...,server`).
+        #[arg(long)]
+        tcp: Option<String>,
+        #[command(flatten)]
+        run: Run,
+    },
+    /// Run the soft device (swarm-core's endpoint on this host) on a serial port, with the
+    /// parameters of a scenario, until interrupted.
+    Device {
+        /// Serial port to serve on.
+        #[arg(long)]
+        port: String,
+        /// Baud rate.
+        #[arg(long, default_value_t = 115_200)]
+        baud: u32,
+        /// The scenario whose parameters the device runs.
+        #[arg(long)]
+        scenario: String,
+        /// Number type.
+        #[arg(long, value_enum, default_value_t = Scalar::F32)]
+        scalar: Scalar,
+    },
+}
+
+type AnyError = Box<dyn std::error::Error>;
+
+fn main() -> ExitCode {
+    match run(Cli::parse()) {
+        Ok(true) => ExitCode::SUCCESS,
+        Ok(false) => ExitCode::from(2),
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// `Ok(passed)`.
+fn run(cli: Cli) -> Result<bool, AnyError> {
+    match cli.command {
+        Command::Loopback {
+            transport,
+            inject,
+            fault_seed,
+            run,
+        } => {
+            let sc = scenario(&run.scenario)?;
+            let faults: FaultSpec = inject.parse()?;
+            let link = match transport {
+                Link::Memory => LinkKind::Memory,
+                Link::Pty => LinkKind::Pty,
+            };
+            let report = loopback_ants(
+                &sc,
+                run.scalar.into(),
+                link,
+                faults,
+                fault_seed,
+                client_options(&run),
+                &mirror_options(&run),
+            )?;
+            finish(&report, run.json.as_deref())
+        }
+        Command::Mirror {
+            port,
+            baud,
+            tcp,
+            run,
+        } => {
+            let link: Box<dyn Transport> = match (port, tcp) {
+                (Some(p), _) => Box::new(SerialTransport::open(&p, baud)?),
+                (None, Some(a)) => Box::new(TcpTransport::connect(&a, Duration::from_secs(5))?),
+                (None, None) => return Err("give --port or --tcp".into()),
+            };
+            let sc = with_scalar(&scenario(&run.scenario)?, run.scalar.into());
+            let mut client = Client::new(link, client_options(&run));
+            let report = match run.scalar {
+                Scalar::F32 => mirror::<f32>(&sc, &mut client, &run)?,
+                Scalar::Fixed => mirror::<Fx>(&sc, &mut client, &run)?,
+            };
+            finish(&report, run.json.as_deref())
+        }
+        Command::Device {
+            port,
+            baud,
+            scenario: name,
+            scalar,
+        } => {
+            let sc = with_scalar(&scenario(&name)?, scalar.into());
+            let link = SerialTransport::open(&port, baud)?;
+            eprintln!(
+                "soft device on {port} ({scalar:?}, parameters of {}); Ctrl-C stops it",
+                sc.name
+            );
+            let stop = AtomicBool::new(false);
+            match scalar {
+                Scalar::F32 => serve::<f32>(&sc, link, &stop)?,
+                Scalar::Fixed => serve::<Fx>(&sc, link, &stop)?,
+            }
+            Ok(true)
+        }
+    }
+}
+
+fn serve<S>(sc: &Scenario, link: SerialTransport, stop: &AtomicBool) -> Result<(), AnyError>
+where
+    S: swarm_sim::scalar::SimScalar + serde::Serialize + serde::de::DeserializeOwned,
+    AntSim: GroupsOf<S>,
+    swarm_core::ant::AntParams<S>: swarm_core::wire::Controller,
+{
+    let sim = AntSim::from_scenario(sc, sc.seed)?;
+    let params = *GroupsOf::<S>::single_params(&sim)?;
+    let device = AntDevice::<S>::new(params, "soft-ant").map_err(|e| e.to_string())?;
+    swarm_hil::soft::serve(device, link, stop)?;
+    Ok(())
+}
+
+fn mirror<S>(
+    sc: &Scenario,
+    client: &mut Client<Box<dyn Transport>>,
+    run: &Run,
+) -> Result<MirrorReport, AnyError>
+where
+    S: swarm_sim::scalar::SimScalar + serde::Serialize + serde::de::DeserializeOwned,
+    AntSim: GroupsOf<S>,
+{
+    let sim = AntSim::from_scenario(sc, sc.seed)?;
+    let mut report = mirror_ants::<S, _>(&sc.name, sim, client, &mirror_options(run))?;
+    report.transport = client.link_mut().name();
+    Ok(report)
+}
+
+fn scenario(name: &str) -> Result<Scenario, AnyError> {
+    Ok(swarm_sim::scenario::resolve(name)?)
+}
+
+fn client_options(run: &Run) -> ClientOptions {
+    ClientOptions {
+        window: run.window,
+        timeout: Duration::from_millis(run.timeout_ms),
+        retries: run.retries,
+        dead_after: Duration::from_secs_f64(run.dead_after.max(0.001)),
+    }
+}
+
+fn mirror_options(run: &Run) -> MirrorOptions {
+    MirrorOptions {
+        agents: run.agents,
+        steps: run.steps,
+        session: std::process::id(),
+        progress: !run.quiet,
+    }
+}
+
+/// Prints the summary, writes the JSON; `Ok(passed)`.
+fn finish(report: &MirrorReport, json: Option<&std::path::Path>) -> Result<bool, AnyError> {
+    println!("{}", report.human());
+    if let Some(path) = json {
+        let text = serde_json::to_string_pretty(report)?;
+        swarm_sim::output::write_atomic_bytes(path, text.as_bytes())?;
+        println!("wrote {}", path.display());
+    }
+    Ok(report.passed())
+}

@@ -1,0 +1,459 @@
+//! The mirror: run a scenario on the host and, for the chosen agents, send each step's sensor
+//! frames to the device and compare its decisions with the host's, bit for bit (the postcard
+//! bytes of both decisions). A mismatch is recorded with its step, agent, sensor frame and both
+//! decisions, and the run goes on so every mismatch is counted.
+
+use std::time::Instant;
+
+use indicatif::{ProgressBar, ProgressStyle};
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+use swarm_core::ant::{self, AntParams, AntPlan};
+use swarm_core::wire::{
+    AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, DeviceStats, ErrorReply,
+    Identity, MAX_ANT_FRAME, params_hash,
+};
+use swarm_core::{Checked, StepCtx};
+use swarm_sim::ants::{AntGroup, AntSim, plan_frame, resolve_frame};
+use swarm_sim::scalar::{ByScalar, SimScalar};
+
+use crate::client::Client;
+use crate::transport::{FaultCounts, Transport};
+use crate::{HilError, Result};
+
+/// What to mirror.
+#[derive(Clone, Debug)]
+pub struct MirrorOptions {
+    /// How many agents to mirror (spread evenly over the ids), `None`: all.
+    pub agents: Option<usize>,
+    /// Steps to run.
+    pub steps: u32,
+    /// Session id sent with `Configure`.
+    pub session: u32,
+    /// Show a progress bar.
+    pub progress: bool,
+}
+
+/// Latency percentiles of the answered requests, in microseconds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Latency {
+    /// Median.
+    pub p50: u32,
+    /// 99th percentile.
+    pub p99: u32,
+    /// Largest.
+    pub max: u32,
+}
+
+impl Latency {
+    fn of(us: &[u32]) -> Latency {
+        let mut v = us.to_vec();
+        v.sort_unstable();
+        let at = |q: f64| {
+            v.get(((v.len() as f64 * q).ceil() as usize).saturating_sub(1))
+                .copied()
+                .unwrap_or(0)
+        };
+        Latency {
+            p50: at(0.5),
+            p99: at(0.99),
+            max: v.last().copied().unwrap_or(0),
+        }
+    }
+}
+
+/// A decision of the device that differs from the host's.
+#[derive(Clone, Debug, Serialize)]
+pub struct Mismatch {
+    /// Simulation step.
+    pub step: u32,
+    /// Agent id.
+    pub agent: u32,
+    /// Which request: `plan`, `resolve` (ants) or `step` (bees).
+    pub phase: &'static str,
+    /// The request sent (state and sensor frame).
+    pub request: serde_json::Value,
+    /// The host's decision.
+    pub host: serde_json::Value,
+    /// The device's decision (or its error reply).
+    pub device: serde_json::Value,
+}
+
+/// The outcome of a mirror run.
+#[derive(Clone, Debug, Serialize)]
+pub struct MirrorReport {
+    /// Scenario name.
+    pub scenario: String,
+    /// `ants` or `bees`.
+    pub model: String,
+    /// The device's identity.
+    pub device: String,
+    /// The link.
+    pub transport: String,
+    /// Agents mirrored.
+    pub agents: usize,
+    /// Steps run.
+    pub steps: u32,
+    /// Decisions compared.
+    pub decisions: u64,
+    /// Decisions that differed.
+    pub mismatches: u64,
+    /// The first of them.
+    pub first_mismatch: Option<Mismatch>,
+    /// Reply frames dropped for a bad CRC (host side).
+    pub crc_errors: u64,
+    /// Times the host's receiver resynchronised.
+    pub resyncs: u64,
+    /// Requests that timed out.
+    pub timeouts: u64,
+    /// Requests sent again.
+    pub retries: u64,
+    /// Ping probes sent at the end of batches (to detect losses early).
+    pub probes: u64,
+    /// Round-trip latency.
+    pub latency_us: Latency,
+    /// Decisions per second of wall time.
+    pub decisions_per_s: f64,
+    /// Bytes sent.
+    pub bytes_tx: u64,
+    /// Bytes received.
+    pub bytes_rx: u64,
+    /// Bytes both ways per request and reply, on average.
+    pub bytes_per_round_trip: f64,
+    /// Wall time.
+    pub seconds: f64,
+    /// The device's own counters at the end.
+    pub device_stats: Option<DeviceStats>,
+    /// Faults injected on the link, if any.
+    pub faults: Option<FaultCounts>,
+}
+
+impl MirrorReport {
+    /// Whether the device decided exactly what the host decided.
+    pub fn passed(&self) -> bool {
+        self.mismatches == 0
+    }
+
+    /// A few lines for people.
+    pub fn human(&self) -> String {
+        let mut s = format!(
+            "{} on {} over {}: {} decisions of {} agents in {} steps, {} mismatches\n",
+            self.scenario,
+            self.device,
+            self.transport,
+            self.decisions,
+            self.agents,
+            self.steps,
+            self.mismatches
+        );
+        if let Some(m) = &self.first_mismatch {
+            s += &format!(
+                "first mismatch: step {}, agent {}, {}\n  host   {}\n  device {}\n",
+                m.step, m.agent, m.phase, m.host, m.device
+            );
+        }
+        s += &format!(
+            "{:.0} decisions/s, latency p50 {} µs, p99 {} µs, max {} µs; {:.1} bytes per round trip\n",
+            self.decisions_per_s,
+            self.latency_us.p50,
+            self.latency_us.p99,
+            self.latency_us.max,
+            self.bytes_per_round_trip
+        );
+        s += &format!(
+            "link: {} CRC errors, {} resyncs, {} timeouts, {} retries",
+            self.crc_errors, self.resyncs, self.timeouts, self.retries
+        );
+        if let Some(f) = &self.faults {
+            s += &format!(
+                "; injected: {} dropped, {} flipped, {} inserted bytes, {} garbage bursts",
+                f.dropped, f.flipped, f.inserted, f.bursts
+            );
+        }
+        s
+    }
+}
+
+/// Tallies decisions and keeps the first mismatch.
+#[derive(Default)]
+struct Tally {
+    decisions: u64,
+    mismatches: u64,
+    first: Option<Mismatch>,
+}
+
+impl Tally {
+    /// Compares `device` with `host` bit for bit (their postcard bytes).
+    fn check<Q: Serialize, D: Serialize>(
+        &mut self,
+        (step, agent, phase): (u32, u32, &'static str),
+        request: &Q,
+        host: &D,
+        device: &std::result::Result<D, ErrorReply>,
+    ) {
+        self.decisions += 1;
+        let same = match device {
+            Ok(d) => postcard::to_allocvec(d).ok() == postcard::to_allocvec(host).ok(),
+            Err(_) => false,
+        };
+        if same {
+            return;
+        }
+        self.mismatches += 1;
+        if self.first.is_none() {
+            let json = |v: &dyn erased::Json| v.json();
+            self.first = Some(Mismatch {
+                step,
+                agent,
+                phase,
+                request: json(request),
+                host: json(host),
+                device: match device {
+                    Ok(d) => json(d),
+                    Err(e) => serde_json::json!({ "error": e.name(), "code": e.code }),
+                },
+            });
+        }
+    }
+}
+
+/// `serde_json::to_value` behind a trait object (the mismatch keeps any decision type).
+mod erased {
+    pub trait Json {
+        fn json(&self) -> serde_json::Value;
+    }
+    impl<T: serde::Serialize> Json for T {
+        fn json(&self) -> serde_json::Value {
+            serde_json::to_value(self).unwrap_or(serde_json::Value::Null)
+        }
+    }
+}
+
+/// `k` agent ids spread evenly over `0..n` (all of them for `None` or `k ≥ n`).
+pub fn pick_agents(n: usize, k: Option<usize>) -> Vec<u32> {
+    match k {
+        Some(k) if k < n => (0..k).map(|i| (i * n / k) as u32).collect(),
+        _ => (0..n as u32).collect(),
+    }
+}
+
+fn bar(show: bool, steps: u32) -> ProgressBar {
+    if !show {
+        return ProgressBar::hidden();
+    }
+    let b = ProgressBar::new(steps.into());
+    b.set_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} steps {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    b
+}
+
+fn core_err(e: swarm_core::Error) -> HilError {
+    HilError::Invalid(e.to_string())
+}
+
+/// Mirrors the ants of `sim` (every group in scalar type `S`) on the device behind `client`:
+/// handshake, configure, then every step a plan request and a resolve request per chosen ant.
+pub fn mirror_ants<S, T>(
+    name: &str,
+    mut sim: AntSim,
+    client: &mut Client<T>,
+    opts: &MirrorOptions,
+) -> Result<MirrorReport>
+where
+    S: SimScalar + Serialize + DeserializeOwned,
+    T: Transport,
+    AntSim: GroupsOf<S>,
+{
+    let params: Checked<AntParams<S>> = sim.single_params()?;
+    let expected = Identity::of(&*params, MAX_ANT_FRAME, "host").map_err(core_err)?;
+    let device = client.handshake(&expected)?;
+    client.configure(opts.session, params_hash(&*params).map_err(core_err)?)?;
+    let chosen = pick_agents(sim.agents(), opts.agents);
+    let bar = bar(opts.progress, opts.steps);
+    let mut tally = Tally::default();
+    let t0 = Instant::now();
+    for _ in 0..opts.steps {
+        let step = sim.step;
+        sim.plan_phase().map_err(sim_err)?;
+        let slots = slots_by_id(&sim);
+        let mut plans = Vec::with_capacity(chosen.len());
+        let mut host_plans = Vec::with_capacity(chosen.len());
+        for &id in &chosen {
+            let slot = slots[id as usize];
+            let state = sim.state_of(slot)?;
+            let frame = plan_frame::<S>(&sim.world, slot);
+            let ctx = StepCtx {
+                seed: sim.seed,
+                agent: id,
+                step,
+            };
+            host_plans.push(ant::plan_checked(&state, &frame, &params, ctx));
+            plans.push(AntPlanRequest { state, frame, ctx });
+        }
+        let replies = client.call_all::<_, AntPlanReply<S>>(&plans)?;
+        let mut resolves = Vec::with_capacity(chosen.len());
+        let mut host_next = Vec::with_capacity(chosen.len());
+        for (((&id, req), host), reply) in chosen.iter().zip(&plans).zip(&host_plans).zip(&replies)
+        {
+            let host = host.as_ref().map_err(|e| {
+                HilError::Invalid(format!("the host refused ant {id} at step {step}: {e}"))
+            })?;
+            tally.check(
+                (step, id, "plan"),
+                req,
+                host,
+                &reply.as_ref().map(|r| r.plan).map_err(|e| *e),
+            );
+            let plan: AntPlan<S> = *host;
+            let frame = resolve_frame::<S>(&sim.world, slots[id as usize]);
+            host_next.push(ant::resolve_checked(&plan, &frame, &params));
+            resolves.push(AntResolveRequest { plan, frame });
+        }
+        let replies = client.call_all::<_, AntResolveReply<S>>(&resolves)?;
+        for (((&id, req), host), reply) in
+            chosen.iter().zip(&resolves).zip(&host_next).zip(&replies)
+        {
+            let host = host.as_ref().map_err(|e| {
+                HilError::Invalid(format!("the host refused ant {id} at step {step}: {e}"))
+            })?;
+            tally.check(
+                (step, id, "resolve"),
+                req,
+                host,
+                &reply.as_ref().map(|r| r.state).map_err(|e| *e),
+            );
+        }
+        sim.resolve_phase().map_err(sim_err)?;
+        bar.inc(1);
+        bar.set_message(format!(
+            "{} decisions, {} mismatches",
+            tally.decisions, tally.mismatches
+        ));
+    }
+    bar.finish_and_clear();
+    let seconds = t0.elapsed().as_secs_f64();
+    let device_stats = client.device_stats().ok();
+    Ok(report(
+        name,
+        "ants",
+        &device,
+        client,
+        chosen.len(),
+        opts.steps,
+        tally,
+        seconds,
+        device_stats,
+    ))
+}
+
+#[allow(clippy::too_many_arguments)]
+fn report<T: Transport>(
+    scenario: &str,
+    model: &str,
+    device: &Identity,
+    client: &Client<T>,
+    agents: usize,
+    steps: u32,
+    tally: Tally,
+    seconds: f64,
+    device_stats: Option<DeviceStats>,
+) -> MirrorReport {
+    let link = client.report();
+    let lat = client.latencies_us();
+    let trips = lat.len().max(1) as f64;
+    MirrorReport {
+        scenario: scenario.to_string(),
+        model: model.to_string(),
+        device: device.name.to_string(),
+        transport: String::new(),
+        agents,
+        steps,
+        decisions: tally.decisions,
+        mismatches: tally.mismatches,
+        first_mismatch: tally.first,
+        crc_errors: link.crc_errors,
+        resyncs: link.resyncs,
+        timeouts: link.timeouts,
+        retries: link.retries,
+        probes: link.probes,
+        latency_us: Latency::of(lat),
+        decisions_per_s: tally.decisions as f64 / seconds.max(1e-9),
+        bytes_tx: link.bytes_tx,
+        bytes_rx: link.bytes_rx,
+        bytes_per_round_trip: (link.bytes_tx + link.bytes_rx) as f64 / trips,
+        seconds,
+        device_stats,
+        faults: None,
+    }
+}
+
+fn sim_err(e: swarm_sim::SimError) -> HilError {
+    HilError::Invalid(format!("simulation: {e}"))
+}
+
+/// Slot of every agent id, this step (slots move when the simulator reorders them).
+fn slots_by_id(sim: &AntSim) -> Vec<usize> {
+    let mut out = vec![0; sim.agents()];
+    for (slot, &id) in sim.world.sensed.id.iter().enumerate() {
+        out[id as usize] = slot;
+    }
+    out
+}
+
+/// Access to the ant groups of one scalar type.
+pub trait GroupsOf<S> {
+    /// The parameters shared by every group (an error if a group differs or has another
+    /// scalar type).
+    fn single_params(&self) -> Result<Checked<AntParams<S>>>;
+    /// The slot and state of the ant in world slot `slot`.
+    fn state_of(&self, slot: usize) -> Result<swarm_core::ant::AntState<S>>;
+}
+
+macro_rules! groups_of {
+    ($s:ty, $variant:ident) => {
+        impl GroupsOf<$s> for AntSim {
+            fn single_params(&self) -> Result<Checked<AntParams<$s>>> {
+                let mut out: Option<&AntGroup<$s>> = None;
+                for g in &self.groups {
+                    let ByScalar::$variant(g) = g else {
+                        return Err(HilError::Invalid(
+                            "every group must have the device's scalar type".into(),
+                        ));
+                    };
+                    if let Some(f) = out
+                        && *f.params != *g.params
+                    {
+                        return Err(HilError::Invalid(format!(
+                            "groups `{}` and `{}` have different parameters; a device runs \
+                             one parameter set",
+                            f.name, g.name
+                        )));
+                    }
+                    out.get_or_insert(g);
+                }
+                out.map(|g| g.params.clone())
+                    .ok_or_else(|| HilError::Invalid("the scenario has no ants".into()))
+            }
+            fn state_of(&self, slot: usize) -> Result<swarm_core::ant::AntState<$s>> {
+                self.groups
+                    .iter()
+                    .find_map(|g| match g {
+                        ByScalar::$variant(g)
+                            if (g.first..g.first + g.states.len()).contains(&slot) =>
+                        {
+                            Some(g.states[slot - g.first])
+                        }
+                        _ => None,
+                    })
+                    .ok_or_else(|| {
+                        HilError::Invalid(format!("no ant of this scalar type in slot {slot}"))
+                    })
+            }
+        }
+    };
+}
+groups_of!(f32, F32);
+groups_of!(swarm_core::Fx, Fixed);

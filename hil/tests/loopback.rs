@@ -1,0 +1,200 @@
+//! The mirror against the soft device, end to end: in memory and over a pseudo-terminal, in
+//! both scalar types, through injected faults; and devices that must be caught.
+
+use std::time::Duration;
+
+use swarm_core::ant::{AntParams, AntPlan};
+use swarm_core::wire::{self, Accumulator, AntDevice, AntPlanReply, Event, kind};
+use swarm_hil::client::{Client, ClientOptions};
+use swarm_hil::loopback::{LinkKind, loopback_ants, with_scalar};
+use swarm_hil::mirror::{MirrorOptions, mirror_ants, pick_agents};
+use swarm_hil::soft::{SoftDevice, serve};
+use swarm_hil::transport::{FaultSpec, Transport, memory_pair};
+use swarm_hil::{HilError, Result};
+use swarm_sim::ants::AntSim;
+use swarm_sim::scenario::{self, ScalarType, Scenario};
+
+fn fig7a() -> Scenario {
+    scenario::builtin("ants-fig7a-single-colony").unwrap()
+}
+
+fn opts(agents: usize, steps: u32) -> MirrorOptions {
+    MirrorOptions {
+        agents: Some(agents),
+        steps,
+        session: 42,
+        progress: false,
+    }
+}
+
+#[test]
+fn ten_thousand_ant_decisions_match_in_memory_and_over_a_pty_in_both_scalars() {
+    for link in [LinkKind::Memory, LinkKind::Pty] {
+        for scalar in [ScalarType::F32, ScalarType::Fixed] {
+            let r = loopback_ants(
+                &fig7a(),
+                scalar,
+                link,
+                FaultSpec::default(),
+                1,
+                ClientOptions::default(),
+                &opts(50, 100),
+            )
+            .unwrap();
+            assert_eq!(r.decisions, 10_000, "{link:?} {scalar:?}");
+            assert_eq!(r.mismatches, 0, "{link:?} {scalar:?}: {}", r.human());
+            assert_eq!((r.timeouts, r.retries, r.crc_errors), (0, 0, 0));
+            let dev = r.device_stats.unwrap();
+            // Every request intact (the probes of the session setup and of the final stats
+            // request fall outside the device's counting).
+            let ok = dev.link.frames_ok as u64;
+            assert!((10_000..=10_000 + r.probes + 1).contains(&ok), "{ok}");
+            assert_eq!(dev.link.resyncs(), 0);
+        }
+    }
+}
+
+#[test]
+fn faults_on_the_line_are_survived_and_reported() {
+    // 1 % of the bytes damaged each way (a third dropped, a third flipped, a third inserted),
+    // plus bursts of garbage.
+    let spec: FaultSpec = "drop=0.0034,flip=0.0033,insert=0.0033,garbage=0.0005"
+        .parse()
+        .unwrap();
+    let client = ClientOptions {
+        timeout: Duration::from_millis(20),
+        ..ClientOptions::default()
+    };
+    for (link, scalar) in [
+        (LinkKind::Memory, ScalarType::Fixed),
+        (LinkKind::Pty, ScalarType::F32),
+    ] {
+        let r = loopback_ants(&fig7a(), scalar, link, spec, 3, client, &opts(20, 50)).unwrap();
+        assert_eq!(r.decisions, 2_000, "every decision accounted for");
+        assert_eq!(r.mismatches, 0, "{}", r.human());
+        let f = r.faults.expect("fault counts");
+        assert!(
+            f.dropped > 100 && f.flipped > 100 && f.inserted > 100 && f.bursts > 5,
+            "{f:?}"
+        );
+        assert!(
+            r.crc_errors + r.resyncs > 0 && r.retries > 0,
+            "{}",
+            r.human()
+        );
+    }
+}
+
+#[test]
+fn a_device_with_other_parameters_is_refused_at_the_handshake() {
+    let sc = fig7a();
+    let sim = AntSim::from_scenario(&sc, sc.seed).unwrap();
+    let other = AntParams::<f32> {
+        w0: 0.5,
+        ..AntParams::default()
+    };
+    let device = AntDevice::<f32>::new(other, "other-ant").unwrap();
+    let (dev_end, host_end) = memory_pair();
+    let soft = SoftDevice::spawn(move |stop| serve(device, dev_end, stop).map(|_| ()));
+    let mut client = Client::new(host_end, ClientOptions::default());
+    let err = mirror_ants::<f32, _>(&sc.name, sim, &mut client, &opts(5, 5)).unwrap_err();
+    let msg = err.to_string();
+    assert!(matches!(err, HilError::Handshake(_)), "{msg}");
+    assert!(
+        msg.contains("other-ant") && msg.contains("params hash 0x"),
+        "{msg}"
+    );
+    soft.stop().unwrap();
+}
+
+/// A device link that plants one wrong decision: the `nth` plan reply (counting from 0) gets
+/// its predicted x moved by one ulp.
+struct Tamper<T> {
+    inner: T,
+    rx: Accumulator<2048>,
+    plan_replies: usize,
+    nth: usize,
+}
+
+impl<T: Transport> Transport for Tamper<T> {
+    fn send(&mut self, bytes: &[u8]) -> Result<()> {
+        let mut out = Vec::new();
+        let mut input = bytes;
+        while let Some((event, rest)) = self.rx.feed(input) {
+            input = rest;
+            let Event::Frame(frame) = event else { continue };
+            let mut buf = [0u8; 512];
+            let n = if frame.header.kind == kind::ANT_PLAN_REPLY {
+                let mut reply: AntPlanReply<f32> = frame.message().unwrap();
+                if self.plan_replies == self.nth {
+                    let x = reply.plan.predicted.x;
+                    reply.plan.predicted.x = f32::from_bits(x.to_bits() + 1);
+                }
+                self.plan_replies += 1;
+                wire::encode_message(frame.header.seq, &reply, &mut buf).unwrap()
+            } else {
+                wire::encode_frame(
+                    frame.header.kind,
+                    frame.header.seq,
+                    &RawPayload(frame.payload),
+                    &mut buf,
+                )
+                .unwrap()
+            };
+            out.extend_from_slice(&buf[..n]);
+        }
+        self.inner.send(&out)
+    }
+    fn recv(&mut self, buf: &mut [u8], timeout: Duration) -> Result<usize> {
+        self.inner.recv(buf, timeout)
+    }
+    fn name(&self) -> String {
+        "tampered".into()
+    }
+}
+
+/// A payload passed through unchanged: postcard writes a tuple of `u8` byte for byte.
+struct RawPayload<'a>(&'a [u8]);
+
+impl serde::Serialize for RawPayload<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeTuple;
+        let mut t = s.serialize_tuple(self.0.len())?;
+        for b in self.0 {
+            t.serialize_element(b)?;
+        }
+        t.end()
+    }
+}
+
+#[test]
+fn a_planted_wrong_decision_is_reported_with_its_step_and_agent() {
+    let sc = with_scalar(&fig7a(), ScalarType::F32);
+    let sim = AntSim::from_scenario(&sc, sc.seed).unwrap();
+    let agents = 10;
+    let chosen = pick_agents(sim.agents(), Some(agents));
+    let device = AntDevice::<f32>::new(AntParams::default(), "soft-ant").unwrap();
+    let (dev_end, host_end) = memory_pair();
+    let nth = 3 * agents + 7; // step 3, the 8th chosen agent
+    let tampered = Tamper {
+        inner: dev_end,
+        rx: Accumulator::new(),
+        plan_replies: 0,
+        nth,
+    };
+    let soft = SoftDevice::spawn(move |stop| serve(device, tampered, stop).map(|_| ()));
+    let mut client = Client::new(host_end, ClientOptions::default());
+    let r = mirror_ants::<f32, _>(&sc.name, sim, &mut client, &opts(agents, 6)).unwrap();
+    soft.stop().unwrap();
+    assert_eq!(r.decisions, 120);
+    assert_eq!(r.mismatches, 1, "{}", r.human());
+    let m = r.first_mismatch.unwrap();
+    assert_eq!((m.step, m.agent, m.phase), (3, chosen[7], "plan"));
+    let host: AntPlan<f32> = serde_json::from_value(m.host).unwrap();
+    let dev: AntPlan<f32> = serde_json::from_value(m.device).unwrap();
+    assert_eq!(dev.predicted.x.to_bits(), host.predicted.x.to_bits() + 1);
+    assert!(
+        m.request.get("frame").is_some(),
+        "the sensor frame is in the report"
+    );
+}
