@@ -77,6 +77,18 @@ pub enum Error {
     /// The postcard payload does not decode to the message its kind announces (or has bytes
     /// left over); when encoding, postcard cannot serialize the message.
     Payload,
+    /// A controller request (or a `Configure`) arrived before the session was opened: the
+    /// device needs `Hello`, then `Configure` (see [`wire`](crate::wire) and
+    /// `docs/protocol.md`).
+    NoSession,
+    /// The parameter hash a host sent in its `Configure` is not the device's: the device runs
+    /// other controller parameters, so its decisions cannot be compared with the host's.
+    ParamsMismatch {
+        /// The device's parameter hash.
+        device: u64,
+        /// The hash the host expects.
+        host: u64,
+    },
 }
 
 impl Error {
@@ -143,6 +155,13 @@ impl fmt::Display for Error {
                 )
             }
             Error::Payload => f.write_str("payload does not decode to the announced message"),
+            Error::NoSession => {
+                f.write_str("no open session: send Hello, then Configure, before requests")
+            }
+            Error::ParamsMismatch { device, host } => write!(
+                f,
+                "controller parameters differ: params hash {device:#018x} (device) ≠ {host:#018x} (host)"
+            ),
         }
     }
 }

@@ -8,8 +8,10 @@
 //! * [`bee`]: the bee controller of Chen et al., *A Bio-inspired Model for Bee Simulations*
 //!   (sections III-V, eq. 1-11, Table I): body oscillation, visual roll-to-avoid, curl noise and
 //!   SPH repulsion;
-//! * [`wire`] (feature `serde`): the message types and the frame codec
-//!   `COBS(header ‖ postcard payload ‖ CRC) ‖ 0x00` shared by firmware and host.
+//! * [`wire`] (feature `serde`): the message types, the frame codec
+//!   `COBS(header ‖ postcard payload ‖ CRC) ‖ 0x00`, the session protocol (handshake,
+//!   configure, ping, statistics) and the device endpoint
+//!   ([`DeviceEndpoint`](wire::DeviceEndpoint)), shared by firmware and host.
 //!
 //! Everything is generic over a [`Scalar`]: `f32` (math through `libm` by default, or
 //! `micromath`) and, with feature `fixed`, [`Fx`], an I16F16 fixed-point number whose

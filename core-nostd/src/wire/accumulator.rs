@@ -1,6 +1,7 @@
 //! The streaming receiver: bytes in, in chunks of any size; frames and drop reports out.
 
-use super::frame::{Frame, decode_frame};
+use super::frame::{Frame, decode_any_version};
+use super::header::{Header, PROTOCOL_VERSION};
 use crate::Error;
 
 /// What the receiver saw at a `0x00` delimiter that ended a non-empty run of bytes.
@@ -100,6 +101,8 @@ pub struct Accumulator<const N: usize> {
     /// Bytes since the last delimiter (saturating); only the first `N` are stored.
     len: usize,
     stats: Stats,
+    /// The header of the frame behind the last event, if it was dropped for its version.
+    foreign: Option<Header>,
 }
 
 impl<const N: usize> Default for Accumulator<N> {
@@ -124,6 +127,7 @@ impl<const N: usize> Accumulator<N> {
                 empty: 0,
                 bytes_dropped: 0,
             },
+            foreign: None,
         }
     }
 
@@ -179,6 +183,15 @@ impl<const N: usize> Accumulator<N> {
         self.len = 0;
     }
 
+    /// The header of the frame behind the last event, when that event was
+    /// [`Event::Dropped`] with [`Error::Version`]: such a frame passed its COBS, length and CRC
+    /// checks, so its header is trustworthy and its `seq` can be answered (the device endpoint
+    /// answers it with an [`ErrorReply`](super::ErrorReply) of code
+    /// [`VERSION`](super::ErrorReply::VERSION)). `None` after any other event.
+    pub const fn foreign_header(&self) -> Option<Header> {
+        self.foreign
+    }
+
     /// Takes one byte; `true` if it completed a non-empty frame (then call `finish`).
     fn absorb(&mut self, byte: u8) -> bool {
         if byte == 0 {
@@ -199,8 +212,21 @@ impl<const N: usize> Accumulator<N> {
     fn finish(&mut self) -> Event<'_> {
         let len = core::mem::take(&mut self.len);
         let stats = &mut self.stats;
+        let foreign = &mut self.foreign;
+        *foreign = None;
         let result = match self.buf.get_mut(..len) {
-            Some(frame) => decode_frame(frame),
+            Some(frame) => match decode_any_version(frame) {
+                Ok((header, payload)) if header.version == PROTOCOL_VERSION => {
+                    Ok(Frame { header, payload })
+                }
+                Ok((header, _)) => {
+                    *foreign = Some(header);
+                    Err(Error::Version {
+                        got: header.version,
+                    })
+                }
+                Err(e) => Err(e),
+            },
             None => Err(Error::Oversize),
         };
         match result {
@@ -384,6 +410,23 @@ mod tests {
         );
         let s = acc.stats();
         assert_eq!((s.truncated, s.version_errors, s.bytes_dropped), (1, 1, 9));
+        // The version-2 frame's header is trustworthy (CRC good): its seq can be answered.
+        assert_eq!(
+            acc.foreign_header(),
+            Some(Header {
+                version: 2,
+                kind: 1,
+                seq: 0
+            })
+        );
+        // Any other event forgets it.
+        let f = frame(1, 1, &());
+        run(&mut acc, &[&f]);
+        assert_eq!(acc.foreign_header(), None);
+        run(&mut acc, &[&v2]);
+        assert!(acc.foreign_header().is_some());
+        run(&mut acc, &[b"\x05\x00"]);
+        assert_eq!(acc.foreign_header(), None);
     }
 
     #[test]

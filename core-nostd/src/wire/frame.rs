@@ -143,6 +143,18 @@ pub fn encode_frame<T: Serialize + ?Sized>(
 /// error too), at least header + CRC ([`Error::Truncated`]), CRC ([`Error::Crc`]), version
 /// ([`Error::Version`]). The kind is not checked here: see [`Frame::message`].
 pub fn decode_frame(frame: &mut [u8]) -> Result<Frame<'_>> {
+    let (header, payload) = decode_any_version(frame)?;
+    if header.version != PROTOCOL_VERSION {
+        return Err(Error::Version {
+            got: header.version,
+        });
+    }
+    Ok(Frame { header, payload })
+}
+
+/// [`decode_frame`] without the version check: COBS, length and CRC only. A frame of another
+/// version that passes these checks has a trustworthy header (its `seq` can be answered).
+pub(crate) fn decode_any_version(frame: &mut [u8]) -> Result<(Header, &[u8])> {
     if frame.is_empty() {
         return Err(Error::Truncated);
     }
@@ -163,13 +175,7 @@ pub fn decode_frame(frame: &mut [u8]) -> Result<Frame<'_>> {
     let (header, payload) = body
         .split_first_chunk::<HEADER_LEN>()
         .ok_or(Error::Truncated)?;
-    let header = Header::from_bytes(*header);
-    if header.version != PROTOCOL_VERSION {
-        return Err(Error::Version {
-            got: header.version,
-        });
-    }
-    Ok(Frame { header, payload })
+    Ok((Header::from_bytes(*header), payload))
 }
 
 /// Deserializes a postcard payload that must hold exactly one `T`: [`Error::Payload`] if it

@@ -4,7 +4,8 @@
 //! and friends) and answers with the reply of the same sequence number, or with an
 //! [`ErrorReply`] when the controller refused the input. Every message is generic over the
 //! scalar `S` (`f32` or [`Fx`](crate::Fx)); both ends must agree on it (the session handshake
-//! of a later issue checks that), since the kind byte does not say which.
+//! checks that: [`Identity::scalar`](super::Identity::scalar)), since the kind byte does not
+//! say which.
 //!
 //! Sensor-frame capacities on the wire are fixed ([`WIRE_ANT_NEIGHBOURS`] and friends), so
 //! every message has a bounded size: [`MAX_PAYLOAD`] bytes at most, [`MAX_FRAME`] on the line.
@@ -30,12 +31,16 @@ pub const WIRE_BEE_TARGETS: usize = 16;
 /// The largest payload of an ant message (or [`ErrorReply`]), for either scalar
 /// ([`AntPlanRequest<Fx>`](AntPlanRequest) with full lists; pinned by a test).
 pub const MAX_ANT_PAYLOAD: usize = 415;
+/// The largest payload of an ant reply ([`AntPlanReply<Fx>`](AntPlanReply); pinned by a test).
+pub const MAX_ANT_REPLY_PAYLOAD: usize = 56;
 /// The longest frame of an ant message (or [`ErrorReply`]), delimiter included: buffer size
 /// for a node that only runs the ant controller.
 pub const MAX_ANT_FRAME: usize = max_frame_len(MAX_ANT_PAYLOAD);
 /// The largest payload of a bee message (or [`ErrorReply`]), for either scalar
 /// ([`BeeStepRequest<Fx>`](BeeStepRequest) with full lists; pinned by a test).
 pub const MAX_BEE_PAYLOAD: usize = 930;
+/// The largest payload of a bee reply ([`BeeStepReply<Fx>`](BeeStepReply); pinned by a test).
+pub const MAX_BEE_REPLY_PAYLOAD: usize = 122;
 /// The longest frame of a bee message (or [`ErrorReply`]), delimiter included.
 pub const MAX_BEE_FRAME: usize = max_frame_len(MAX_BEE_PAYLOAD);
 /// The largest payload of any message of this module, for either scalar.
@@ -61,13 +66,30 @@ pub type WireBeeFrame<S> = BeeFrame<S, WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS>;
 /// | range       | use                                                      |
 /// |-------------|----------------------------------------------------------|
 /// | `0x00`      | never used                                               |
-/// | `0x01-0x0E` | reserved for the session protocol (handshake, later)     |
+/// | `0x01-0x08` | session protocol (see [`Hello`](crate::wire::Hello)): handshake, configure, ping, statistics; a reply is its request's kind + 1 |
+/// | `0x09-0x0E` | reserved for the session protocol                        |
 /// | `0x0F`      | [`ErrorReply`]                                           |
 /// | `0x10-0x1F` | ant controller; a reply is its request's kind + 1        |
 /// | `0x20-0x2F` | bee controller; a reply is its request's kind + 1        |
 /// | `0x30-0x7F` | reserved                                                 |
 /// | `0x80-0xFF` | free for applications and tests; this crate sends none   |
 pub mod kind {
+    /// [`Hello`](crate::wire::Hello): host → device, opens the handshake.
+    pub const HELLO: u8 = 0x01;
+    /// [`Identity`](crate::wire::Identity): the device's answer to [`HELLO`].
+    pub const IDENTITY: u8 = 0x02;
+    /// [`Configure`](crate::wire::Configure): host → device, opens the session.
+    pub const CONFIGURE: u8 = 0x03;
+    /// [`Configured`](crate::wire::Configured): the answer to [`CONFIGURE`].
+    pub const CONFIGURED: u8 = 0x04;
+    /// [`Ping`](crate::wire::Ping).
+    pub const PING: u8 = 0x05;
+    /// [`Pong`](crate::wire::Pong): the answer to [`PING`].
+    pub const PONG: u8 = 0x06;
+    /// [`StatsRequest`](crate::wire::StatsRequest).
+    pub const STATS_REQUEST: u8 = 0x07;
+    /// [`DeviceStats`](crate::wire::DeviceStats): the answer to [`STATS_REQUEST`].
+    pub const DEVICE_STATS: u8 = 0x08;
     /// [`ErrorReply`](super::ErrorReply).
     pub const ERROR_REPLY: u8 = 0x0F;
     /// [`AntPlanRequest`](super::AntPlanRequest).
@@ -86,6 +108,14 @@ pub mod kind {
     /// The message's name, for logs and reports; `None` for a kind this build does not know.
     pub const fn name(kind: u8) -> Option<&'static str> {
         Some(match kind {
+            HELLO => "Hello",
+            IDENTITY => "Identity",
+            CONFIGURE => "Configure",
+            CONFIGURED => "Configured",
+            PING => "Ping",
+            PONG => "Pong",
+            STATS_REQUEST => "StatsRequest",
+            DEVICE_STATS => "DeviceStats",
             ERROR_REPLY => "ErrorReply",
             ANT_PLAN_REQUEST => "AntPlanRequest",
             ANT_PLAN_REPLY => "AntPlanReply",
@@ -95,6 +125,21 @@ pub mod kind {
             BEE_STEP_REPLY => "BeeStepReply",
             _ => return None,
         })
+    }
+
+    /// Whether `kind` is a reply of this protocol (sent by a device, never answered by one).
+    pub const fn is_reply(kind: u8) -> bool {
+        matches!(
+            kind,
+            IDENTITY
+                | CONFIGURED
+                | PONG
+                | DEVICE_STATS
+                | ERROR_REPLY
+                | ANT_PLAN_REPLY
+                | ANT_RESOLVE_REPLY
+                | BEE_STEP_REPLY
+        )
     }
 }
 
@@ -193,6 +238,11 @@ impl ErrorReply {
     pub const UNEXPECTED_KIND: u8 = 12;
     /// [`Error::Payload`]: the request's payload did not decode.
     pub const PAYLOAD: u8 = 13;
+    /// [`Error::NoSession`]: a controller request (or `Configure`) before the session was
+    /// opened with `Hello` and `Configure`.
+    pub const NO_SESSION: u8 = 14;
+    /// [`Error::ParamsMismatch`]: the `Configure`'s parameter hash is not the device's.
+    pub const PARAMS_MISMATCH: u8 = 15;
 
     /// The code of `error`.
     pub const fn new(error: &Error) -> Self {
@@ -210,6 +260,8 @@ impl ErrorReply {
             Error::UnknownKind { .. } => Self::UNKNOWN_KIND,
             Error::UnexpectedKind { .. } => Self::UNEXPECTED_KIND,
             Error::Payload => Self::PAYLOAD,
+            Error::NoSession => Self::NO_SESSION,
+            Error::ParamsMismatch { .. } => Self::PARAMS_MISMATCH,
         };
         ErrorReply { code }
     }
@@ -231,6 +283,8 @@ impl ErrorReply {
             Self::UNKNOWN_KIND => "UnknownKind",
             Self::UNEXPECTED_KIND => "UnexpectedKind",
             Self::PAYLOAD => "Payload",
+            Self::NO_SESSION => "NoSession",
+            Self::PARAMS_MISMATCH => "ParamsMismatch",
             _ => "unknown",
         }
     }
@@ -480,6 +534,8 @@ mod tests {
                 expected: 0,
             },
             Error::Payload,
+            Error::NoSession,
+            Error::ParamsMismatch { device: 1, host: 2 },
         ];
         for (i, e) in all.iter().enumerate() {
             let r = ErrorReply::new(e);
@@ -732,6 +788,11 @@ mod tests {
         assert_eq!(f[..4].iter().chain(&x[..4]).max(), Some(&MAX_ANT_PAYLOAD));
         assert_eq!(f[4..].iter().chain(&x[4..]).max(), Some(&MAX_BEE_PAYLOAD));
         assert_eq!(f.iter().chain(&x).max(), Some(&MAX_PAYLOAD));
+        assert_eq!(
+            [f[1], f[3]].iter().chain(&[x[1], x[3]]).max(),
+            Some(&MAX_ANT_REPLY_PAYLOAD)
+        );
+        assert_eq!(f[5].max(x[5]), MAX_BEE_REPLY_PAYLOAD);
         assert_eq!(MAX_FRAME, MAX_PAYLOAD + 6 + 4 + 1);
         assert_eq!((MAX_ANT_FRAME, MAX_BEE_FRAME, MAX_FRAME), (424, 941, 941));
         assert_eq!(payload_len(&ErrorReply { code: u8::MAX }), 1);

@@ -23,16 +23,7 @@
 //! frame that is already delimited. Nothing here allocates or panics on any input.
 //!
 //! ```
-//! use serde::{Deserialize, Serialize};
-//! use swarm_core::wire::{self, Accumulator, Event, Message};
-//!
-//! #[derive(Serialize, Deserialize, Debug, PartialEq)]
-//! struct Ping {
-//!     nonce: u32,
-//! }
-//! impl Message for Ping {
-//!     const KIND: u8 = 0x70;
-//! }
+//! use swarm_core::wire::{self, Accumulator, Event, Ping};
 //!
 //! let mut line = [0u8; 32];
 //! let n = wire::encode_message(1, &Ping { nonce: 42 }, &mut line).unwrap();
@@ -44,24 +35,82 @@
 //! assert_eq!(frame.message::<Ping>(), Ok(Ping { nonce: 42 }));
 //! ```
 //!
-//! The session protocol on top of the frames (handshake, request/reply pipelining) comes in a
-//! later issue.
+//! # The session
+//!
+//! On top of the frames, a host talks to a device in sessions (`docs/protocol.md`, section 10):
+//!
+//! 1. [`Hello`] → [`Identity`]: the device says what it runs (controller, scalar, math
+//!    backend, capacities, [`params_hash`] of its parameters); the host compares it with what
+//!    it expects ([`Identity::check`], an error naming every difference) and stops there if
+//!    it differs;
+//! 2. [`Configure`] → [`Configured`]: the host opens a session (the device checks the
+//!    parameter hash once more);
+//! 3. controller requests ([`AntPlanRequest`], [`AntResolveRequest`], [`BeeStepRequest`]),
+//!    pipelined, each answered by its reply or an [`ErrorReply`] with the same sequence
+//!    number; [`Ping`] → [`Pong`] and [`StatsRequest`] → [`DeviceStats`] at any time.
+//!
+//! The device side is [`DeviceEndpoint`] (aliases [`AntDevice`], [`BeeDevice`]): bytes in,
+//! reply frames out, fixed buffers, for firmware and for a soft device on a host alike.
+//!
+//! ```
+//! use swarm_core::ant::AntParams;
+//! use swarm_core::wire::{self, AntDevice, Configure, Hello, Identity, MAX_ANT_FRAME, Ping};
+//!
+//! let params = AntParams::<f32>::default();
+//! let mut device = AntDevice::<f32>::new(params, "soft-ant").unwrap();
+//!
+//! // Host: Hello, Configure and a Ping, pipelined in one write.
+//! let mut line = [0u8; 64];
+//! let mut len = 0;
+//! len += wire::encode_message(1, &Hello, &mut line[len..]).unwrap();
+//! let hash = wire::params_hash(&params).unwrap();
+//! let configure = Configure { session: 7, params_hash: hash, reset_stats: true };
+//! len += wire::encode_message(2, &configure, &mut line[len..]).unwrap();
+//! len += wire::encode_message(3, &Ping { nonce: 9 }, &mut line[len..]).unwrap();
+//!
+//! // Device: three replies, in order.
+//! let mut replies = Vec::new();
+//! device.serve(&line[..len], |r| { replies.push(r.to_vec()); Ok::<_, ()>(()) }).unwrap();
+//! assert_eq!(replies.len(), 3);
+//!
+//! // Host: check the identity.
+//! let mut first = replies[0].clone();
+//! let (header, identity) = wire::decode_message::<Identity>(&mut first[..replies[0].len() - 1]).unwrap();
+//! assert_eq!(header.seq, 1);
+//! let expected = Identity::of(&params, MAX_ANT_FRAME, "").unwrap();
+//! identity.check(&expected).unwrap();
+//! ```
 
 mod accumulator;
+mod endpoint;
 mod frame;
 mod header;
 mod message;
+mod session;
+#[cfg(test)]
+mod tests;
 
 pub use accumulator::{Accumulator, Event, Stats};
+pub use endpoint::{
+    AntDevice, BeeDevice, Controller, DeviceEndpoint, MAX_ANT_REPLY_FRAME, MAX_BEE_REPLY_FRAME,
+    SessionState,
+};
 pub use frame::{
     CRC_LEN, CRC16, Frame, MIN_RAW_LEN, decode_frame, decode_payload, encode_frame, max_frame_len,
 };
 pub use header::{HEADER_LEN, Header, PROTOCOL_VERSION};
 pub use message::{
     AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, BeeStepReply, BeeStepRequest,
-    ErrorReply, MAX_ANT_FRAME, MAX_ANT_PAYLOAD, MAX_BEE_FRAME, MAX_BEE_PAYLOAD, MAX_FRAME,
-    MAX_PAYLOAD, WIRE_ANT_NEIGHBOURS, WIRE_ANT_OBJECTS, WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS,
-    WireBeeFrame, WirePlanFrame, WireResolveFrame, kind,
+    ErrorReply, MAX_ANT_FRAME, MAX_ANT_PAYLOAD, MAX_ANT_REPLY_PAYLOAD, MAX_BEE_FRAME,
+    MAX_BEE_PAYLOAD, MAX_BEE_REPLY_PAYLOAD, MAX_FRAME, MAX_PAYLOAD, WIRE_ANT_NEIGHBOURS,
+    WIRE_ANT_OBJECTS, WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS, WireBeeFrame, WirePlanFrame,
+    WireResolveFrame, kind,
+};
+pub use session::{
+    Capacities, Configure, Configured, ControllerKind, DEVICE_NAME_LEN, DeviceName, DeviceStats,
+    Difference, FNV1A64_OFFSET, FNV1A64_PRIME, HandshakeMismatch, Hello, Identity,
+    MAX_SESSION_FRAME, MAX_SESSION_PAYLOAD, Ping, Pong, StatsRequest, device_name, fnv1a64,
+    params_hash,
 };
 
 use crate::Result;
