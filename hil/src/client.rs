@@ -125,7 +125,7 @@ impl<T: Transport> Client<T> {
         let device: Identity = self.call(&Hello)?.map_err(|e| refused("Hello", e))?;
         device
             .check(expected)
-            .map_err(|m| HilError::Handshake(format!("device `{}` refused: {m}", device.name)))?;
+            .map_err(|m| HilError::Handshake(m.to_string()))?;
         Ok(device)
     }
 

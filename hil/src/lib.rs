@@ -13,6 +13,8 @@ pub mod client;
 mod error;
 pub mod loopback;
 pub mod mirror;
+#[cfg(unix)]
+pub mod qemu;
 pub mod soft;
 pub mod transport;
 

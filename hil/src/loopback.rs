@@ -74,12 +74,10 @@ where
         .map_err(|e| HilError::Invalid(format!("soft device: {e}")))?;
     let (device_end, host_end) = open(link)?;
     let soft = SoftDevice::spawn(move |stop| serve(device, device_end, stop).map(|d| d.stats()));
-    let name = host_end.name();
     let mut client = Client::new(Faulty::new(host_end, faults, fault_seed), client);
     let report = mirror_ants::<S, _>(&sc.name, sim, &mut client, opts);
     let _: DeviceStats = soft.stop()?;
     let mut report = report?;
-    report.transport = name;
     if !faults.is_clean() {
         report.faults = Some(client.link_mut().counts());
     }

@@ -11,7 +11,7 @@ use serde::de::DeserializeOwned;
 use swarm_core::ant::{self, AntParams, AntPlan};
 use swarm_core::wire::{
     AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, DeviceStats, ErrorReply,
-    Identity, MAX_ANT_FRAME, params_hash,
+    Identity, MAX_ANT_FRAME, Message, params_hash,
 };
 use swarm_core::{Checked, StepCtx};
 use swarm_sim::ants::{AntGroup, AntSim, plan_frame, resolve_frame};
@@ -79,6 +79,15 @@ pub struct Mismatch {
     pub device: serde_json::Value,
 }
 
+/// Flash and static RAM of a firmware image, from its ELF sections.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct ImageSize {
+    /// `.vector_table + .text + .rodata + .data` (the initial values of `.data` live in flash).
+    pub flash: u64,
+    /// `.data + .bss + .uninit` (the stack not included).
+    pub ram: u64,
+}
+
 /// The outcome of a mirror run.
 #[derive(Clone, Debug, Serialize)]
 pub struct MirrorReport {
@@ -110,6 +119,8 @@ pub struct MirrorReport {
     pub retries: u64,
     /// Ping probes sent at the end of batches (to detect losses early).
     pub probes: u64,
+    /// Times the device was found reset mid-run (it had lost the session) and re-handshaken.
+    pub resets: u32,
     /// Round-trip latency.
     pub latency_us: Latency,
     /// Decisions per second of wall time.
@@ -126,6 +137,8 @@ pub struct MirrorReport {
     pub device_stats: Option<DeviceStats>,
     /// Faults injected on the link, if any.
     pub faults: Option<FaultCounts>,
+    /// The firmware image's size, when the device is a known image (QEMU runs).
+    pub image: Option<ImageSize>,
 }
 
 impl MirrorReport {
@@ -161,8 +174,8 @@ impl MirrorReport {
             self.bytes_per_round_trip
         );
         s += &format!(
-            "link: {} CRC errors, {} resyncs, {} timeouts, {} retries",
-            self.crc_errors, self.resyncs, self.timeouts, self.retries
+            "link: {} CRC errors, {} resyncs, {} timeouts, {} retries, {} device resets",
+            self.crc_errors, self.resyncs, self.timeouts, self.retries, self.resets
         );
         if let Some(f) = &self.faults {
             s += &format!(
@@ -254,11 +267,67 @@ fn core_err(e: swarm_core::Error) -> HilError {
     HilError::Invalid(e.to_string())
 }
 
+/// An open session with the device, re-opened when the device loses it (a reset).
+struct Session {
+    expected: Identity,
+    params_hash: u64,
+    id: u32,
+    /// Times the device was found reset (it answered `NoSession`) and re-handshaken.
+    resets: u32,
+}
+
+impl Session {
+    /// Handshake and configure.
+    fn open<T: Transport>(
+        client: &mut Client<T>,
+        expected: Identity,
+        params_hash: u64,
+        id: u32,
+    ) -> Result<(Self, Identity)> {
+        let device = client.handshake(&expected)?;
+        client.configure(id, params_hash)?;
+        let s = Session {
+            expected,
+            params_hash,
+            id,
+            resets: 0,
+        };
+        Ok((s, device))
+    }
+
+    /// [`Client::call_all`], re-handshaking and sending again the requests a reset device
+    /// refused for want of a session.
+    fn call_all<T: Transport, Q: Message + Serialize + Clone, A: Message + DeserializeOwned>(
+        &mut self,
+        client: &mut Client<T>,
+        requests: &[Q],
+    ) -> Result<Vec<std::result::Result<A, ErrorReply>>> {
+        let mut replies = client.call_all::<Q, A>(requests)?;
+        for _ in 0..3 {
+            let lost: Vec<usize> = (0..replies.len())
+                .filter(|&i| matches!(&replies[i], Err(e) if e.code == ErrorReply::NO_SESSION))
+                .collect();
+            if lost.is_empty() {
+                break;
+            }
+            self.resets += 1;
+            client.handshake(&self.expected)?;
+            client.configure(self.id, self.params_hash)?;
+            let again: Vec<Q> = lost.iter().map(|&i| requests[i].clone()).collect();
+            let answers = client.call_all::<Q, A>(&again)?;
+            for (i, a) in lost.into_iter().zip(answers) {
+                replies[i] = a;
+            }
+        }
+        Ok(replies)
+    }
+}
+
 /// Mirrors the ants of `sim` (every group in scalar type `S`) on the device behind `client`:
 /// handshake, configure, then every step a plan request and a resolve request per chosen ant.
 pub fn mirror_ants<S, T>(
     name: &str,
-    mut sim: AntSim,
+    sim: AntSim,
     client: &mut Client<T>,
     opts: &MirrorOptions,
 ) -> Result<MirrorReport>
@@ -267,16 +336,34 @@ where
     T: Transport,
     AntSim: GroupsOf<S>,
 {
+    mirror_ants_with::<S, T>(name, sim, client, opts, &mut |_| Ok(()))
+}
+
+/// [`mirror_ants`], calling `before_step(step)` before each step (e.g. to reset the board
+/// mid-run in a test).
+pub fn mirror_ants_with<S, T>(
+    name: &str,
+    mut sim: AntSim,
+    client: &mut Client<T>,
+    opts: &MirrorOptions,
+    before_step: &mut dyn FnMut(u32) -> Result<()>,
+) -> Result<MirrorReport>
+where
+    S: SimScalar + Serialize + DeserializeOwned,
+    T: Transport,
+    AntSim: GroupsOf<S>,
+{
     let params: Checked<AntParams<S>> = sim.single_params()?;
     let expected = Identity::of(&*params, MAX_ANT_FRAME, "host").map_err(core_err)?;
-    let device = client.handshake(&expected)?;
-    client.configure(opts.session, params_hash(&*params).map_err(core_err)?)?;
+    let hash = params_hash(&*params).map_err(core_err)?;
+    let (mut session, device) = Session::open(client, expected, hash, opts.session)?;
     let chosen = pick_agents(sim.agents(), opts.agents);
     let bar = bar(opts.progress, opts.steps);
     let mut tally = Tally::default();
     let t0 = Instant::now();
     for _ in 0..opts.steps {
         let step = sim.step;
+        before_step(step)?;
         sim.plan_phase().map_err(sim_err)?;
         let slots = slots_by_id(&sim);
         let mut plans = Vec::with_capacity(chosen.len());
@@ -293,7 +380,7 @@ where
             host_plans.push(ant::plan_checked(&state, &frame, &params, ctx));
             plans.push(AntPlanRequest { state, frame, ctx });
         }
-        let replies = client.call_all::<_, AntPlanReply<S>>(&plans)?;
+        let replies = session.call_all::<_, _, AntPlanReply<S>>(client, &plans)?;
         let mut resolves = Vec::with_capacity(chosen.len());
         let mut host_next = Vec::with_capacity(chosen.len());
         for (((&id, req), host), reply) in chosen.iter().zip(&plans).zip(&host_plans).zip(&replies)
@@ -312,7 +399,7 @@ where
             host_next.push(ant::resolve_checked(&plan, &frame, &params));
             resolves.push(AntResolveRequest { plan, frame });
         }
-        let replies = client.call_all::<_, AntResolveReply<S>>(&resolves)?;
+        let replies = session.call_all::<_, _, AntResolveReply<S>>(client, &resolves)?;
         for (((&id, req), host), reply) in
             chosen.iter().zip(&resolves).zip(&host_next).zip(&replies)
         {
@@ -336,7 +423,7 @@ where
     bar.finish_and_clear();
     let seconds = t0.elapsed().as_secs_f64();
     let device_stats = client.device_stats().ok();
-    Ok(report(
+    let mut r = report(
         name,
         "ants",
         &device,
@@ -346,7 +433,10 @@ where
         tally,
         seconds,
         device_stats,
-    ))
+    );
+    r.resets = session.resets;
+    r.transport = client.link_mut().name();
+    Ok(r)
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -379,6 +469,7 @@ fn report<T: Transport>(
         timeouts: link.timeouts,
         retries: link.retries,
         probes: link.probes,
+        resets: 0,
         latency_us: Latency::of(lat),
         decisions_per_s: tally.decisions as f64 / seconds.max(1e-9),
         bytes_tx: link.bytes_tx,
@@ -387,6 +478,7 @@ fn report<T: Transport>(
         seconds,
         device_stats,
         faults: None,
+        image: None,
     }
 }
 

@@ -198,3 +198,44 @@ fn a_planted_wrong_decision_is_reported_with_its_step_and_agent() {
         "the sensor frame is in the report"
     );
 }
+
+#[test]
+fn a_device_reset_mid_run_is_re_handshaken_and_reported() {
+    let sc = with_scalar(&fig7a(), ScalarType::Fixed);
+    let sim = AntSim::from_scenario(&sc, sc.seed).unwrap();
+    // The scenario's parameters are f32 numbers, cast to fixed point.
+    let params = AntParams::<f32>::default().cast::<swarm_core::Fx>();
+    let mut device = AntDevice::<swarm_core::Fx>::new(params, "resetting-ant").unwrap();
+    let (mut dev_end, host_end) = memory_pair();
+    // The device loses its session (a reset) after its 250th reply.
+    let soft = SoftDevice::spawn(move |stop| {
+        let mut buf = [0u8; 4096];
+        let mut replies = 0;
+        while !stop.load(std::sync::atomic::Ordering::Relaxed) {
+            let n = match dev_end.recv(&mut buf, Duration::from_millis(10)) {
+                Ok(n) => n,
+                Err(_) => break,
+            };
+            let mut out = Vec::new();
+            let mut input = &buf[..n];
+            while let Some((reply, rest)) = device.feed(input) {
+                out.extend_from_slice(reply);
+                input = rest;
+                replies += 1;
+                if replies == 250 {
+                    device.reset();
+                }
+            }
+            if dev_end.send(&out).is_err() {
+                break;
+            }
+        }
+        Ok(())
+    });
+    let mut client = Client::new(host_end, ClientOptions::default());
+    let r = mirror_ants::<swarm_core::Fx, _>(&sc.name, sim, &mut client, &opts(20, 10)).unwrap();
+    soft.stop().unwrap();
+    assert_eq!(r.decisions, 400);
+    assert_eq!(r.mismatches, 0, "{}", r.human());
+    assert_eq!(r.resets, 1, "{}", r.human());
+}

@@ -1,7 +1,7 @@
 //! `swarm-hil`: mirror a device's decisions against the simulator, over a serial port, TCP, or
 //! a loopback to the soft device; or run the soft device on a serial port.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::AtomicBool;
 use std::time::Duration;
@@ -11,7 +11,8 @@ use swarm_core::Fx;
 use swarm_core::wire::AntDevice;
 use swarm_hil::client::{Client, ClientOptions};
 use swarm_hil::loopback::{LinkKind, loopback_ants, with_scalar};
-use swarm_hil::mirror::{GroupsOf, MirrorOptions, MirrorReport, mirror_ants};
+use swarm_hil::mirror::{GroupsOf, MirrorOptions, MirrorReport, mirror_ants, mirror_ants_with};
+use swarm_hil::qemu::{QemuRun, mirror_in_qemu};
 use swarm_hil::transport::{FaultSpec, SerialTransport, TcpTransport, Transport};
 use swarm_sim::ants::AntSim;
 use swarm_sim::scenario::{ScalarType, Scenario};
@@ -121,6 +122,24 @@ enum Command {
         #[command(flatten)]
         run: Run,
     },
+    /// Start a firmware image in QEMU with its UART on a pseudo-terminal and mirror it there
+    /// (QEMU is stopped whatever happens).
+    Qemu {
+        /// The node: `ant-node` or `bee-node` (`--scalar fixed` picks the fixed-point image).
+        #[arg(long)]
+        firmware: String,
+        /// The ELF to run (default: firmware-examples/target/<triple>/release/<image>).
+        #[arg(long)]
+        elf: Option<PathBuf>,
+        /// Send this many random bytes to the board's UART before the session.
+        #[arg(long, default_value_t = 0)]
+        garbage: usize,
+        /// Reset the emulated board before this step (the harness must re-handshake).
+        #[arg(long)]
+        reset_at_step: Option<u32>,
+        #[command(flatten)]
+        run: Run,
+    },
     /// Run the soft device (swarm-core's endpoint on this host) on a serial port, with the
     /// parameters of a scenario, until interrupted.
     Device {
@@ -197,6 +216,40 @@ fn run(cli: Cli) -> Result<bool, AnyError> {
             };
             finish(&report, run.json.as_deref())
         }
+        Command::Qemu {
+            firmware,
+            elf,
+            garbage,
+            reset_at_step,
+            run,
+        } => {
+            let image = match run.scalar {
+                Scalar::F32 => firmware.clone(),
+                Scalar::Fixed => format!("{firmware}-fixed"),
+            };
+            let elf = match elf {
+                Some(e) => e,
+                None => QemuRun::elf_of(Path::new("."), &image)
+                    .ok_or_else(|| format!("unknown firmware `{firmware}` (ant-node, bee-node)"))?,
+            };
+            let qrun = QemuRun {
+                image,
+                elf,
+                garbage,
+                reset_at: reset_at_step,
+            };
+            let sc = with_scalar(&scenario(&run.scenario)?, run.scalar.into());
+            let report = mirror_in_qemu(&qrun, client_options(&run), |client, hook| {
+                let sim = AntSim::from_scenario(&sc, sc.seed)
+                    .map_err(|e| swarm_hil::HilError::Invalid(e.to_string()))?;
+                let o = mirror_options(&run);
+                match run.scalar {
+                    Scalar::F32 => mirror_ants_with::<f32, _>(&sc.name, sim, client, &o, hook),
+                    Scalar::Fixed => mirror_ants_with::<Fx, _>(&sc.name, sim, client, &o, hook),
+                }
+            })?;
+            finish(&report, run.json.as_deref())
+        }
         Command::Device {
             port,
             baud,
@@ -242,9 +295,12 @@ where
     AntSim: GroupsOf<S>,
 {
     let sim = AntSim::from_scenario(sc, sc.seed)?;
-    let mut report = mirror_ants::<S, _>(&sc.name, sim, client, &mirror_options(run))?;
-    report.transport = client.link_mut().name();
-    Ok(report)
+    Ok(mirror_ants::<S, _>(
+        &sc.name,
+        sim,
+        client,
+        &mirror_options(run),
+    )?)
 }
 
 fn scenario(name: &str) -> Result<Scenario, AnyError> {

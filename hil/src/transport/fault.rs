@@ -190,7 +190,11 @@ impl<T: Transport> Transport for Faulty<T> {
     }
 
     fn name(&self) -> String {
-        format!("{} (with faults)", self.inner.name())
+        if self.spec.is_clean() {
+            self.inner.name()
+        } else {
+            format!("{} (with faults)", self.inner.name())
+        }
     }
 }
 

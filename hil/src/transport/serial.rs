@@ -53,9 +53,27 @@ impl SerialTransport {
 
 impl Transport for SerialTransport {
     fn send(&mut self, bytes: &[u8]) -> Result<()> {
+        // A slow reader fills the line's buffer and writes time out: keep going while bytes
+        // move, give up after ten seconds without progress.
+        let mut rest = bytes;
+        let mut stalled = std::time::Instant::now();
+        while !rest.is_empty() {
+            match self.port.write(rest) {
+                Ok(0) => return Err(HilError::Closed(self.path.clone())),
+                Ok(n) => {
+                    rest = &rest[n..];
+                    stalled = std::time::Instant::now();
+                }
+                Err(e)
+                    if matches!(
+                        e.kind(),
+                        ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted
+                    ) && stalled.elapsed() < Duration::from_secs(10) => {}
+                Err(e) => return Err(HilError::io(&self.path, "sending", e)),
+            }
+        }
         self.port
-            .write_all(bytes)
-            .and_then(|_| self.port.flush())
+            .flush()
             .map_err(|e| HilError::io(&self.path, "sending", e))
     }
 
