@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
-# Builds the firmware self-check images and reports their sizes.
+# Builds the firmware images (serial nodes and self-checks) and reports their sizes.
 #
 #   firmware-examples/build.sh [--fetch] [--offline] [--enforce-budgets] [--only ant|bee]
 #
 # Images (ELF, under firmware-examples/target/<triple>/release/):
-#   ant-node        thumbv7m-none-eabi      QEMU lm3s6965evb (Cortex-M3)   f32 (libm)
-#   ant-node-fixed  thumbv7m-none-eabi      QEMU lm3s6965evb (Cortex-M3)   Fx (I16F16)
-#   bee-node        thumbv7em-none-eabihf   QEMU mps2-an386  (Cortex-M4F)  f32 (libm)
-#   bee-node-fixed  thumbv7em-none-eabihf   QEMU mps2-an386  (Cortex-M4F)  Fx (I16F16)
+#   ant-node                  thumbv7m-none-eabi     QEMU lm3s6965evb (Cortex-M3)   f32 (libm)
+#   ant-node-fixed            thumbv7m-none-eabi     QEMU lm3s6965evb (Cortex-M3)   Fx (I16F16)
+#   bee-node                  thumbv7em-none-eabihf  QEMU mps2-an386  (Cortex-M4F)  f32 (libm)
+#   bee-node-fixed            thumbv7em-none-eabihf  QEMU mps2-an386  (Cortex-M4F)  Fx (I16F16)
+# are the serial nodes (the device endpoint on UART0; scripts/qemu-serial.sh runs them), and
+#   ant-node-selfcheck, ant-node-fixed-selfcheck, bee-node-selfcheck, bee-node-fixed-selfcheck
+# the self-check images (replay a scenario, compare with the host; scripts/qemu-run.sh).
 #
 # Toolchain, per target: rustup's cargo if `rustup target list --installed` has the target;
 # otherwise Debian's rustc/cargo (packages rustc-web cargo-web rust-web-src lld) with
@@ -21,7 +24,9 @@
 # Sizes go to firmware-examples/target/sizes.json (and a table on stdout):
 #   flash      = .vector_table + .text + .rodata + .data (the initial values of .data live in flash)
 #   ram_static = .data + .bss + .uninit (the stack is not included; qemu-run.sh reports its peak)
-# Budgets (see README.md): ant-node-fixed <= 16 KiB flash / 4 KiB RAM; bee-node* <= 32 KiB / 8 KiB.
+# Budgets (see README.md), for the serial nodes: ant-node-fixed <= 16 KiB flash / 4 KiB RAM;
+# bee-node, bee-node-fixed <= 32 KiB / 8 KiB. The self-check images carry their scenario and
+# its expected-decision table on top and have no budget.
 # Over budget is a warning, or an error with --enforce-budgets (or FW_ENFORCE_BUDGETS=1).
 set -euo pipefail
 
@@ -38,7 +43,7 @@ while [ $# -gt 0 ]; do
         --fetch) FETCH=1 ;;
         --enforce-budgets) ENFORCE=1 ;;
         --only) ONLY=${2:?--only needs ant or bee}; shift ;;
-        -h|--help) sed -n '2,30p' "$0"; exit 0 ;;
+        -h|--help) awk 'NR > 1 && /^set /{exit} NR > 1' "$HERE/build.sh"; exit 0 ;;
         *) echo "build.sh: unknown argument '$1' (try --help)" >&2; exit 2 ;;
     esac
     shift
@@ -152,12 +157,16 @@ IMAGES=()
 if [ -z "$ONLY" ] || [ "$ONLY" = ant ]; then
     build ant-node thumbv7m-none-eabi
     IMAGES+=("ant-node thumbv7m-none-eabi lm3s6965evb f32 - -"
-             "ant-node-fixed thumbv7m-none-eabi lm3s6965evb I16F16 16384 4096")
+             "ant-node-fixed thumbv7m-none-eabi lm3s6965evb I16F16 16384 4096"
+             "ant-node-selfcheck thumbv7m-none-eabi lm3s6965evb f32 - -"
+             "ant-node-fixed-selfcheck thumbv7m-none-eabi lm3s6965evb I16F16 - -")
 fi
 if [ -z "$ONLY" ] || [ "$ONLY" = bee ]; then
     build bee-node thumbv7em-none-eabihf
     IMAGES+=("bee-node thumbv7em-none-eabihf mps2-an386 f32 32768 8192"
-             "bee-node-fixed thumbv7em-none-eabihf mps2-an386 I16F16 32768 8192")
+             "bee-node-fixed thumbv7em-none-eabihf mps2-an386 I16F16 32768 8192"
+             "bee-node-selfcheck thumbv7em-none-eabihf mps2-an386 f32 - -"
+             "bee-node-fixed-selfcheck thumbv7em-none-eabihf mps2-an386 I16F16 - -")
 fi
 
 # --- sizes ------------------------------------------------------------------------------------
@@ -187,7 +196,7 @@ OVER=0
     echo "  \"ram_static\": \".data + .bss + .uninit (stack excluded)\","
     echo "  \"images\": ["
 } > "$SIZES.tmp"
-printf '\n%-16s %-22s %-12s %-7s %8s %8s %8s %8s %8s %10s %10s\n' image target board scalar \
+printf '\n%-25s %-22s %-12s %-7s %8s %8s %8s %8s %8s %10s %10s\n' image target board scalar \
     vectors text rodata data bss FLASH RAM
 first=1
 for spec in "${IMAGES[@]}"; do
@@ -206,7 +215,7 @@ for spec in "${IMAGES[@]}"; do
     elif [ "$bflash" != - ]; then
         verdict="  (budget $((bflash / 1024)) KiB / $((bram / 1024)) KiB: ok)"
     fi
-    printf '%-16s %-22s %-12s %-7s %8d %8d %8d %8d %8d %10d %10d%s\n' "$name" "$triple" "$board" \
+    printf '%-25s %-22s %-12s %-7s %8d %8d %8d %8d %8d %10d %10d%s\n' "$name" "$triple" "$board" \
         "$scalar" "${s[.vector_table]}" "${s[.text]}" "${s[.rodata]}" "${s[.data]}" "${s[.bss]}" \
         "$flash" "$ram" "$verdict"
     [ $first = 1 ] || echo "," >> "$SIZES.tmp"

@@ -3,10 +3,12 @@
 #
 #   scripts/qemu-run.sh [--build] [--self-test] [--timeout SECONDS] [IMAGE...]
 #
-# IMAGE is ant-node, ant-node-fixed, bee-node or bee-node-fixed (default: all four). Each image
-# replays its scenario on the emulated MCU, compares every decision word bit for bit with the
-# values the host computed at build time, prints one line over semihosting and exits QEMU with
-# status 0 only if all matched.
+# IMAGE is ant-node, ant-node-fixed, bee-node or bee-node-fixed (default: all four): the
+# self-check image of that node, firmware-examples/target/<triple>/release/<IMAGE>-selfcheck
+# (the `-selfcheck` suffix may be given too). Each replays its scenario on the emulated MCU,
+# compares every decision word bit for bit with the values the host computed at build time,
+# prints one line over semihosting and exits QEMU with status 0 only if all matched.
+# (The serial node images themselves, without the suffix, run with scripts/qemu-serial.sh.)
 #
 #   --build      run firmware-examples/build.sh first (otherwise the images must exist)
 #   --self-test  also run each image with the semihosting argument `corrupt`: the image flips
@@ -28,8 +30,10 @@ while [ $# -gt 0 ]; do
         --build) BUILD=1 ;;
         --self-test) SELFTEST=1 ;;
         --timeout) TIMEOUT=${2:?--timeout needs seconds}; shift ;;
-        -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+        -h|--help) awk 'NR > 1 && /^set /{exit} NR > 1' "$0"; exit 0 ;;
         ant-node|ant-node-fixed|bee-node|bee-node-fixed) SELECTED+=("$1") ;;
+        ant-node-selfcheck|ant-node-fixed-selfcheck|bee-node-selfcheck|bee-node-fixed-selfcheck)
+            SELECTED+=("${1%-selfcheck}") ;;
         *) echo "qemu-run.sh: unknown argument '$1' (try --help)" >&2; exit 2 ;;
     esac
     shift
@@ -63,7 +67,7 @@ run_one() {
     local img=$1 expect=$2; shift 2
     local triple machine cpu elf rc semi label
     read -r triple machine cpu <<<"$(board "$img")"
-    elf="$FW/target/$triple/release/$img"
+    elf="$FW/target/$triple/release/$img-selfcheck"
     label="$img"; [ "$expect" = fail ] && label="$img (self-test: corrupted expectation)"
     if [ ! -f "$elf" ]; then
         echo "FAIL  $label: $elf missing (run firmware-examples/build.sh or pass --build)"

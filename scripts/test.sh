@@ -79,7 +79,9 @@ if ((QUICK == 1)); then
 elif ((firmware_ok == 1)); then
     stage "firmware: build ant-node and bee-node (f32, fixed) for Cortex-M" firmware-examples/build.sh
     stage "firmware: scenario branch coverage (host)" bash -c 'cd firmware-examples && cargo test -q -p fw-scenario --features std,fixed && cargo test -q -p fw-scenario --features std'
+    stage "firmware: node loop and parameters (host)" bash -c 'cd firmware-examples && cargo test -q -p fw-node'
     stage "firmware: every image in qemu-system-arm equals the host, and a corrupted table fails" scripts/qemu-run.sh --self-test
+    stage "firmware: swarm-hil mirrors every serial node in QEMU (2,000 decisions each, garbage, reset, refusal)" scripts/hil-qemu.sh
 fi
 
 echo

@@ -6,13 +6,18 @@ use serde::Serialize;
 use serde::de::DeserializeOwned;
 use swarm_core::Fx;
 use swarm_core::ant::AntParams;
-use swarm_core::wire::{AntDevice, DeviceStats};
+use swarm_core::bee::BeeParams;
+use swarm_core::wire::{AntDevice, BeeDevice, Controller};
 use swarm_sim::ants::AntSim;
+use swarm_sim::bees::BeeSim;
 use swarm_sim::scalar::SimScalar;
 use swarm_sim::scenario::{ScalarType, Scenario};
 
 use crate::client::{Client, ClientOptions};
-use crate::mirror::{GroupsOf, MirrorOptions, MirrorReport, mirror_ants};
+use crate::mirror::{
+    BeeGroupsOf, DeviceParams, GroupsOf, MirrorOptions, MirrorReport, device_params,
+    mirror_scenario,
+};
 use crate::soft::{SoftDevice, serve};
 use crate::transport::{FaultSpec, Faulty, Transport, memory_pair};
 use crate::{HilError, Result};
@@ -35,9 +40,9 @@ pub fn with_scalar(sc: &Scenario, scalar: ScalarType) -> Scenario {
     sc
 }
 
-/// Mirrors scenario `sc` (ants) in `scalar` against a soft device over `link`, with `faults`
-/// injected on the link (both directions, seeded by `fault_seed`).
-pub fn loopback_ants(
+/// Mirrors scenario `sc` (ants or bees) in `scalar` against a soft device over `link`, with
+/// `faults` injected on the link (both directions, seeded by `fault_seed`).
+pub fn loopback(
     sc: &Scenario,
     scalar: ScalarType,
     link: LinkKind,
@@ -46,15 +51,15 @@ pub fn loopback_ants(
     client: ClientOptions,
     opts: &MirrorOptions,
 ) -> Result<MirrorReport> {
+    let sc = with_scalar(sc, scalar);
     match scalar {
-        ScalarType::F32 => run_ants::<f32>(sc, scalar, link, faults, fault_seed, client, opts),
-        ScalarType::Fixed => run_ants::<Fx>(sc, scalar, link, faults, fault_seed, client, opts),
+        ScalarType::F32 => run::<f32>(&sc, link, faults, fault_seed, client, opts),
+        ScalarType::Fixed => run::<Fx>(&sc, link, faults, fault_seed, client, opts),
     }
 }
 
-fn run_ants<S>(
+fn run<S>(
     sc: &Scenario,
-    scalar: ScalarType,
     link: LinkKind,
     faults: FaultSpec,
     fault_seed: u64,
@@ -64,24 +69,33 @@ fn run_ants<S>(
 where
     S: SimScalar + Serialize + DeserializeOwned + Send + 'static,
     AntSim: GroupsOf<S>,
-    AntParams<S>: swarm_core::wire::Controller,
+    BeeSim: BeeGroupsOf<S>,
+    AntParams<S>: Controller,
+    BeeParams<S>: Controller,
 {
-    let sc = with_scalar(sc, scalar);
-    let sim = AntSim::from_scenario(&sc, sc.seed)
-        .map_err(|e| HilError::Invalid(format!("scenario `{}`: {e}", sc.name)))?;
-    let params: AntParams<S> = *GroupsOf::<S>::single_params(&sim)?;
-    let device = AntDevice::<S>::new(params, "soft-ant")
-        .map_err(|e| HilError::Invalid(format!("soft device: {e}")))?;
     let (device_end, host_end) = open(link)?;
-    let soft = SoftDevice::spawn(move |stop| serve(device, device_end, stop).map(|d| d.stats()));
+    let soft: SoftDevice<()> = match device_params::<S>(sc)? {
+        DeviceParams::Ant(p) => {
+            let device = AntDevice::<S>::new(p, "soft-ant").map_err(soft_err)?;
+            SoftDevice::spawn(move |stop| serve(device, device_end, stop).map(|_| ()))
+        }
+        DeviceParams::Bee(p) => {
+            let device = BeeDevice::<S>::new(p, "soft-bee").map_err(soft_err)?;
+            SoftDevice::spawn(move |stop| serve(device, device_end, stop).map(|_| ()))
+        }
+    };
     let mut client = Client::new(Faulty::new(host_end, faults, fault_seed), client);
-    let report = mirror_ants::<S, _>(&sc.name, sim, &mut client, opts);
-    let _: DeviceStats = soft.stop()?;
+    let report = mirror_scenario::<S, _>(sc, &mut client, opts, &mut |_| Ok(()));
+    soft.stop()?;
     let mut report = report?;
     if !faults.is_clean() {
         report.faults = Some(client.link_mut().counts());
     }
     Ok(report)
+}
+
+fn soft_err(e: swarm_core::Error) -> HilError {
+    HilError::Invalid(format!("soft device: {e}"))
 }
 
 fn open(link: LinkKind) -> Result<(Box<dyn Transport>, Box<dyn Transport>)> {
@@ -121,7 +135,7 @@ mod tests {
     fn memory_loopback_mirrors_ants_without_a_mismatch() {
         let sc = swarm_sim::scenario::builtin("ants-fig7a-single-colony").unwrap();
         for scalar in [ScalarType::F32, ScalarType::Fixed] {
-            let r = loopback_ants(
+            let r = loopback(
                 &sc,
                 scalar,
                 LinkKind::Memory,

@@ -9,13 +9,16 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 use swarm_core::ant::{self, AntParams, AntPlan};
+use swarm_core::bee::{self, BeeParams, BeeState};
 use swarm_core::wire::{
-    AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, DeviceStats, ErrorReply,
-    Identity, MAX_ANT_FRAME, Message, params_hash,
+    AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, BeeStepReply, BeeStepRequest,
+    DeviceStats, ErrorReply, Identity, MAX_ANT_FRAME, MAX_BEE_FRAME, Message, params_hash,
 };
 use swarm_core::{Checked, StepCtx};
-use swarm_sim::ants::{AntGroup, AntSim, plan_frame, resolve_frame};
+use swarm_sim::ants::{AntSim, plan_frame, resolve_frame};
+use swarm_sim::bees::{BeeSim, bee_frame, frame_time};
 use swarm_sim::scalar::{ByScalar, SimScalar};
+use swarm_sim::scenario::{Scenario, World};
 
 use crate::client::Client;
 use crate::transport::{FaultCounts, Transport};
@@ -121,6 +124,9 @@ pub struct MirrorReport {
     pub probes: u64,
     /// Times the device was found reset mid-run (it had lost the session) and re-handshaken.
     pub resets: u32,
+    /// Decisions that differed but equalled the host's when asked again: line damage that
+    /// passed the CRC, not a device divergence (a real divergence repeats).
+    pub reasked: u64,
     /// Round-trip latency.
     pub latency_us: Latency,
     /// Decisions per second of wall time.
@@ -174,8 +180,9 @@ impl MirrorReport {
             self.bytes_per_round_trip
         );
         s += &format!(
-            "link: {} CRC errors, {} resyncs, {} timeouts, {} retries, {} device resets",
-            self.crc_errors, self.resyncs, self.timeouts, self.retries, self.resets
+            "link: {} CRC errors, {} resyncs, {} timeouts, {} retries, {} device resets, {} \
+             answers damaged past the CRC (asked again)",
+            self.crc_errors, self.resyncs, self.timeouts, self.retries, self.resets, self.reasked
         );
         if let Some(f) = &self.faults {
             s += &format!(
@@ -267,6 +274,59 @@ fn core_err(e: swarm_core::Error) -> HilError {
     HilError::Invalid(e.to_string())
 }
 
+/// Mirrors scenario `sc` (ants or bees, every group already in scalar type `S`) on the device
+/// behind `client`, calling `before_step` before each step.
+pub fn mirror_scenario<S, T>(
+    sc: &Scenario,
+    client: &mut Client<T>,
+    opts: &MirrorOptions,
+    before_step: &mut dyn FnMut(u32) -> Result<()>,
+) -> Result<MirrorReport>
+where
+    S: SimScalar + Serialize + DeserializeOwned,
+    T: Transport,
+    AntSim: GroupsOf<S>,
+    BeeSim: BeeGroupsOf<S>,
+{
+    let bad = |e: swarm_sim::SimError| HilError::Invalid(format!("scenario `{}`: {e}", sc.name));
+    match sc.world {
+        World::Ants2D { .. } => {
+            let sim = AntSim::from_scenario(sc, sc.seed).map_err(bad)?;
+            mirror_ants_with::<S, T>(&sc.name, sim, client, opts, before_step)
+        }
+        World::Bees3D { .. } => {
+            let sim = BeeSim::from_scenario(sc, sc.seed).map_err(bad)?;
+            mirror_bees_with::<S, T>(&sc.name, sim, client, opts, before_step)
+        }
+    }
+}
+
+/// The parameters a device must run to mirror scenario `sc` in scalar type `S`.
+pub enum DeviceParams<S> {
+    /// An ant device.
+    Ant(AntParams<S>),
+    /// A bee device.
+    Bee(BeeParams<S>),
+}
+
+/// [`DeviceParams`] of scenario `sc` (every group already in scalar type `S`).
+pub fn device_params<S>(sc: &Scenario) -> Result<DeviceParams<S>>
+where
+    S: SimScalar,
+    AntSim: GroupsOf<S>,
+    BeeSim: BeeGroupsOf<S>,
+{
+    let bad = |e: swarm_sim::SimError| HilError::Invalid(format!("scenario `{}`: {e}", sc.name));
+    Ok(match sc.world {
+        World::Ants2D { .. } => DeviceParams::Ant(*GroupsOf::<S>::single_params(
+            &AntSim::from_scenario(sc, sc.seed).map_err(bad)?,
+        )?),
+        World::Bees3D { .. } => DeviceParams::Bee(*BeeGroupsOf::<S>::single_params(
+            &BeeSim::from_scenario(sc, sc.seed).map_err(bad)?,
+        )?),
+    })
+}
+
 /// An open session with the device, re-opened when the device loses it (a reset).
 struct Session {
     expected: Identity,
@@ -274,9 +334,62 @@ struct Session {
     id: u32,
     /// Times the device was found reset (it answered `NoSession`) and re-handshaken.
     resets: u32,
+    /// Decisions that differed, and equalled the host's when asked again (damage on the line
+    /// that passed the CRC).
+    reasked: u64,
+}
+
+/// The postcard bytes of a decision: what "bit for bit" compares.
+fn bytes<D: Serialize>(d: &D) -> Option<Vec<u8>> {
+    postcard::to_allocvec(d).ok()
 }
 
 impl Session {
+    /// Sends `requests` and returns the device's decisions (`decision` of each reply). A
+    /// decision that differs from the host's (`host`) is asked for again, up to twice: a CRC-16
+    /// lets about one damaged frame in 65,536 through, and a device's real divergence repeats
+    /// where line damage does not. An answer that then equals the host's replaces the first
+    /// (counted in `reasked`); otherwise the first stands as the device's decision.
+    fn ask<T, Q, A, D>(
+        &mut self,
+        client: &mut Client<T>,
+        requests: &[Q],
+        host: &[D],
+        decision: impl Fn(&A) -> D,
+    ) -> Result<Vec<std::result::Result<D, ErrorReply>>>
+    where
+        T: Transport,
+        Q: Message + Serialize + Clone,
+        A: Message + DeserializeOwned,
+        D: Serialize,
+    {
+        let mut out: Vec<std::result::Result<D, ErrorReply>> = self
+            .call_all::<T, Q, A>(client, requests)?
+            .into_iter()
+            .map(|r| r.map(|a| decision(&a)))
+            .collect();
+        for _ in 0..2 {
+            let differ: Vec<usize> = (0..out.len())
+                .filter(|&i| out[i].as_ref().ok().and_then(bytes) != bytes(&host[i]))
+                .collect();
+            if differ.is_empty() {
+                break;
+            }
+            let again: Vec<Q> = differ.iter().map(|&i| requests[i].clone()).collect();
+            let answers = self.call_all::<T, Q, A>(client, &again)?;
+            for (i, a) in differ.into_iter().zip(answers) {
+                if let Ok(a) = a {
+                    let d = decision(&a);
+                    if bytes(&d) == bytes(&host[i]) {
+                        out[i] = Ok(d);
+                        self.reasked += 1;
+                    }
+                }
+            }
+        }
+        Ok(out)
+    }
+
     /// Handshake and configure.
     fn open<T: Transport>(
         client: &mut Client<T>,
@@ -291,6 +404,7 @@ impl Session {
             params_hash,
             id,
             resets: 0,
+            reasked: 0,
         };
         Ok((s, device))
     }
@@ -380,38 +494,40 @@ where
             host_plans.push(ant::plan_checked(&state, &frame, &params, ctx));
             plans.push(AntPlanRequest { state, frame, ctx });
         }
-        let replies = session.call_all::<_, _, AntPlanReply<S>>(client, &plans)?;
+        let host_plans = host_plans
+            .into_iter()
+            .zip(&chosen)
+            .map(|(h, id)| {
+                h.map_err(|e| {
+                    HilError::Invalid(format!("the host refused ant {id} at step {step}: {e}"))
+                })
+            })
+            .collect::<Result<Vec<AntPlan<S>>>>()?;
+        let device = session.ask(client, &plans, &host_plans, |r: &AntPlanReply<S>| r.plan)?;
         let mut resolves = Vec::with_capacity(chosen.len());
         let mut host_next = Vec::with_capacity(chosen.len());
-        for (((&id, req), host), reply) in chosen.iter().zip(&plans).zip(&host_plans).zip(&replies)
+        for ((&id, req), (host, dev)) in chosen
+            .iter()
+            .zip(&plans)
+            .zip(host_plans.iter().zip(&device))
         {
-            let host = host.as_ref().map_err(|e| {
-                HilError::Invalid(format!("the host refused ant {id} at step {step}: {e}"))
-            })?;
-            tally.check(
-                (step, id, "plan"),
-                req,
-                host,
-                &reply.as_ref().map(|r| r.plan).map_err(|e| *e),
-            );
-            let plan: AntPlan<S> = *host;
+            tally.check((step, id, "plan"), req, host, dev);
             let frame = resolve_frame::<S>(&sim.world, slots[id as usize]);
-            host_next.push(ant::resolve_checked(&plan, &frame, &params));
-            resolves.push(AntResolveRequest { plan, frame });
-        }
-        let replies = session.call_all::<_, _, AntResolveReply<S>>(client, &resolves)?;
-        for (((&id, req), host), reply) in
-            chosen.iter().zip(&resolves).zip(&host_next).zip(&replies)
-        {
-            let host = host.as_ref().map_err(|e| {
+            let next = ant::resolve_checked(host, &frame, &params).map_err(|e| {
                 HilError::Invalid(format!("the host refused ant {id} at step {step}: {e}"))
             })?;
-            tally.check(
-                (step, id, "resolve"),
-                req,
-                host,
-                &reply.as_ref().map(|r| r.state).map_err(|e| *e),
-            );
+            host_next.push(next);
+            resolves.push(AntResolveRequest { plan: *host, frame });
+        }
+        let device = session.ask(client, &resolves, &host_next, |r: &AntResolveReply<S>| {
+            r.state
+        })?;
+        for ((&id, req), (host, dev)) in chosen
+            .iter()
+            .zip(&resolves)
+            .zip(host_next.iter().zip(&device))
+        {
+            tally.check((step, id, "resolve"), req, host, dev);
         }
         sim.resolve_phase().map_err(sim_err)?;
         bar.inc(1);
@@ -435,8 +551,172 @@ where
         device_stats,
     );
     r.resets = session.resets;
+    r.reasked = session.reasked;
     r.transport = client.link_mut().name();
     Ok(r)
+}
+
+/// Mirrors the bees of `sim` (every group in scalar type `S`) on the device behind `client`:
+/// handshake, configure, then every step a step request per chosen bee.
+pub fn mirror_bees<S, T>(
+    name: &str,
+    sim: BeeSim,
+    client: &mut Client<T>,
+    opts: &MirrorOptions,
+) -> Result<MirrorReport>
+where
+    S: SimScalar + Serialize + DeserializeOwned,
+    T: Transport,
+    BeeSim: BeeGroupsOf<S>,
+{
+    mirror_bees_with::<S, T>(name, sim, client, opts, &mut |_| Ok(()))
+}
+
+/// [`mirror_bees`], calling `before_step(step)` before each step.
+pub fn mirror_bees_with<S, T>(
+    name: &str,
+    mut sim: BeeSim,
+    client: &mut Client<T>,
+    opts: &MirrorOptions,
+    before_step: &mut dyn FnMut(u32) -> Result<()>,
+) -> Result<MirrorReport>
+where
+    S: SimScalar + Serialize + DeserializeOwned,
+    T: Transport,
+    BeeSim: BeeGroupsOf<S>,
+{
+    let params: Checked<BeeParams<S>> = sim.single_params()?;
+    let expected = Identity::of(&*params, MAX_BEE_FRAME, "host").map_err(core_err)?;
+    let hash = params_hash(&*params).map_err(core_err)?;
+    let (mut session, device) = Session::open(client, expected, hash, opts.session)?;
+    let chosen = pick_agents(sim.agents(), opts.agents);
+    let bar = bar(opts.progress, opts.steps);
+    let mut tally = Tally::default();
+    let t0 = Instant::now();
+    for _ in 0..opts.steps {
+        let step = sim.step;
+        before_step(step)?;
+        // The frames of this step, from the world as the step will see it.
+        sim.world.index_positions();
+        let slots = bee_slots_by_id(&sim);
+        let t = S::from_f64(frame_time(step, params.dt.to_f64()));
+        let mut requests = Vec::with_capacity(chosen.len());
+        let mut host = Vec::with_capacity(chosen.len());
+        for &id in &chosen {
+            let slot = slots[id as usize];
+            let (state, goal) = sim.bee_of(slot)?;
+            let goal = goal.and_then(|g| sim.world.target_center(g));
+            let frame = bee_frame::<S>(&sim.world, slot, goal, t);
+            host.push(bee::step_checked(&state, &frame, &params).map_err(|e| {
+                HilError::Invalid(format!("the host refused bee {id} at step {step}: {e}"))
+            })?);
+            requests.push(BeeStepRequest { state, frame });
+        }
+        let device = session.ask(client, &requests, &host, |r: &BeeStepReply<S>| {
+            (r.decision, r.state)
+        })?;
+        for ((&id, req), (host, dev)) in chosen.iter().zip(&requests).zip(host.iter().zip(&device))
+        {
+            tally.check((step, id, "step"), req, host, dev);
+        }
+        sim.step().map_err(sim_err)?;
+        bar.inc(1);
+        bar.set_message(format!(
+            "{} decisions, {} mismatches",
+            tally.decisions, tally.mismatches
+        ));
+    }
+    bar.finish_and_clear();
+    let seconds = t0.elapsed().as_secs_f64();
+    let device_stats = client.device_stats().ok();
+    let mut r = report(
+        name,
+        "bees",
+        &device,
+        client,
+        chosen.len(),
+        opts.steps,
+        tally,
+        seconds,
+        device_stats,
+    );
+    r.resets = session.resets;
+    r.reasked = session.reasked;
+    r.transport = client.link_mut().name();
+    Ok(r)
+}
+
+/// Slot of every bee id, this step.
+fn bee_slots_by_id(sim: &BeeSim) -> Vec<usize> {
+    let mut out = vec![0; sim.agents()];
+    for (slot, &id) in sim.world.sensed.id.iter().enumerate() {
+        out[id as usize] = slot;
+    }
+    out
+}
+
+/// Access to the bee groups of one scalar type.
+pub trait BeeGroupsOf<S> {
+    /// The parameters shared by every group (an error if a group differs or has another
+    /// scalar type).
+    fn single_params(&self) -> Result<Checked<BeeParams<S>>>;
+    /// The state and the goal (target object id) of the bee in world slot `slot`.
+    fn bee_of(&self, slot: usize) -> Result<(BeeState<S>, Option<u16>)>;
+}
+
+macro_rules! bee_groups_of {
+    ($s:ty, $variant:ident) => {
+        impl BeeGroupsOf<$s> for BeeSim {
+            fn single_params(&self) -> Result<Checked<BeeParams<$s>>> {
+                one_params(self.groups.iter().map(|g| match g {
+                    ByScalar::$variant(g) => Some((g.name.as_str(), &g.params)),
+                    _ => None,
+                }))
+            }
+            fn bee_of(&self, slot: usize) -> Result<(BeeState<$s>, Option<u16>)> {
+                self.groups
+                    .iter()
+                    .find_map(|g| match g {
+                        ByScalar::$variant(g)
+                            if (g.first..g.first + g.states.len()).contains(&slot) =>
+                        {
+                            Some((g.states[slot - g.first], g.goal))
+                        }
+                        _ => None,
+                    })
+                    .ok_or_else(|| {
+                        HilError::Invalid(format!("no bee of this scalar type in slot {slot}"))
+                    })
+            }
+        }
+    };
+}
+bee_groups_of!(f32, F32);
+bee_groups_of!(swarm_core::Fx, Fixed);
+
+/// The one parameter set of groups given as `(name, params)`, `None` for a group of another
+/// scalar type.
+fn one_params<'a, P: PartialEq + Clone + 'a>(
+    groups: impl Iterator<Item = Option<(&'a str, &'a Checked<P>)>>,
+) -> Result<Checked<P>> {
+    let mut first: Option<(&str, &Checked<P>)> = None;
+    for g in groups {
+        let (name, params) = g.ok_or_else(|| {
+            HilError::Invalid("every group must have the device's scalar type".into())
+        })?;
+        if let Some((f, fp)) = first
+            && **fp != **params
+        {
+            return Err(HilError::Invalid(format!(
+                "groups `{f}` and `{name}` have different parameters; a device runs one \
+                 parameter set"
+            )));
+        }
+        first.get_or_insert((name, params));
+    }
+    first
+        .map(|(_, p)| p.clone())
+        .ok_or_else(|| HilError::Invalid("the scenario has no agents".into()))
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -470,6 +750,7 @@ fn report<T: Transport>(
         retries: link.retries,
         probes: link.probes,
         resets: 0,
+        reasked: 0,
         latency_us: Latency::of(lat),
         decisions_per_s: tally.decisions as f64 / seconds.max(1e-9),
         bytes_tx: link.bytes_tx,
@@ -508,26 +789,10 @@ macro_rules! groups_of {
     ($s:ty, $variant:ident) => {
         impl GroupsOf<$s> for AntSim {
             fn single_params(&self) -> Result<Checked<AntParams<$s>>> {
-                let mut out: Option<&AntGroup<$s>> = None;
-                for g in &self.groups {
-                    let ByScalar::$variant(g) = g else {
-                        return Err(HilError::Invalid(
-                            "every group must have the device's scalar type".into(),
-                        ));
-                    };
-                    if let Some(f) = out
-                        && *f.params != *g.params
-                    {
-                        return Err(HilError::Invalid(format!(
-                            "groups `{}` and `{}` have different parameters; a device runs \
-                             one parameter set",
-                            f.name, g.name
-                        )));
-                    }
-                    out.get_or_insert(g);
-                }
-                out.map(|g| g.params.clone())
-                    .ok_or_else(|| HilError::Invalid("the scenario has no ants".into()))
+                one_params(self.groups.iter().map(|g| match g {
+                    ByScalar::$variant(g) => Some((g.name.as_str(), &g.params)),
+                    _ => None,
+                }))
             }
             fn state_of(&self, slot: usize) -> Result<swarm_core::ant::AntState<$s>> {
                 self.groups

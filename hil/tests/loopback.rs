@@ -6,7 +6,7 @@ use std::time::Duration;
 use swarm_core::ant::{AntParams, AntPlan};
 use swarm_core::wire::{self, Accumulator, AntDevice, AntPlanReply, Event, kind};
 use swarm_hil::client::{Client, ClientOptions};
-use swarm_hil::loopback::{LinkKind, loopback_ants, with_scalar};
+use swarm_hil::loopback::{LinkKind, loopback, with_scalar};
 use swarm_hil::mirror::{MirrorOptions, mirror_ants, pick_agents};
 use swarm_hil::soft::{SoftDevice, serve};
 use swarm_hil::transport::{FaultSpec, Transport, memory_pair};
@@ -28,28 +28,39 @@ fn opts(agents: usize, steps: u32) -> MirrorOptions {
 }
 
 #[test]
-fn ten_thousand_ant_decisions_match_in_memory_and_over_a_pty_in_both_scalars() {
-    for link in [LinkKind::Memory, LinkKind::Pty] {
-        for scalar in [ScalarType::F32, ScalarType::Fixed] {
-            let r = loopback_ants(
-                &fig7a(),
-                scalar,
-                link,
-                FaultSpec::default(),
-                1,
-                ClientOptions::default(),
-                &opts(50, 100),
-            )
-            .unwrap();
-            assert_eq!(r.decisions, 10_000, "{link:?} {scalar:?}");
-            assert_eq!(r.mismatches, 0, "{link:?} {scalar:?}: {}", r.human());
-            assert_eq!((r.timeouts, r.retries, r.crc_errors), (0, 0, 0));
-            let dev = r.device_stats.unwrap();
-            // Every request intact (the probes of the session setup and of the final stats
-            // request fall outside the device's counting).
-            let ok = dev.link.frames_ok as u64;
-            assert!((10_000..=10_000 + r.probes + 1).contains(&ok), "{ok}");
-            assert_eq!(dev.link.resyncs(), 0);
+fn ten_thousand_decisions_of_ants_and_of_bees_match_in_memory_and_over_a_pty_in_both_scalars() {
+    // Ants: 50 ants × 100 steps × (plan + resolve); bees: 100 bees × 100 steps.
+    let cases = [
+        (fig7a(), 50),
+        (scenario::builtin("bees-fig15-nest").unwrap(), 100),
+    ];
+    for (sc, agents) in &cases {
+        for link in [LinkKind::Memory, LinkKind::Pty] {
+            for scalar in [ScalarType::F32, ScalarType::Fixed] {
+                let what = format!("{} {link:?} {scalar:?}", sc.name);
+                let r = loopback(
+                    sc,
+                    scalar,
+                    link,
+                    FaultSpec::default(),
+                    1,
+                    ClientOptions::default(),
+                    &opts(*agents, 100),
+                )
+                .unwrap();
+                assert_eq!(r.decisions, 10_000, "{what}");
+                assert_eq!(r.mismatches, 0, "{what}: {}", r.human());
+                assert_eq!((r.timeouts, r.retries, r.crc_errors), (0, 0, 0), "{what}");
+                let dev = r.device_stats.unwrap();
+                // Every request intact (the probes of the session setup and of the final stats
+                // request fall outside the device's counting).
+                let ok = dev.link.frames_ok as u64;
+                assert!(
+                    (10_000..=10_000 + r.probes + 1).contains(&ok),
+                    "{what}: {ok}"
+                );
+                assert_eq!(dev.link.resyncs(), 0, "{what}");
+            }
         }
     }
 }
@@ -69,7 +80,7 @@ fn faults_on_the_line_are_survived_and_reported() {
         (LinkKind::Memory, ScalarType::Fixed),
         (LinkKind::Pty, ScalarType::F32),
     ] {
-        let r = loopback_ants(&fig7a(), scalar, link, spec, 3, client, &opts(20, 50)).unwrap();
+        let r = loopback(&fig7a(), scalar, link, spec, 3, client, &opts(20, 50)).unwrap();
         assert_eq!(r.decisions, 2_000, "every decision accounted for");
         assert_eq!(r.mismatches, 0, "{}", r.human());
         let f = r.faults.expect("fault counts");
@@ -107,13 +118,13 @@ fn a_device_with_other_parameters_is_refused_at_the_handshake() {
     soft.stop().unwrap();
 }
 
-/// A device link that plants one wrong decision: the `nth` plan reply (counting from 0) gets
-/// its predicted x moved by one ulp.
+/// A device link that plants a wrong decision, every time it is asked: a plan reply predicting
+/// `target` gets its predicted x moved by one ulp (a device divergence repeats when asked again,
+/// unlike line damage).
 struct Tamper<T> {
     inner: T,
     rx: Accumulator<2048>,
-    plan_replies: usize,
-    nth: usize,
+    target: swarm_core::Vec2<f32>,
 }
 
 impl<T: Transport> Transport for Tamper<T> {
@@ -126,11 +137,10 @@ impl<T: Transport> Transport for Tamper<T> {
             let mut buf = [0u8; 512];
             let n = if frame.header.kind == kind::ANT_PLAN_REPLY {
                 let mut reply: AntPlanReply<f32> = frame.message().unwrap();
-                if self.plan_replies == self.nth {
+                if reply.plan.predicted == self.target {
                     let x = reply.plan.predicted.x;
                     reply.plan.predicted.x = f32::from_bits(x.to_bits() + 1);
                 }
-                self.plan_replies += 1;
                 wire::encode_message(frame.header.seq, &reply, &mut buf).unwrap()
             } else {
                 wire::encode_frame(
@@ -173,14 +183,29 @@ fn a_planted_wrong_decision_is_reported_with_its_step_and_agent() {
     let sim = AntSim::from_scenario(&sc, sc.seed).unwrap();
     let agents = 10;
     let chosen = pick_agents(sim.agents(), Some(agents));
+    // The plan of the 8th chosen ant at step 3.
+    let target = {
+        let mut probe = AntSim::from_scenario(&sc, sc.seed).unwrap();
+        for _ in 0..3 {
+            probe.step().unwrap();
+        }
+        probe.plan_phase().unwrap();
+        let slot = probe
+            .world
+            .sensed
+            .id
+            .iter()
+            .position(|&i| i == chosen[7])
+            .unwrap();
+        let [x, y] = probe.world.predicted[slot];
+        swarm_core::Vec2::new(x as f32, y as f32)
+    };
     let device = AntDevice::<f32>::new(AntParams::default(), "soft-ant").unwrap();
     let (dev_end, host_end) = memory_pair();
-    let nth = 3 * agents + 7; // step 3, the 8th chosen agent
     let tampered = Tamper {
         inner: dev_end,
         rx: Accumulator::new(),
-        plan_replies: 0,
-        nth,
+        target,
     };
     let soft = SoftDevice::spawn(move |stop| serve(device, tampered, stop).map(|_| ()));
     let mut client = Client::new(host_end, ClientOptions::default());
@@ -188,6 +213,10 @@ fn a_planted_wrong_decision_is_reported_with_its_step_and_agent() {
     soft.stop().unwrap();
     assert_eq!(r.decisions, 120);
     assert_eq!(r.mismatches, 1, "{}", r.human());
+    assert_eq!(
+        r.reasked, 0,
+        "asked again, the device repeats its divergence"
+    );
     let m = r.first_mismatch.unwrap();
     assert_eq!((m.step, m.agent, m.phase), (3, chosen[7], "plan"));
     let host: AntPlan<f32> = serde_json::from_value(m.host).unwrap();

@@ -1,6 +1,6 @@
 //! The curl-noise force (chen §V-A, eq. 8-9).
 
-use super::perlin::{Noise, perlin};
+use super::perlin::{Lattice, Noise};
 use crate::{Scalar, Vec3};
 
 /// The three seeds of Per_1, Per_2, Per_3 (eq. 8: "a Perlin noise function with three random
@@ -15,10 +15,10 @@ pub const SEEDS: [u8; 3] = [17, 101, 211];
 /// ∂ψ_k/∂r = (ε/L)·∇Per_k(r/L), which is what eq. 9 uses. The curl magnitude thus scales as
 /// ε/L: a smaller L gives finer, more abrupt turns (§VI).
 pub fn potential<S: Scalar>(pos: Vec3<S>, grid_edge: S, epsilon: S) -> [Noise<S>; 3] {
-    let q = Vec3::new(pos.x / grid_edge, pos.y / grid_edge, pos.z / grid_edge);
+    let lattice = Lattice::new(lattice_point(pos, grid_edge));
     let scale = epsilon / grid_edge;
     SEEDS.map(|seed| {
-        let n = perlin(q, seed);
+        let n = lattice.noise(seed);
         Noise {
             value: epsilon * n.value,
             grad: n.grad * scale,
@@ -26,11 +26,19 @@ pub fn potential<S: Scalar>(pos: Vec3<S>, grid_edge: S, epsilon: S) -> [Noise<S>
     })
 }
 
+/// r/L: the point in lattice units.
+fn lattice_point<S: Scalar>(pos: Vec3<S>, grid_edge: S) -> Vec3<S> {
+    Vec3::new(pos.x / grid_edge, pos.y / grid_edge, pos.z / grid_edge)
+}
+
 /// The curl-noise force of eq. 9, F_curl = ∇ × ψ:
 /// (∂ψ_z/∂y − ∂ψ_y/∂z, ∂ψ_x/∂z − ∂ψ_z/∂x, ∂ψ_y/∂x − ∂ψ_x/∂y), with ψ = (ψ_1, ψ_2, ψ_3) from
-/// [`potential`] and analytic derivatives. Divergence-free by construction (§V-A).
+/// [`potential`] and analytic derivatives. Divergence-free by construction (§V-A). The three
+/// potentials share one lattice cell ([`Lattice`]); their values are not needed.
 pub fn curl_force<S: Scalar>(pos: Vec3<S>, grid_edge: S, epsilon: S) -> Vec3<S> {
-    let [px, py, pz] = potential(pos, grid_edge, epsilon).map(|n| n.grad);
+    let lattice = Lattice::new(lattice_point(pos, grid_edge));
+    let scale = epsilon / grid_edge;
+    let [px, py, pz] = SEEDS.map(|seed| lattice.grad(seed) * scale);
     Vec3::new(pz.y - py.z, px.z - pz.x, py.x - px.y)
 }
 
@@ -94,7 +102,8 @@ mod tests {
             // ψ_k = ε Per_k(r/L).
             assert_eq!(
                 a.value,
-                eps * perlin(Vec3::new(p.x / l, p.y / l, p.z / l), SEEDS[0]).value
+                eps * crate::bee::perlin::perlin(Vec3::new(p.x / l, p.y / l, p.z / l), SEEDS[0])
+                    .value
             );
             let fx = curl_force(p.cast::<Fx>(), Fx::from_f32(l), Fx::from_f32(eps)).to_f32();
             let fl = curl_force(p.cast::<Fx>().to_f32(), l, eps);

@@ -3,7 +3,7 @@
 //! Coordinates are world coordinates with y up (chen eq. 7 uses `[0, 1, 0]` as the up axis).
 
 use super::params::LIMIT;
-use crate::{Error, Result, Scalar, Vec3};
+use crate::{Error, Result, Scalar, ScalarKind, Vec3};
 
 wire_type! {
     /// What a bee carries from one step to the next.
@@ -13,14 +13,17 @@ wire_type! {
         pub pos: Vec3<S>,
         /// Velocity u (u_p of §III at the next step).
         pub vel: Vec3<S>,
-        /// Last horizontal unit forward vector o (§IV-B), used when the bee hovers (speed ≈ 0)
-        /// and has no goal. Need not be normalized; a zero vector means +x.
+        /// Last unit forward vector o (§IV-B: the direction of flight), used when the bee
+        /// hovers (speed ≈ 0). Need not be normalized; a zero vector means: face the goal, else
+        /// +x.
         pub forward: Vec3<S>,
         /// Density ρ_i of eq. 10 from the last step (what the bee broadcasts to neighbours).
         pub density: S,
         /// Whether the bee was avoiding an obstacle at the last step (§IV-B).
         pub avoiding: bool,
-        /// u_0 of eq. 5: the velocity when the current avoidance began (zero when not avoiding).
+        /// u_0 of eq. 5: the velocity u = u_p + aΔt that eq. 5 tuned at the last step (zero
+        /// when no obstacle was closer than d0); see
+        /// [`tune_velocity`](super::vision::tune_velocity).
         pub u0: Vec3<S>,
         /// Last roll set-point (rad).
         pub roll: S,
@@ -58,8 +61,8 @@ wire_type! {
         /// Virtual static particles sampled on a target (nest, food source): they repel the
         /// bee, which with the curl noise gives the zig-zag approach (§V-B).
         pub targets: heapless::Vec<Vec3<S>, P>,
-        /// The target the bee flies toward by visual cues (§V-B), if any: it sets the body's
-        /// forward axis.
+        /// The target the bee flies toward by visual cues (§V-B), if any: its thrust (body X of
+        /// eq. 2) points there.
         pub goal: Option<Vec3<S>>,
         /// The nearest obstacle, if one is sensed.
         pub obstacle: Option<ObstacleSense<S>>,
@@ -68,10 +71,10 @@ wire_type! {
     /// The outcome of one step.
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct BeeDecision<S> {
-        /// Acceleration a = F/m (eq. 1).
+        /// Acceleration a = F/m (eq. 1, with the drag).
         pub accel: Vec3<S>,
-        /// Velocity set-point u*: u_p + aΔt (§III), tuned by eq. 5 when avoiding, then limited
-        /// to the maximum speed.
+        /// Velocity set-point u*: u_p + aΔt (§III), tuned by eq. 5 near an obstacle, then
+        /// limited to the maximum speed.
         pub velocity: Vec3<S>,
         /// Roll set-point (rad): eq. 6 when avoiding, else eq. 4.
         pub roll: S,
@@ -191,19 +194,37 @@ impl<S: Scalar, const N: usize, const P: usize> BeeFrame<S, N, P> {
     }
 }
 
-/// `Err` unless `v` is finite and `|v| ≤ LIMIT`.
-fn check_num<S: Scalar>(v: S, field: &'static str) -> Result<()> {
-    if !v.is_finite() {
-        Err(Error::non_finite(field))
-    } else if v.abs() > S::from_f32(LIMIT) {
-        Err(Error::out_of_range(field))
+/// |v| ≤ l (false for NaN): for `f32` through the sign-clearing `f32::abs`.
+#[inline]
+fn within<S: Scalar>(v: S, l: S) -> bool {
+    if S::KIND == ScalarKind::F32 {
+        v.to_f32().abs() <= l.to_f32()
     } else {
-        Ok(())
+        v.abs() <= l
     }
 }
 
-/// [`check_num`] on every component.
+/// `Err` unless `v` is finite and `|v| ≤ LIMIT`.
+#[inline]
+fn check_num<S: Scalar>(v: S, field: &'static str) -> Result<()> {
+    // Fast path: NaN fails the comparisons, and an infinity exceeds the limit.
+    if within(v, S::from_f32(LIMIT)) {
+        Ok(())
+    } else if !v.is_finite() {
+        Err(Error::non_finite(field))
+    } else {
+        Err(Error::out_of_range(field))
+    }
+}
+
+/// [`check_num`] on every component (a non-finite component is reported before an
+/// out-of-range one).
+#[inline]
 fn check_vec<S: Scalar>(v: Vec3<S>, field: &'static str) -> Result<()> {
+    let l = S::from_f32(LIMIT);
+    if within(v.x, l) & within(v.y, l) & within(v.z, l) {
+        return Ok(());
+    }
     v.check(field)?;
     [v.x, v.y, v.z]
         .into_iter()

@@ -10,15 +10,24 @@
 //! * [`sph`]: SPH pressure repulsion F_repul from neighbours and target particles (eq. 10-11,
 //!   §V-B);
 //!
-//! and, when an obstacle is in view and close, [`vision`] rolls the body away (eq. 6-7) and
-//! tunes the velocity to slip along the surface (eq. 5, §IV-B). [`step()`] runs one step:
-//! `(&BeeState, &BeeFrame, &BeeParams) -> Result<(BeeDecision, BeeState)>`.
+//! plus a linear drag −m·c·u (ours), and, when an obstacle is in view and close, [`vision`]
+//! rolls the body away (eq. 6-7); near any obstacle it tunes the velocity to slip along the
+//! surface (eq. 5, §IV-B). [`step()`] runs one step:
+//! `(&BeeState, &BeeFrame, &BeeParams) -> Result<(BeeDecision, BeeState)>`; [`step_with`] is
+//! the same with the per-time constants ([`StepConsts`]) computed once for a whole swarm.
 //!
 //! World axes: y is up. Angles in states and decisions are radians; eq. 3, 4 and 6 are
 //! evaluated in degrees as printed. Deviations from the printed paper (each documented where
-//! it applies): u_t of eq. 5 is the tangential part of u_0 ([`vision::tune_velocity`]); eq. 11
-//! uses the symmetric (p_i + p_j) pressure of its reference \[61\] ([`sph::repulsion`]); eq. 8
-//! is read as noise on a lattice of edge L ([`curl::potential`]).
+//! it applies, and listed in `docs/models.md`): the weight is carried by the mean lift, eq. 2
+//! applies the lift's deviation from its period mean
+//! ([`oscillation::oscillation_force`]); a linear drag is added ([`BeeParams::damping`]); o is
+//! the direction of flight and the thrust points to the goal ([`oscillation::forward_axis`]);
+//! an avoidance lasts until the obstacle is passed ([`vision::in_view`]); u_t of eq. 5 is the
+//! tangential part, and u_0 the current velocity, for every obstacle within d0
+//! ([`vision::tune_velocity`]); eq. 11 uses the symmetric (p_i + p_j) pressure of its reference
+//! \[61\] and target particles the density of an isolated particle ([`sph::repulsion`]); eq. 8
+//! is read as noise on a lattice of edge L ([`curl::potential`]); frame times wrap below the
+//! input limit ([`oscillation::wrap_time`]).
 //!
 //! ## Example
 //!
@@ -53,4 +62,4 @@ pub mod vision;
 
 pub use frame::{BeeDecision, BeeFrame, BeeNeighbor, BeeState, ObstacleSense};
 pub use params::BeeParams;
-pub use step::{step, step_checked};
+pub use step::{StepConsts, step, step_checked, step_with};

@@ -5,8 +5,8 @@ use super::params::BeeParams;
 use crate::scalar::deg;
 use crate::{Scalar, Vec3};
 
-/// Horizontal speeds at or below this count as hovering: the forward axis then falls back to
-/// the stored one.
+/// Speeds at or below this count as hovering: the forward axis then falls back to the stored
+/// one.
 const HOVER_SPEED: f32 = 1e-3;
 
 /// Pitch maneuvering function, eq. 3: θ_pitch = 16.429 + 3.5 sin(π (t + 2.986) / 35.972), in
@@ -39,56 +39,82 @@ pub fn lift_coefficient<S: Scalar>(alpha_deg: S) -> S {
     (S::from_f32(-0.095953) * a + S::from_f32(0.90635)) * a - S::from_f32(0.34182)
 }
 
-/// The body's horizontal forward axis o (§IV-B: "a vector o from the mass point of a bee in the
-/// forward direction along the body longitudinal axis").
+/// The mean of the lift coefficient over one period of eq. 3: with θ_pitch = c + A·sin(·),
+/// c = 16.429°, A = 3.5°, the mean of l(θ) = a θ² + b θ + d (Fig. 4) is
+/// l(c) + a·A²/2 = 0.882357 (sin² averages ½).
+pub const MEAN_LIFT_COEFFICIENT: f32 = 0.882_356_6;
+
+/// The body's forward axis o (§IV-B: "a vector o from the mass point of a bee in the forward
+/// direction along the body longitudinal axis"), a unit vector, which the ±45° field of view
+/// and the roll side of eq. 7 are measured from.
 ///
-/// The bee "repeatedly flies toward a target based on visual cues" (§I, §V-B), so o points
-/// horizontally toward `goal` when there is one; otherwise along the horizontal velocity;
-/// when the bee hovers, along the stored forward vector; and +x as the last resort.
-pub fn forward_axis<S: Scalar>(
-    pos: Vec3<S>,
-    vel: Vec3<S>,
-    stored: Vec3<S>,
-    goal: Option<Vec3<S>>,
-) -> Vec3<S> {
+/// The body points where the bee flies: o is the direction of the velocity. When the bee
+/// hovers (speed at most 1e-3) it keeps the stored forward vector, turns to the goal if it
+/// has no stored one (a fresh state stores +x), and faces +x as the last resort.
+pub fn forward_axis<S: Scalar>(vel: Vec3<S>, stored: Vec3<S>, heading: Option<Vec3<S>>) -> Vec3<S> {
     let hover = S::from_f32(HOVER_SPEED);
-    goal.and_then(|g| horizontal_dir(g - pos, S::ZERO))
-        .or_else(|| horizontal_dir(vel, hover))
-        .or_else(|| horizontal_dir(stored, S::ZERO))
+    unit(vel, hover)
+        .or_else(|| unit(stored, S::ZERO))
+        .or(heading)
         .unwrap_or(Vec3::new(S::ONE, S::ZERO, S::ZERO))
 }
 
-/// The unit vector along the horizontal part of `v`, if that part is longer than `min`.
-fn horizontal_dir<S: Scalar>(v: Vec3<S>, min: S) -> Option<Vec3<S>> {
-    let flat = Vec3::new(v.x, S::ZERO, v.z);
-    let len = flat.length();
+/// The direction of flight toward the goal: the unit vector from `pos` to `goal`, if there is
+/// a goal and the bee is not on it.
+///
+/// The bee "repeatedly flies toward a target based on visual cues" (§I, §V-B): its thrust
+/// (body X of eq. 2) points this way. The paper gives no other attraction to the target.
+pub fn goal_heading<S: Scalar>(pos: Vec3<S>, goal: Option<Vec3<S>>) -> Option<Vec3<S>> {
+    goal.and_then(|g| unit(g - pos, S::ZERO))
+}
+
+/// The unit vector along the horizontal part of `v`, if that part is above zero.
+pub fn horizontal<S: Scalar>(v: Vec3<S>) -> Option<Vec3<S>> {
+    unit(Vec3::new(v.x, S::ZERO, v.z), S::ZERO)
+}
+
+/// `v / |v|`, if `|v|` is above `min` (and above zero).
+fn unit<S: Scalar>(v: Vec3<S>, min: S) -> Option<Vec3<S>> {
+    let len = v.length();
     if len > min && len > S::ZERO {
-        Some(Vec3::new(flat.x / len, S::ZERO, flat.z / len))
+        Some(Vec3::new(v.x / len, v.y / len, v.z / len))
     } else {
         None
     }
 }
 
-/// The body's side (Z, sway) axis of eq. 2: o × up.
+/// The body's side (Z, sway) axis of eq. 2: o × up, normalized (horizontal; +z when o is
+/// vertical).
 ///
 /// With y up this is right-handed: facing +x, the side axis is +z, the bee's right. A positive
 /// roll (right wing down) therefore sways the bee to its right.
 pub fn side_axis<S: Scalar>(forward: Vec3<S>) -> Vec3<S> {
-    forward.cross(Vec3::up())
+    unit(forward.cross(Vec3::up()), S::ZERO).unwrap_or(Vec3::new(S::ZERO, S::ZERO, S::ONE))
 }
 
 /// The oscillation force F_o of eq. 2 in world coordinates:
 ///
-/// * thrust f_t = m·g·θ_pitch along the forward axis o (body X),
-/// * lift f_l = ½·ρ·A·|u|²·l(θ_pitch) along world up (body Y; the body frame is kept level,
-///   only its heading turns),
-/// * sway f_s = m·g·θ_roll along the side axis o × up (body Z, [`side_axis`]),
+/// * thrust f_t = m·g·θ_pitch along `thrust_dir` (body X: toward the goal, see
+///   [`goal_heading`]; level along o without a goal or while avoiding),
+/// * lift f_l = ½·ρ·A·|u|²·(l(θ_pitch) − l̄) along world up (body Y; we keep the lift
+///   vertical whatever the heading), l̄ = [`MEAN_LIFT_COEFFICIENT`],
+/// * sway f_s = m·g·θ_roll along the horizontal side axis o × up of the body axis o (body Z,
+///   [`side_axis`]: the roll is about the longitudinal axis),
 ///
 /// with the angles in radians in f_t and f_s and θ_pitch in degrees in l (Fig. 4). `pitch_deg`
 /// comes from eq. 3; `roll_deg` from eq. 4, or from eq. 6 while avoiding an obstacle.
+///
+/// Lift and weight: eq. 1 has no gravity, and the printed lift is always positive
+/// (l ∈ [0.65, 1.09] over the pitch range of eq. 3), so taken literally every bee climbs
+/// without end. §IV-A defines the oscillation as "a vertical body shift around its mean
+/// position": we take the weight m·g as carried by the mean lift (hovering bees, \[45\]-\[46\])
+/// and apply only the lift's deviation from its mean over the period of eq. 3 at the current
+/// speed, ½ρA|u|²(l(θ_pitch) − l̄). At a steady speed the vertical force then averages to zero
+/// over a period: the bee rises and sinks around its mean altitude.
 pub fn oscillation_force<S: Scalar>(
     p: &BeeParams<S>,
     forward: Vec3<S>,
+    thrust_dir: Vec3<S>,
     speed: S,
     pitch_deg: S,
     roll_deg: S,
@@ -97,8 +123,35 @@ pub fn oscillation_force<S: Scalar>(
     let thrust = mg * deg(pitch_deg);
     let sway = mg * deg(roll_deg);
     let half_rho_a = p.air_density * p.wing_area / S::from_i32(2);
-    let lift = half_rho_a * lift_coefficient(pitch_deg) * speed * speed;
-    forward * thrust + Vec3::up() * lift + side_axis(forward) * sway
+    let dl = lift_coefficient(pitch_deg) - S::from_f32(MEAN_LIFT_COEFFICIENT);
+    let lift = half_rho_a * dl * speed * speed;
+    thrust_dir * thrust + Vec3::up() * lift + side_axis(forward) * sway
+}
+
+/// The period after which the host's frame time wraps: 78 periods of eq. 4 (2 × 91.775 s) =
+/// 14316.9 s, which is also 199 periods of eq. 3 (2 × 35.972 s = 14316.856 s) to within
+/// 0.044 s. Frame times must stay below [`LIMIT`](super::params::LIMIT) (16000 s: the
+/// fixed-point range), which a run at Δt = 0.05 s reaches after 320,000 steps.
+pub const TIME_WRAP: f64 = 78.0 * 183.55;
+
+/// A frame time for an unbounded clock `t` (seconds, ≥ 0): `t` itself below
+/// [`LIMIT`](super::params::LIMIT) (the same bits), else `t` minus the whole number of
+/// [`TIME_WRAP`] periods that brings it into [LIMIT − TIME_WRAP, LIMIT).
+///
+/// Eq. 4 is exactly periodic in `TIME_WRAP`; eq. 3 shifts by 0.044 s of its 71.944 s period per
+/// wrap (θ_pitch off by at most 0.014° after one wrap, i.e. after 4.4 h of flight; the phase
+/// error grows by that much per further 4 h). A negative, NaN, infinite or absurd (above
+/// 1e15 s) `t` is returned as is (the controller refuses it).
+pub fn wrap_time(t: f64) -> f64 {
+    let limit = f64::from(super::params::LIMIT);
+    if t.is_nan() || t < limit || t > 1e15 {
+        return t;
+    }
+    // `as` truncates: the floor of a non-negative value.
+    let wraps = ((t - limit) / TIME_WRAP) as u64 + 1;
+    let r = t - wraps as f64 * TIME_WRAP;
+    // Rounding for huge t.
+    if r >= limit { r - TIME_WRAP } else { r }
 }
 
 #[cfg(test)]
@@ -165,36 +218,89 @@ mod tests {
     #[test]
     fn forward_axis_priorities() {
         let v = Vec3::<f32>::from_f32;
-        let pos = v(1.0, 5.0, 1.0);
-        // Toward the goal, horizontal even when the goal is above.
+        let to_goal = goal_heading(v(1.0, 5.0, 1.0), Some(v(1.0, 8.0, 5.0)));
+        assert_eq!(to_goal, Some(v(0.0, 0.6, 0.8)));
+        assert_eq!(goal_heading(v(1.0, 5.0, 1.0), Some(v(1.0, 5.0, 1.0))), None);
+        assert_eq!(goal_heading(v(1.0, 5.0, 1.0), None), None);
+        // Along the velocity, whatever the goal.
         assert_eq!(
-            forward_axis(
-                pos,
-                v(1.0, 0.0, 0.0),
-                v(1.0, 0.0, 0.0),
-                Some(v(1.0, 9.0, 4.0))
-            ),
-            v(0.0, 0.0, 1.0)
+            forward_axis(v(0.0, 3.0, -4.0), v(1.0, 0.0, 0.0), to_goal),
+            v(0.0, 0.6, -0.8)
         );
-        // Goal straight above: no horizontal direction, fall back to the velocity.
+        // Hovering: the stored forward vector, normalized; without one, the goal; else +x.
         assert_eq!(
-            forward_axis(
-                pos,
-                v(0.0, 1.0, -2.0),
-                v(1.0, 0.0, 0.0),
-                Some(v(1.0, 9.0, 1.0))
-            ),
-            v(0.0, 0.0, -1.0)
-        );
-        // Hovering: the stored forward vector, normalized.
-        assert_eq!(
-            forward_axis(pos, v(0.0, 0.0, 0.0), v(0.0, 0.0, -3.0), None),
+            forward_axis(v(0.0, 0.0, 0.0), v(0.0, 0.0, -3.0), to_goal),
             v(0.0, 0.0, -1.0)
         );
         assert_eq!(
-            forward_axis(pos, Vec3::zero(), Vec3::zero(), None),
+            forward_axis(v(0.0, 1e-4, 0.0), Vec3::zero(), to_goal),
+            v(0.0, 0.6, 0.8)
+        );
+        assert_eq!(
+            forward_axis(Vec3::zero(), Vec3::zero(), None),
             v(1.0, 0.0, 0.0)
         );
+        // The side axis is horizontal and unit, also for a pitched o; +z for a vertical one.
+        assert_eq!(side_axis(v(0.0, 0.6, -0.8)), v(1.0, 0.0, 0.0));
+        assert_eq!(side_axis(v(0.0, 1.0, 0.0)), v(0.0, 0.0, 1.0));
+    }
+
+    #[test]
+    fn mean_lift_coefficient_is_the_period_mean_of_fig4_over_eq3() {
+        let n = 20_000;
+        let mean = (0..n)
+            .map(|i| {
+                let t = 71.944 * f64::from(i) / f64::from(n);
+                let a = 16.429 + 3.5 * (core::f64::consts::PI * (t + 2.986) / 35.972).sin();
+                -0.00095953 * a * a + 0.090635 * a - 0.34182
+            })
+            .sum::<f64>()
+            / f64::from(n);
+        assert!(
+            (mean - f64::from(MEAN_LIFT_COEFFICIENT)).abs() < 1e-6,
+            "{mean}"
+        );
+        // So the vertical force of eq. 2 averages to zero over a period at a steady speed.
+        let p = BeeParams::<f32>::default();
+        let o = Vec3::new(1.0, 0.0, 0.0);
+        let lift: f64 = (0..n)
+            .map(|i| {
+                let t = 71.944 * i as f32 / n as f32;
+                f64::from(oscillation_force(&p, o, o, 3.0, pitch_deg(t), roll_deg(t)).y)
+            })
+            .sum::<f64>()
+            / f64::from(n);
+        assert!(lift.abs() < 1e-5, "mean lift {lift}");
+    }
+
+    #[test]
+    fn time_wraps_below_the_input_limit_keeping_the_phase() {
+        // Below the limit: the same bits.
+        for t in [0.0, 0.05, 1234.5, 15_999.95] {
+            assert_eq!(wrap_time(t).to_bits(), f64::to_bits(t));
+        }
+        for step in [320_000u64, 320_001, 400_000, 3_000_000, 4_294_967_295] {
+            let t = step as f64 * 0.05;
+            let w = wrap_time(t);
+            assert!(
+                (16_000.0 - TIME_WRAP..16_000.0).contains(&w),
+                "step {step}: {w}"
+            );
+            let wraps = ((t - w) / TIME_WRAP).round();
+            assert!(((t - w) - wraps * TIME_WRAP).abs() < 1e-6);
+            // Eq. 4 exactly periodic; eq. 3 off by 0.044 s per wrap (in f64, the equations
+            // themselves).
+            let exact = |c: f64, a: f64, off: f64, half: f64, x: f64| {
+                c + a * (core::f64::consts::PI * (x + off) / half).sin()
+            };
+            let droll =
+                exact(-0.765, 18.914, 38.298, 91.775, t) - exact(-0.765, 18.914, 38.298, 91.775, w);
+            let dpitch =
+                exact(16.429, 3.5, 2.986, 35.972, t) - exact(16.429, 3.5, 2.986, 35.972, w);
+            assert!(droll.abs() < 1e-6 * (1.0 + t / 1e4), "roll off by {droll}");
+            assert!(dpitch.abs() < 0.015 * wraps, "pitch off by {dpitch}");
+        }
+        assert!(wrap_time(-1.0) < 0.0 && wrap_time(f64::NAN).is_nan());
     }
 
     #[test]
@@ -202,17 +308,18 @@ mod tests {
         let p = BeeParams::<f32>::default();
         let o = Vec3::new(1.0, 0.0, 0.0);
         assert_eq!(side_axis(o), Vec3::new(0.0, 0.0, 1.0));
-        let f = oscillation_force(&p, o, 2.0, 16.0, 10.0);
+        let f = oscillation_force(&p, o, o, 2.0, 16.0, 10.0);
         let rad = core::f32::consts::PI / 180.0;
         assert!(near(f.x, 9.81 * 16.0 * rad, 1e-5));
         assert!(near(
             f.y,
-            0.5 * 1.225 * 0.05 * 4.0 * lift_coefficient(16.0),
+            0.5 * 1.225 * 0.05 * 4.0 * (lift_coefficient(16.0) - MEAN_LIFT_COEFFICIENT),
             1e-6
         ));
         assert!(near(f.z, 9.81 * 10.0 * rad, 1e-5));
         let g = oscillation_force(
             &p.cast::<Fx>(),
+            o.cast(),
             o.cast(),
             Fx::from_f32(2.0),
             Fx::from_f32(16.0),

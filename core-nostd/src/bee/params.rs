@@ -36,8 +36,9 @@ wire_type! {
         pub epsilon: S,
         /// m: mass of every bee and of every virtual target particle (eq. 1, 2, 10). Ours: 1.
         pub mass: S,
-        /// g: gravity in the thrust and sway of eq. 2 (gravity itself is not applied, as in the
-        /// paper). Ours: 9.81.
+        /// g: gravity in the thrust and sway of eq. 2. The weight m·g itself is carried by the
+        /// mean lift (see [`oscillation_force`](super::oscillation::oscillation_force)), so it
+        /// is not added to eq. 1. Ours: 9.81.
         pub gravity: S,
         /// ρ: air density in the lift of eq. 2. Ours: 1.225.
         pub air_density: S,
@@ -53,8 +54,14 @@ wire_type! {
         pub stiffness: S,
         /// ρ0: rest density of the pressure (§V-B). Ours: 0 (any overlap repels).
         pub rest_density: S,
-        /// Upper bound of the speed |u*| after each step. Ours: 4.
+        /// Upper bound of the speed |u*| after each step (a safety limit: the drag keeps
+        /// ordinary flight below it). Ours: 4.
         pub max_speed: S,
+        /// c: linear drag rate (1/s), F_drag = −m·c·u added to eq. 1. The paper applies no
+        /// drag (§IV-A) but notes that drag "plays a role in decreasing the velocity"; without
+        /// it every bee flies at the speed limit. Linear in u as the flapping counter-force of
+        /// flapping flight is. Ours: 1.5 (a 0.67 s velocity relaxation time). `c·Δt ≤ 1`.
+        pub damping: S,
     }
 }
 
@@ -96,6 +103,7 @@ impl<S: Scalar> BeeParams<S> {
             stiffness: S::ONE,
             rest_density: S::ZERO,
             max_speed: c(4.0),
+            damping: c(1.5),
         }
     }
 
@@ -119,6 +127,7 @@ impl<S: Scalar> BeeParams<S> {
             stiffness: c(self.stiffness),
             rest_density: c(self.rest_density),
             max_speed: c(self.max_speed),
+            damping: c(self.damping),
         }
     }
 
@@ -129,7 +138,9 @@ impl<S: Scalar> BeeParams<S> {
     }
 
     /// Checks every parameter: finite and at most [`LIMIT`]; h, L, m, Δt, d0 and the speed
-    /// limit at least [`MIN_POSITIVE`]; all others ≥ 0. The error names the first bad one.
+    /// limit at least [`MIN_POSITIVE`]; all others ≥ 0; and the drag at most one velocity per
+    /// step, `damping·dt ≤ 1` (explicit Euler then never reverses the velocity). The error
+    /// names the first bad one.
     pub fn validate(&self) -> Result<()> {
         let positive = [
             (self.h, "h"),
@@ -150,12 +161,16 @@ impl<S: Scalar> BeeParams<S> {
             (self.radius, "radius"),
             (self.stiffness, "stiffness"),
             (self.rest_density, "rest_density"),
+            (self.damping, "damping"),
         ];
         for (v, field) in positive {
             in_range(v, MIN_POSITIVE, field)?;
         }
         for (v, field) in non_negative {
             in_range(v, 0.0, field)?;
+        }
+        if self.damping * self.dt > S::ONE {
+            return Err(Error::BadParam { field: "damping" });
         }
         Ok(())
     }
@@ -198,13 +213,15 @@ mod tests {
     fn validate_names_the_bad_parameter() {
         let ok = BeeParams::<f32>::default();
         type Breaker = fn(&mut BeeParams<f32>);
-        let cases: [(Breaker, &str); 6] = [
+        let cases: [(Breaker, &str); 8] = [
             (|p| p.h = 0.0, "h"),
             (|p| p.grid_edge = f32::NAN, "grid_edge"),
             (|p| p.mass = -1.0, "mass"),
             (|p| p.dt = f32::INFINITY, "dt"),
             (|p| p.d0 = 0.0, "d0"),
             (|p| p.kappa2 = -0.5, "kappa2"),
+            (|p| p.damping = -1.0, "damping"),
+            (|p| p.damping = 20.5, "damping"), // c·Δt > 1
         ];
         for (break_it, field) in cases {
             let mut p = ok;

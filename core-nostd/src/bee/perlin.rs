@@ -53,13 +53,30 @@ fn perm(i: i32) -> i32 {
     i32::from(PERM[(i & 255) as usize])
 }
 
-/// The gradient index of lattice corner `(x, y, z)` for `seed`: the reference hash
-/// `P[P[P[x] + y] + z]`, with the seed folded in by one more permutation, `P[hash + seed]`, so
-/// each seed relabels the corners' gradients (not a mere translation of the noise).
+/// [`GRAD`] as `f32` (the same values).
+const GRAD_F32: [[f32; 3]; 16] = {
+    let mut t = [[0.0; 3]; 16];
+    let mut i = 0;
+    while i < 16 {
+        let mut k = 0;
+        while k < 3 {
+            t[i][k] = GRAD[i][k] as f32;
+            k += 1;
+        }
+        i += 1;
+    }
+    t
+};
+
+/// Component `k` of gradient `i` as a scalar: from [`GRAD_F32`] for `f32` (a load, no
+/// conversion at run time), through `i32` otherwise; exact either way.
 #[inline]
-fn corner_gradient(seed: u8, x: i32, y: i32, z: i32) -> [i8; 3] {
-    let h = perm(perm(perm(perm(x).wrapping_add(y)).wrapping_add(z)) + i32::from(seed));
-    GRAD[(h & 15) as usize]
+fn grad_component<S: Scalar>(i: usize, k: usize) -> S {
+    if S::KIND == crate::ScalarKind::F32 {
+        S::from_f32(GRAD_F32[i][k])
+    } else {
+        S::from_i32(GRAD[i][k].into())
+    }
 }
 
 /// Quintic fade 6t⁵ − 15t⁴ + 10t³ and its derivative 30t²(t − 1)².
@@ -70,17 +87,6 @@ fn fade<S: Scalar>(t: S) -> (S, S) {
     (f, S::from_i32(30) * u * u)
 }
 
-/// Linear interpolation of two (value, gradient) pairs with weight `w` whose gradient is `dw`:
-/// the product rule gives ∇(a + w(b − a)) = ∇a + w(∇b − ∇a) + (b − a)∇w.
-#[inline]
-fn lerp<S: Scalar>(a: Noise<S>, b: Noise<S>, w: S, dw: Vec3<S>) -> Noise<S> {
-    let dv = b.value - a.value;
-    Noise {
-        value: a.value + w * dv,
-        grad: a.grad + (b.grad - a.grad) * w + dw * dv,
-    }
-}
-
 /// Integer cell and fraction in [0, 1] of one coordinate.
 #[inline]
 fn split<S: Scalar>(x: S) -> (i32, S) {
@@ -88,45 +94,119 @@ fn split<S: Scalar>(x: S) -> (i32, S) {
     (i, (x - S::from_i32(i)).clamp_to(S::ZERO, S::ONE))
 }
 
-/// Perlin noise at `p` (in lattice units: one cell per unit) for `seed`, with its analytic
-/// gradient.
-pub fn perlin<S: Scalar>(p: Vec3<S>, seed: u8) -> Noise<S> {
-    let ((ix, fx), (iy, fy), (iz, fz)) = (split(p.x), split(p.y), split(p.z));
-    // Contribution g·(f − corner) of one corner; its gradient is g.
-    let corner = |cx: i32, cy: i32, cz: i32| {
-        let g = corner_gradient(
-            seed,
-            ix.wrapping_add(cx),
-            iy.wrapping_add(cy),
-            iz.wrapping_add(cz),
-        );
-        let g = Vec3::new(
-            S::from_i32(g[0].into()),
-            S::from_i32(g[1].into()),
-            S::from_i32(g[2].into()),
-        );
-        let d = Vec3::new(
-            fx - S::from_i32(cx),
-            fy - S::from_i32(cy),
-            fz - S::from_i32(cz),
-        );
-        Noise {
-            value: g.dot(d),
-            grad: g,
+/// The part of Perlin noise at a point that does not depend on the seed: for each of the 8
+/// corners of the lattice cell (corner `c` = (c & 1, c >> 1 & 1, c >> 2), offsets 0 or 1), its
+/// hash before the seed, the offset f − c of the point from it, its weight
+/// w_c = U(f_x)·V(f_y)·W(f_z) (each factor the fade s or 1 − s) and the weight's gradient.
+///
+/// The noise is n = Σ_c w_c (g_c · (f − c)), the nested linear interpolations of the reference
+/// written out; its gradient is Σ_c w_c g_c + Σ_c ∇w_c (g_c · (f − c)). Several seeds at one
+/// point (the three potentials of eq. 8) share all of this and differ only in the corner
+/// gradients g_c.
+#[derive(Clone, Copy, Debug)]
+pub struct Lattice<S> {
+    hash: [i32; 8],
+    /// The offsets f − c, by axis.
+    offset: [[S; 8]; 3],
+    weight: [S; 8],
+    /// ∇w_c, by axis.
+    dweight: [[S; 8]; 3],
+}
+
+/// Σ_c a_c·b_c + e_c·f_c over the 8 corners, summed as a balanced tree (a fixed order, so the
+/// same bits everywhere, and one the compiler can evaluate several corners at a time).
+#[inline]
+fn corner_sum<S: Scalar>(a: &[S; 8], b: &[S; 8], e: &[S; 8], f: &[S; 8]) -> S {
+    let mut t = [S::ZERO; 8];
+    for (c, t) in t.iter_mut().enumerate() {
+        *t = a[c] * b[c] + e[c] * f[c];
+    }
+    ((t[0] + t[1]) + (t[2] + t[3])) + ((t[4] + t[5]) + (t[6] + t[7]))
+}
+
+impl<S: Scalar> Lattice<S> {
+    /// The lattice cell of `p` (lattice units: one cell per unit).
+    pub fn new(p: Vec3<S>) -> Self {
+        let ((ix, fx), (iy, fy), (iz, fz)) = (split(p.x), split(p.y), split(p.z));
+        let (u, du) = fade(fx);
+        let (v, dv) = fade(fy);
+        let (w, dw) = fade(fz);
+        // Per axis: (factor, its derivative, offset) for the corner offsets 0 and 1.
+        let axis = |f: S, s: S, ds: S| [(S::ONE - s, -ds, f), (s, ds, f - S::ONE)];
+        let (ax, ay, az) = (axis(fx, u, du), axis(fy, v, dv), axis(fz, w, dw));
+        let px = [perm(ix), perm(ix.wrapping_add(1))];
+        let mut lattice = Lattice {
+            hash: [0; 8],
+            offset: [[S::ZERO; 8]; 3],
+            weight: [S::ZERO; 8],
+            dweight: [[S::ZERO; 8]; 3],
+        };
+        for c in 0..8 {
+            let (cx, cy, cz) = (c & 1, c >> 1 & 1, c >> 2);
+            let ((a, da, ox), (b, db, oy), (e, de, oz)) = (ax[cx], ay[cy], az[cz]);
+            lattice.hash[c] = perm(
+                perm(px[cx].wrapping_add(iy.wrapping_add(cy as i32)))
+                    .wrapping_add(iz.wrapping_add(cz as i32)),
+            );
+            (
+                lattice.offset[0][c],
+                lattice.offset[1][c],
+                lattice.offset[2][c],
+            ) = (ox, oy, oz);
+            let be = b * e;
+            lattice.weight[c] = a * be;
+            lattice.dweight[0][c] = da * be;
+            lattice.dweight[1][c] = a * db * e;
+            lattice.dweight[2][c] = a * b * de;
         }
-    };
-    let (u, du) = fade(fx);
-    let (v, dv) = fade(fy);
-    let (w, dw) = fade(fz);
-    let (ex, ey, ez) = (
-        Vec3::new(du, S::ZERO, S::ZERO),
-        Vec3::new(S::ZERO, dv, S::ZERO),
-        Vec3::new(S::ZERO, S::ZERO, dw),
-    );
-    let x = |cy, cz| lerp(corner(0, cy, cz), corner(1, cy, cz), u, ex);
-    let y0 = lerp(x(0, 0), x(1, 0), v, ey);
-    let y1 = lerp(x(0, 1), x(1, 1), v, ey);
-    lerp(y0, y1, w, ez)
+        lattice
+    }
+
+    /// The corners' gradients g_c for `seed`, by axis, and their dot products with the
+    /// corners' offsets.
+    #[inline]
+    fn corners(&self, seed: u8) -> ([[S; 8]; 3], [S; 8]) {
+        let mut g = [[S::ZERO; 8]; 3];
+        for (c, &h) in self.hash.iter().enumerate() {
+            let i = (perm(h + i32::from(seed)) & 15) as usize;
+            (g[0][c], g[1][c], g[2][c]) = (
+                grad_component(i, 0),
+                grad_component(i, 1),
+                grad_component(i, 2),
+            );
+        }
+        let o = &self.offset;
+        let mut dot = [S::ZERO; 8];
+        for (c, d) in dot.iter_mut().enumerate() {
+            *d = g[0][c] * o[0][c] + g[1][c] * o[1][c] + g[2][c] * o[2][c];
+        }
+        (g, dot)
+    }
+
+    /// The gradient of the noise for `seed` with respect to the point.
+    pub fn grad(&self, seed: u8) -> Vec3<S> {
+        let (g, dot) = self.corners(seed);
+        let component = |k: usize| corner_sum(&self.weight, &g[k], &self.dweight[k], &dot);
+        Vec3::new(component(0), component(1), component(2))
+    }
+
+    /// The noise value and its gradient for `seed`.
+    pub fn noise(&self, seed: u8) -> Noise<S> {
+        let (_, dot) = self.corners(seed);
+        let zero = [S::ZERO; 8];
+        Noise {
+            value: corner_sum(&self.weight, &dot, &zero, &zero),
+            grad: self.grad(seed),
+        }
+    }
+}
+
+/// Perlin noise at `p` (in lattice units: one cell per unit) for `seed`, with its analytic
+/// gradient: the reference hash `P[P[P[x] + y] + z]` with the seed folded in by one more
+/// permutation, `P[hash + seed]` (each seed relabels the corners' gradients, not a mere
+/// translation of the noise). See [`Lattice`] for several seeds at one point.
+pub fn perlin<S: Scalar>(p: Vec3<S>, seed: u8) -> Noise<S> {
+    Lattice::new(p).noise(seed)
 }
 
 #[cfg(test)]

@@ -20,6 +20,7 @@ pub fn gap<S: Scalar>(dist: S, radius: S) -> S {
 #[derive(Clone, Copy, Debug)]
 pub struct Kernels<S> {
     h: S,
+    inv_h: S,
     poly6_c: S,
     spiky_c: S,
 }
@@ -29,18 +30,25 @@ impl<S: Scalar> Kernels<S> {
     pub fn new(h: S) -> Self {
         Kernels {
             h,
+            inv_h: S::ONE / h,
             poly6_c: S::from_f32(315.0) / (S::from_i32(64) * pi::<S>()) / h / h / h,
             spiky_c: S::from_i32(45) / pi::<S>() / h / h / h / h,
         }
     }
 
+    /// q = s/h for 0 ≤ s < h (as s·(1/h): one division per step, not per neighbour), else
+    /// `None`: the kernels vanish.
+    #[inline]
+    fn q(&self, s: S) -> Option<S> {
+        (s >= S::ZERO && s < self.h).then(|| (s * self.inv_h).min(S::ONE))
+    }
+
     /// Müller's poly6 kernel (eq. 10, \[61\]): W(s, h) = 315/(64π h³)·(1 − q²)³ for
     /// q = s/h < 1, else 0 (s ≥ 0).
     pub fn poly6(&self, s: S) -> S {
-        let q = s / self.h;
-        if q >= S::ONE || q < S::ZERO {
+        let Some(q) = self.q(s) else {
             return S::ZERO;
-        }
+        };
         let w = S::ONE - q * q;
         self.poly6_c * w * w * w
     }
@@ -48,10 +56,9 @@ impl<S: Scalar> Kernels<S> {
     /// Magnitude of Desbrun's spiky-kernel gradient (eq. 11, \[61\]):
     /// |∇W_spiky(s, h)| = 45/(π h⁴)·(1 − q)² for q = s/h < 1, else 0 (s ≥ 0).
     pub fn spiky_grad(&self, s: S) -> S {
-        let q = s / self.h;
-        if q >= S::ONE || q < S::ZERO {
+        let Some(q) = self.q(s) else {
             return S::ZERO;
-        }
+        };
         let w = S::ONE - q;
         self.spiky_c * w * w
     }
@@ -114,9 +121,16 @@ pub fn self_density<S: Scalar>(p: &BeeParams<S>) -> S {
 ///
 /// A neighbour's ρ_j is the density it broadcast, at least the self term m·W(0, h) (a real
 /// neighbour's density includes itself; the floor keeps 1/ρ_j bounded whatever a frame says),
-/// and p_j = k·max(ρ_j − ρ0, 0). Target particles carry no density of their own: they mirror
-/// the bee's (ρ_j = ρ_i, p_j = p_i), as in Akinci et al.'s boundary handling. Coincident
-/// positions have no direction and are skipped.
+/// and p_j = k·max(ρ_j − ρ0, 0). Coincident positions have no direction and are skipped.
+///
+/// Target particles are "virtual static particles" (§V-B): bees that do not move and sense
+/// nothing, so each has the density of an isolated particle, ρ_j = m·W(0, h) (the floor
+/// above), and p_j = k·max(ρ_j − ρ0, 0). Their term is then m·(p_i + p_j)/(2ρ_j)·|∇W|, which
+/// grows with the bee's own density ρ_i: the more particles a bee crowds, the harder they push
+/// back, enough to stop a bee at the speed limit before it reaches the target's surface.
+/// (Mirroring the bee's own density instead, ρ_j = ρ_i and p_j = p_i as in Akinci et al.'s
+/// boundary handling, gives every particle a fixed m·k·|∇W| whatever the crowding: too weak to
+/// stop a bee at full speed, which then flies through the target.)
 pub fn repulsion<S: Scalar>(
     pos: Vec3<S>,
     rho_i: S,
@@ -131,12 +145,68 @@ pub fn repulsion<S: Scalar>(
         let rho_j = n.density.max(floor);
         pair_force(&k, pos, n.pos, p_i, pressure(rho_j, p), rho_j, p)
     });
+    let p_floor = pressure(floor, p);
     let from_targets = targets
         .iter()
-        .map(|&t| pair_force(&k, pos, t, p_i, p_i, rho_i, p));
+        .map(|&t| pair_force(&k, pos, t, p_i, p_floor, floor, p));
     from_bees
         .chain(from_targets)
         .fold(Vec3::zero(), |f, t| f + t)
+}
+
+/// [`density`] and then [`repulsion`] with that density, the same bits, with each offset
+/// r_i − r_j and its length computed once for both (what a step needs).
+pub fn interact<S: Scalar, const N: usize, const P: usize>(
+    pos: Vec3<S>,
+    neighbours: &heapless::Vec<BeeNeighbor<S>, N>,
+    targets: &heapless::Vec<Vec3<S>, P>,
+    p: &BeeParams<S>,
+) -> (S, Vec3<S>) {
+    interact_with(pos, neighbours, targets, p, &Kernels::new(p.h))
+}
+
+/// [`interact`] with the kernels of radius `p.h` computed beforehand.
+pub fn interact_with<S: Scalar, const N: usize, const P: usize>(
+    pos: Vec3<S>,
+    neighbours: &heapless::Vec<BeeNeighbor<S>, N>,
+    targets: &heapless::Vec<Vec3<S>, P>,
+    p: &BeeParams<S>,
+    k: &Kernels<S>,
+) -> (S, Vec3<S>) {
+    let offset = |r_j: Vec3<S>| {
+        let diff = pos - r_j;
+        (diff, diff.length())
+    };
+    let mut bees = [(Vec3::zero(), S::ZERO); N];
+    for (o, n) in bees.iter_mut().zip(neighbours) {
+        *o = offset(n.pos);
+    }
+    let mut particles = [(Vec3::zero(), S::ZERO); P];
+    for (o, &t) in particles.iter_mut().zip(targets) {
+        *o = offset(t);
+    }
+    let (bees, particles) = (&bees[..neighbours.len()], &particles[..targets.len()]);
+    let floor = p.mass * k.poly6(S::ZERO);
+    let rho_i = bees
+        .iter()
+        .chain(particles)
+        .fold(floor, |rho, &(_, dist)| {
+            rho + p.mass * k.poly6(gap(dist, p.radius))
+        })
+        .min(S::from_f32(LIMIT));
+    let p_i = pressure(rho_i, p);
+    let p_floor = pressure(floor, p);
+    let from_bees = bees.iter().zip(neighbours).map(|(&(diff, dist), n)| {
+        let rho_j = n.density.max(floor);
+        term(k, diff, dist, p_i, pressure(rho_j, p), rho_j, p)
+    });
+    let from_targets = particles
+        .iter()
+        .map(|&(diff, dist)| term(k, diff, dist, p_i, p_floor, floor, p));
+    let force = from_bees
+        .chain(from_targets)
+        .fold(Vec3::zero(), |f, t| f + t);
+    (rho_i, force)
 }
 
 /// One term of [`repulsion`]: m·(p_i + p_j)/(2ρ_j)·|∇W_spiky|·r̂_ji.
@@ -150,12 +220,26 @@ fn pair_force<S: Scalar>(
     p: &BeeParams<S>,
 ) -> Vec3<S> {
     let diff = r_i - r_j;
-    let dist = diff.length();
+    term(k, diff, diff.length(), p_i, p_j, rho_j, p)
+}
+
+/// [`pair_force`] from the offset `diff` = r_i − r_j and its length `dist`.
+#[inline]
+fn term<S: Scalar>(
+    k: &Kernels<S>,
+    diff: Vec3<S>,
+    dist: S,
+    p_i: S,
+    p_j: S,
+    rho_j: S,
+    p: &BeeParams<S>,
+) -> Vec3<S> {
     let grad = k.spiky_grad(gap(dist, p.radius));
     if dist <= S::ZERO || grad <= S::ZERO {
         return Vec3::zero();
     }
-    let dir = Vec3::new(diff.x / dist, diff.y / dist, diff.z / dist);
+    // One division for the direction: r̂_ji = diff·(1/|diff|).
+    let dir = diff * (S::ONE / dist);
     dir * (p.mass * grad * ((p_i + p_j) / (rho_j + rho_j)))
 }
 
@@ -241,6 +325,42 @@ mod tests {
         );
         // Pushes them apart: F_A points from B to A.
         assert!(f_a.dot(a - b) > S::ZERO && f_b.dot(b - a) > S::ZERO);
+    }
+
+    /// [`interact`] is [`density`] then [`repulsion`], bit for bit.
+    fn interact_case<S: Scalar>() {
+        let p = BeeParams::<S>::default();
+        let mut s = 0x5eed_u32;
+        let mut next = move || {
+            s = crate::rand::mix32(s.wrapping_add(0x9e37_79b9));
+            s as f32 / u32::MAX as f32 * 6.0 - 3.0
+        };
+        for _ in 0..50 {
+            let me = Vec3::<S>::from_f32(next(), next(), next());
+            let mut nb: heapless::Vec<BeeNeighbor<S>, 6> = heapless::Vec::new();
+            let mut tg: heapless::Vec<Vec3<S>, 5> = heapless::Vec::new();
+            for _ in 0..6 {
+                let _ = nb.push(BeeNeighbor {
+                    pos: Vec3::from_f32(next(), next(), next()),
+                    vel: Vec3::zero(),
+                    density: S::from_f32(next().abs() * 0.1),
+                });
+            }
+            for _ in 0..5 {
+                let _ = tg.push(Vec3::from_f32(next(), next(), next()));
+            }
+            let rho = density(me, &nb, &tg, &p);
+            assert_eq!(
+                interact(me, &nb, &tg, &p),
+                (rho, repulsion(me, rho, &nb, &tg, &p))
+            );
+        }
+    }
+
+    #[test]
+    fn interact_is_density_then_repulsion() {
+        interact_case::<f32>();
+        interact_case::<Fx>();
     }
 
     #[test]

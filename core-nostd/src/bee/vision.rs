@@ -27,22 +27,41 @@ pub fn in_fov<S: Scalar>(forward: Vec3<S>, r_e: Vec3<S>) -> bool {
     forward.dot(r_e) >= S::from_f32(COS_HALF_FOV) * r_e.length()
 }
 
-/// The avoidance test of §IV-B: `Some` iff the obstacle is in the field of view around the
-/// unit forward axis and its distance d = |p_e − r| is below the threshold `d0`.
+/// The obstacle as seen from `pos`, if it is closer than the threshold `d0` (§IV-B): r_e, d
+/// and the unit normal. Eq. 5 tunes the velocity for it ([`tune_velocity`]) whether or not it
+/// is in the field of view; whether it starts an avoidance is [`in_view`]'s call.
+pub fn near<S: Scalar>(pos: Vec3<S>, obstacle: &ObstacleSense<S>, d0: S) -> Option<Sighting<S>> {
+    let r_e = obstacle.point - pos;
+    let d = r_e.length();
+    (d < d0).then(|| Sighting {
+        r_e,
+        d,
+        normal: obstacle.normal.normalized().unwrap_or(Vec3::up()),
+    })
+}
+
+/// Whether a near obstacle (see [`near`]) makes the bee avoid it (§IV-B): it is in the field
+/// of view around the unit forward axis, or the bee was already avoiding (`avoiding`) and the
+/// obstacle is not behind it (o·r_e ≥ 0).
+///
+/// The paper starts an avoidance when the obstacle "enters the sensing area"; it does not say
+/// when it ends, only that the bee "attempts to return to a horizontal posture once the
+/// obstacle has been avoided". We end it when the obstacle is passed (behind the bee) or
+/// farther than d0, so a bee sliding along a surface (o tangent to it, the obstacle at 90°)
+/// keeps its avoidance roll until it is past.
+pub fn in_view<S: Scalar>(forward: Vec3<S>, s: &Sighting<S>, avoiding: bool) -> bool {
+    in_fov(forward, s.r_e) || (avoiding && forward.dot(s.r_e) >= S::ZERO)
+}
+
+/// [`near`] and [`in_view`] together: the obstacle the bee avoids, if any.
 pub fn sense<S: Scalar>(
     pos: Vec3<S>,
     forward: Vec3<S>,
     obstacle: &ObstacleSense<S>,
     d0: S,
+    avoiding: bool,
 ) -> Option<Sighting<S>> {
-    let r_e = obstacle.point - pos;
-    let d = r_e.length();
-    // Distance first: for far obstacles in fixed point the dot product could saturate.
-    (d < d0 && in_fov(forward, r_e)).then(|| Sighting {
-        r_e,
-        d,
-        normal: obstacle.normal.normalized().unwrap_or(Vec3::up()),
-    })
+    near(pos, obstacle, d0).filter(|s| in_view(forward, s, avoiding))
 }
 
 /// Bridson's ramp of eq. 5: ramp(x) = 3/8 x⁵ − 10/8 x³ + 15/8 x for |x| < 1 and ±1 beyond
@@ -59,17 +78,35 @@ pub fn ramp<S: Scalar>(x: S) -> S {
     if x < S::ZERO { -r } else { r }
 }
 
-/// The tuned velocity of eq. 5: u* = u + (1 − γ)(u_t − u_0), γ = |ramp(d/d0)|.
+/// The tuned velocity of eq. 5: u* = u + (1 − γ)(u_t − u_0), γ = |ramp(d/d0)|, with u_0 the
+/// velocity being tuned (this step's u) and u_t its tangential part; only an approach toward
+/// the surface is tuned (a bee moving away keeps its velocity):
 ///
-/// The paper prints u_t = n(n·u_0), the *normal* part of u_0. With that, at the surface
-/// (γ = 0, u = u_0) u* = n(n·u_0): the bee would fly straight along the normal, into or away
-/// from the obstacle, contradicting the bypass condition u·n = 0 the same paragraph states and
-/// the "slipping" it aims for. We use the tangential part u_t = u_0 − n(n·u_0) (the
-/// curl-noise boundary treatment of Bridson \[16\]): at d = 0 with u = u_0, u* = u_t and u*·n = 0.
-pub fn tune_velocity<S: Scalar>(u: Vec3<S>, u0: Vec3<S>, normal: Vec3<S>, d: S, d0: S) -> Vec3<S> {
+/// u* = u − (1 − γ)·n·min(n·u, 0).
+///
+/// Two departures from the printed equation, both to meet the bypass condition u·n = 0 that
+/// the same paragraph states ("tune the magnitude of the bee's velocity to zero on the obstacle
+/// while preserving the velocity vector for the slipping purpose"):
+///
+/// * u_t. The paper prints u_t = n(n·u_0), the *normal* part of u_0. With that, at the surface
+///   (γ = 0, u = u_0) u* = n(n·u_0): the bee would fly straight along the normal, into or away
+///   from the obstacle. We use the tangential part u_t = u_0 − n(n·u_0) (the curl-noise boundary
+///   treatment of Bridson \[16\]).
+/// * u_0. The paper's u_0 is the velocity where the bee first perceived the obstacle. Tuning
+///   by that fixed vector leaves whatever the bee gained since (thrust, curl noise, neighbours
+///   pushing) untouched, and in the Fig. 14 shaft field that carried bees into the shafts
+///   (104 world corrections in 600 steps). Taking u_0 = u makes eq. 5 Bridson's ramp on the
+///   current velocity: the normal approach speed is scaled by γ ≈ 15/8·d/d0 near the surface,
+///   so a bee with |u|·Δt < d0 never reaches it.
+///
+/// The controller applies it for every obstacle closer than d0 ([`near`]), in the field of
+/// view or not: in Bridson's curl noise, which eq. 5 is taken from, the ramp holds all around
+/// a boundary, and a bee curving into a shaft at a glancing angle (more than 45° off its
+/// forward axis) would otherwise fly into it.
+pub fn tune_velocity<S: Scalar>(u: Vec3<S>, normal: Vec3<S>, d: S, d0: S) -> Vec3<S> {
     let gamma = ramp(d / d0).abs();
-    let u_t = u0 - normal * normal.dot(u0);
-    u + (u_t - u0) * (S::ONE - gamma)
+    let approach = normal.dot(u).min(S::ZERO);
+    u - normal * (approach * (S::ONE - gamma))
 }
 
 /// The side value of eq. 7: y = [0, 1, 0]·(o × r_e) = o_z·r_e,x − o_x·r_e,z.
@@ -158,12 +195,17 @@ mod tests {
             normal: v(-1.0, 0.0, 0.0),
         };
         let d0 = S::from_f32(2.0);
-        assert!(sense(Vec3::zero(), o, &obstacle(1.0, 0.5), d0).is_some());
-        // Close but behind or beside: ignored.
-        assert!(sense(Vec3::zero(), o, &obstacle(-0.5, 0.0), d0).is_none());
-        assert!(sense(Vec3::zero(), o, &obstacle(0.5, 0.6), d0).is_none());
-        // In view but beyond d0: ignored.
-        assert!(sense(Vec3::zero(), o, &obstacle(2.5, 0.0), d0).is_none());
+        for avoiding in [false, true] {
+            assert!(sense(Vec3::zero(), o, &obstacle(1.0, 0.5), d0, avoiding).is_some());
+            // Close but behind: ignored.
+            assert!(sense(Vec3::zero(), o, &obstacle(-0.5, 0.0), d0, avoiding).is_none());
+            // In view but beyond d0: ignored.
+            assert!(sense(Vec3::zero(), o, &obstacle(2.5, 0.0), d0, avoiding).is_none());
+        }
+        // Close beside: ignored unless an avoidance goes on.
+        assert!(sense(Vec3::zero(), o, &obstacle(0.5, 0.6), d0, false).is_none());
+        assert!(sense(Vec3::zero(), o, &obstacle(0.0, 0.6), d0, true).is_some());
+        assert!(sense(Vec3::zero(), o, &obstacle(-0.1, 0.6), d0, true).is_none());
     }
 
     #[test]
@@ -176,19 +218,44 @@ mod tests {
         let n = v::<S>(-0.6, 0.0, -0.8);
         let u0 = v::<S>(1.0, 0.3, 2.0);
         let d0 = S::from_f32(2.0);
-        let u = tune_velocity(u0, u0, n, S::ZERO, d0);
+        let u = tune_velocity(u0, n, S::ZERO, d0);
         assert!(u.dot(n).to_f32().abs() < tol, "u*·n = {:?}", u.dot(n));
+        // The tangential part is kept.
+        let t = u0 - n * n.dot(u0);
+        assert!((u - t).to_f32().length() < tol);
         // Far from the surface (d ≥ d0) nothing changes.
-        assert_eq!(tune_velocity(u0, u0, n, d0, d0), u0);
+        assert_eq!(tune_velocity(u0, n, d0, d0), u0);
         // In between the normal component is partly removed.
-        let mid = tune_velocity(u0, u0, n, S::ONE, d0).dot(n).to_f32();
+        let mid = tune_velocity(u0, n, S::ONE, d0).dot(n).to_f32();
         assert!(mid.abs() < u0.dot(n).to_f32().abs() && mid * u0.dot(n).to_f32() > 0.0);
+        // Moving away from the surface: untouched.
+        assert_eq!(tune_velocity(-u0, n, S::ZERO, d0), -u0);
+    }
+
+    /// A bee flying straight at a wall with every step tuned by eq. 5 slows down and never
+    /// reaches it (at the speed limit, 4 units/s, Δt = 0.05 s, d0 = 2).
+    fn approach_case<S: Scalar>() {
+        let n = v::<S>(-1.0, 0.0, 0.0);
+        let (d0, dt) = (S::from_f32(2.0), S::from_f32(0.05));
+        let mut d = S::from_f32(1.99);
+        for _ in 0..400 {
+            let u = tune_velocity(v::<S>(4.0, 0.0, 1.0), n, d, d0);
+            assert!(u.z == S::ONE, "the tangential velocity is kept");
+            d -= u.x * dt;
+            assert!(d > S::ZERO, "reached the wall");
+        }
     }
 
     #[test]
     fn tuned_velocity_is_tangent_at_contact() {
         tangent_case::<f32>(1e-6);
         tangent_case::<Fx>(1e-3);
+    }
+
+    #[test]
+    fn eq5_alone_keeps_a_bee_off_the_surface() {
+        approach_case::<f32>();
+        approach_case::<Fx>();
     }
 
     fn roll_case<S: Scalar>(tol: f32) {

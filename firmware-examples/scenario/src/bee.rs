@@ -7,8 +7,8 @@
 //! refused with the same typed error on both sides.
 //!
 //! The starting states make the branches run: three bees flying close together (SPH density
-//! and repulsion, eq. 10-11), one flying at the rock (visual avoidance: eq. 5-7, u_0 kept over
-//! the following steps), one next to the flower (repulsion by target particles, the zig-zag
+//! and repulsion, eq. 10-11), one flying at the rock (visual avoidance: eq. 5-7, sliding along
+//! its surface until it is past), one next to the flower (repulsion by target particles, the zig-zag
 //! approach), and one with no goal, hovering (the forward axis from its stored heading).
 //! Oscillation (eq. 2-4) and curl noise (eq. 8-9) act on all.
 //!
@@ -222,14 +222,10 @@ mod tests {
             (0..STEPS as usize).all(|s| avoiding(s, 5) == 0),
             "bee 5 (far away) never avoids"
         );
-        assert!(
-            avoiding(0, 0) == 0 && avoiding(STEPS as usize - 1, 0) == 1,
-            "bee 0 starts avoiding late"
-        );
         let avoided = (0..STEPS as usize).filter(|&s| avoiding(s, 3) == 1).count();
         assert!(
-            avoided >= 2,
-            "bee 3 avoids the rock over several steps ({avoided})"
+            avoided >= 2 && avoiding(0, 3) == 1 && avoiding(STEPS as usize - 1, 3) == 0,
+            "bee 3 avoids the rock over several steps ({avoided}), then stops once past it"
         );
         // Probes: negative density [1], non-unit normal, t < 0, far position, bad dt.
         let m = crate::ERROR_MARKER;

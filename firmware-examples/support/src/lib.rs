@@ -1,27 +1,37 @@
 //! Target-side plumbing shared by the node images.
 //!
-//! [`check`] replays a scenario on the MCU, compares every decision word with the table the
-//! host computed in `build.rs`, prints a one-line summary over semihosting and exits QEMU with
-//! `EXIT_SUCCESS` only if every word matched. It also measures the peak stack use (the stack is
-//! painted before the run and scanned afterwards).
+//! * [`uart`]: polled `embedded-io` UART drivers for the two QEMU boards (the serial nodes,
+//!   `ant-node`, `bee-node` and their `-fixed` variants, serve `fw_node::run` over them);
+//! * [`node_handlers!`]: the panic and HardFault handlers of a serial node (reset the MCU: the
+//!   host sees `NoSession` and handshakes again);
+//! * [`check`] and [`selfcheck_handlers!`]: the self-check images (`*-selfcheck`). [`check`]
+//!   replays a scenario on the MCU, compares every decision word with the table the host
+//!   computed in `build.rs`, prints a one-line summary over semihosting and exits QEMU with
+//!   `EXIT_SUCCESS` only if every word matched. It also measures the peak stack use (the stack
+//!   is painted before the run and scanned afterwards);
+//! * [`paint_stack`]: the serial nodes paint the stack too, so a debugger or QEMU's monitor
+//!   can read the peak afterwards (`scripts/qemu-serial.sh --stack`).
 //!
-//! Self-test of the check: run an image with the semihosting argument `corrupt`
+//! Self-test of the check: run a self-check image with the semihosting argument `corrupt`
 //! (`-semihosting-config enable=on,target=native,arg=corrupt`); the checker then flips one bit
 //! of one expected word, and the image must exit with failure.
 #![no_std]
 
 use core::ptr::addr_of;
-use cortex_m_rt::{ExceptionFrame, exception};
+use cortex_m_rt::ExceptionFrame;
 use cortex_m_semihosting::{debug, hio, nr};
 use fw_scenario::Sink;
+
+pub mod mem;
+pub mod uart;
 
 #[cfg(all(feature = "lm3s6965evb", feature = "mps2-an386"))]
 compile_error!("fw-support: pick one board feature, `lm3s6965evb` or `mps2-an386`");
 
-/// Device interrupt lines of the board's NVIC (QEMU's `num-irq`).
+/// Device interrupt lines of the board's NVIC (QEMU's `num-irq`): what a full table holds.
 #[cfg(feature = "lm3s6965evb")]
 pub const IRQS: usize = 80;
-/// Device interrupt lines of the board's NVIC (QEMU's `num-irq`).
+/// Device interrupt lines of the board's NVIC (QEMU's `num-irq`): what a full table holds.
 #[cfg(feature = "mps2-an386")]
 pub const IRQS: usize = 48;
 #[cfg(not(any(feature = "lm3s6965evb", feature = "mps2-an386")))]
@@ -32,15 +42,24 @@ unsafe extern "C" {
     fn DefaultHandler();
 }
 
+/// Entries in the device part of the vector table. The images enable no device interrupt (the
+/// UARTs are polled), so they carry only the one entry cortex-m-rt's linker script insists on
+/// instead of all [`IRQS`]: 4 bytes of flash instead of 320 (lm3s6965evb) or 192 (mps2-an386).
+/// No interrupt line is enabled in the NVIC, so no other entry is ever read. An image that
+/// enables device interrupt `n` needs `n + 1` entries here (a peripheral access crate
+/// provides the whole table, with named handlers).
+pub const VECTORS: usize = 1;
+const _: () = assert!(VECTORS >= 1 && VECTORS <= IRQS);
+
 /// The device part of the vector table (cortex-m-rt feature `device`; a board support crate
 /// would provide this with named handlers). Every line goes to the default handler.
 #[unsafe(link_section = ".vector_table.interrupts")]
 #[unsafe(no_mangle)]
 #[used]
-pub static __INTERRUPTS: [unsafe extern "C" fn(); IRQS] = [DefaultHandler; IRQS];
+pub static __INTERRUPTS: [unsafe extern "C" fn(); VECTORS] = [DefaultHandler; VECTORS];
 
 /// The pattern painted over the free stack.
-const PAINT: u32 = 0xC0FF_EE55;
+pub const PAINT: u32 = 0xC0FF_EE55;
 /// How far below the stack pointer at start-up the stack is painted (bytes). Must exceed the
 /// deepest stack use of a scenario; if the peak reaches it, the report says so.
 const PAINT_WINDOW: usize = 32 * 1024;
@@ -163,9 +182,11 @@ fn cmdline_has(needle: &[u8]) -> bool {
     line.windows(needle.len()).any(|w| w == needle)
 }
 
-/// Paints the free stack below the current frame; returns the lowest painted address.
+/// Paints the free stack below the current frame with [`PAINT`] (at most 32 KiB below it, never
+/// into the statics); returns the lowest painted address. The peak use is then the distance
+/// from the top of RAM (`_stack_start`) to the lowest word that no longer holds [`PAINT`].
 #[inline(never)]
-fn paint_stack() -> usize {
+pub fn paint_stack() -> usize {
     let here = 0u32;
     let sp = core::hint::black_box(addr_of!(here)) as usize;
     let floor = addr_of!(_stack_end) as usize;
@@ -193,8 +214,9 @@ fn stack_peak(lo: usize) -> (usize, bool) {
     (top - p, p == lo)
 }
 
-#[panic_handler]
-fn panic(info: &core::panic::PanicInfo<'_>) -> ! {
+/// Prints a panic's location over semihosting and exits QEMU with failure (the self-check
+/// images' panic handler, see [`selfcheck_handlers!`]).
+pub fn report_panic(info: &core::panic::PanicInfo<'_>) -> ! {
     let mut l = Line::new();
     l.str("PANIC");
     if let Some(loc) = info.location() {
@@ -207,10 +229,51 @@ fn panic(info: &core::panic::PanicInfo<'_>) -> ! {
     exit(false)
 }
 
-#[exception]
-unsafe fn HardFault(ef: &ExceptionFrame) -> ! {
+/// Prints the faulting PC over semihosting and exits QEMU with failure (the self-check images'
+/// HardFault handler, see [`selfcheck_handlers!`]).
+pub fn report_hard_fault(ef: &ExceptionFrame) -> ! {
     Line::new().str("HARD FAULT at pc ").hex(ef.pc()).print();
     exit(false)
+}
+
+/// Resets the MCU (`SCB.AIRCR.SYSRESETREQ`): a serial node's answer to a panic or a fault. QEMU
+/// restarts the image (unless started with `-no-reboot`, then it exits).
+pub fn reset() -> ! {
+    cortex_m::peripheral::SCB::sys_reset()
+}
+
+/// Defines the panic and HardFault handlers of a self-check image: print over semihosting,
+/// exit QEMU with failure. Use once, at the top level of the binary.
+#[macro_export]
+macro_rules! selfcheck_handlers {
+    () => {
+        #[panic_handler]
+        fn panic(info: &core::panic::PanicInfo<'_>) -> ! {
+            $crate::report_panic(info)
+        }
+
+        #[cortex_m_rt::exception]
+        unsafe fn HardFault(ef: &cortex_m_rt::ExceptionFrame) -> ! {
+            $crate::report_hard_fault(ef)
+        }
+    };
+}
+
+/// Defines the panic and HardFault handlers of a serial node: [`reset`] (no semihosting: a
+/// node runs without a debugger). Use once, at the top level of the binary.
+#[macro_export]
+macro_rules! node_handlers {
+    () => {
+        #[panic_handler]
+        fn panic(_: &core::panic::PanicInfo<'_>) -> ! {
+            $crate::reset()
+        }
+
+        #[cortex_m_rt::exception]
+        unsafe fn HardFault(_: &cortex_m_rt::ExceptionFrame) -> ! {
+            $crate::reset()
+        }
+    };
 }
 
 /// A line of text for the semihosting console, built without `core::fmt` (which would cost

@@ -8,13 +8,20 @@ use std::time::Duration;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use swarm_core::Fx;
-use swarm_core::wire::AntDevice;
+use swarm_core::ant::AntParams;
+use swarm_core::bee::BeeParams;
+use swarm_core::wire::{AntDevice, BeeDevice};
 use swarm_hil::client::{Client, ClientOptions};
-use swarm_hil::loopback::{LinkKind, loopback_ants, with_scalar};
-use swarm_hil::mirror::{GroupsOf, MirrorOptions, MirrorReport, mirror_ants, mirror_ants_with};
+use swarm_hil::loopback::{LinkKind, loopback, with_scalar};
+use swarm_hil::mirror::{
+    BeeGroupsOf, DeviceParams, GroupsOf, MirrorOptions, MirrorReport, device_params,
+    mirror_scenario,
+};
 use swarm_hil::qemu::{QemuRun, mirror_in_qemu};
 use swarm_hil::transport::{FaultSpec, SerialTransport, TcpTransport, Transport};
 use swarm_sim::ants::AntSim;
+use swarm_sim::bees::BeeSim;
+use swarm_sim::scalar::SimScalar;
 use swarm_sim::scenario::{ScalarType, Scenario};
 
 #[derive(Parser)]
@@ -186,7 +193,7 @@ fn run(cli: Cli) -> Result<bool, AnyError> {
                 Link::Memory => LinkKind::Memory,
                 Link::Pty => LinkKind::Pty,
             };
-            let report = loopback_ants(
+            let report = loopback(
                 &sc,
                 run.scalar.into(),
                 link,
@@ -210,10 +217,7 @@ fn run(cli: Cli) -> Result<bool, AnyError> {
             };
             let sc = with_scalar(&scenario(&run.scenario)?, run.scalar.into());
             let mut client = Client::new(link, client_options(&run));
-            let report = match run.scalar {
-                Scalar::F32 => mirror::<f32>(&sc, &mut client, &run)?,
-                Scalar::Fixed => mirror::<Fx>(&sc, &mut client, &run)?,
-            };
+            let report = mirror(&sc, &mut client, &run, &mut |_| Ok(()))?;
             finish(&report, run.json.as_deref())
         }
         Command::Qemu {
@@ -240,13 +244,7 @@ fn run(cli: Cli) -> Result<bool, AnyError> {
             };
             let sc = with_scalar(&scenario(&run.scenario)?, run.scalar.into());
             let report = mirror_in_qemu(&qrun, client_options(&run), |client, hook| {
-                let sim = AntSim::from_scenario(&sc, sc.seed)
-                    .map_err(|e| swarm_hil::HilError::Invalid(e.to_string()))?;
-                let o = mirror_options(&run);
-                match run.scalar {
-                    Scalar::F32 => mirror_ants_with::<f32, _>(&sc.name, sim, client, &o, hook),
-                    Scalar::Fixed => mirror_ants_with::<Fx, _>(&sc.name, sim, client, &o, hook),
-                }
+                mirror(&sc, client, &run, hook)
             })?;
             finish(&report, run.json.as_deref())
         }
@@ -274,33 +272,37 @@ fn run(cli: Cli) -> Result<bool, AnyError> {
 
 fn serve<S>(sc: &Scenario, link: SerialTransport, stop: &AtomicBool) -> Result<(), AnyError>
 where
-    S: swarm_sim::scalar::SimScalar + serde::Serialize + serde::de::DeserializeOwned,
+    S: SimScalar + serde::Serialize + serde::de::DeserializeOwned,
     AntSim: GroupsOf<S>,
-    swarm_core::ant::AntParams<S>: swarm_core::wire::Controller,
+    BeeSim: BeeGroupsOf<S>,
+    AntParams<S>: swarm_core::wire::Controller,
+    BeeParams<S>: swarm_core::wire::Controller,
 {
-    let sim = AntSim::from_scenario(sc, sc.seed)?;
-    let params = *GroupsOf::<S>::single_params(&sim)?;
-    let device = AntDevice::<S>::new(params, "soft-ant").map_err(|e| e.to_string())?;
-    swarm_hil::soft::serve(device, link, stop)?;
+    match device_params::<S>(sc)? {
+        DeviceParams::Ant(p) => {
+            let device = AntDevice::<S>::new(p, "soft-ant").map_err(|e| e.to_string())?;
+            swarm_hil::soft::serve(device, link, stop)?;
+        }
+        DeviceParams::Bee(p) => {
+            let device = BeeDevice::<S>::new(p, "soft-bee").map_err(|e| e.to_string())?;
+            swarm_hil::soft::serve(device, link, stop)?;
+        }
+    }
     Ok(())
 }
 
-fn mirror<S>(
+/// Mirrors `sc` (already in the run's scalar type) over `client`.
+fn mirror<T: Transport>(
     sc: &Scenario,
-    client: &mut Client<Box<dyn Transport>>,
+    client: &mut Client<T>,
     run: &Run,
-) -> Result<MirrorReport, AnyError>
-where
-    S: swarm_sim::scalar::SimScalar + serde::Serialize + serde::de::DeserializeOwned,
-    AntSim: GroupsOf<S>,
-{
-    let sim = AntSim::from_scenario(sc, sc.seed)?;
-    Ok(mirror_ants::<S, _>(
-        &sc.name,
-        sim,
-        client,
-        &mirror_options(run),
-    )?)
+    hook: &mut dyn FnMut(u32) -> swarm_hil::Result<()>,
+) -> swarm_hil::Result<MirrorReport> {
+    let o = mirror_options(run);
+    match run.scalar {
+        Scalar::F32 => mirror_scenario::<f32, T>(sc, client, &o, hook),
+        Scalar::Fixed => mirror_scenario::<Fx, T>(sc, client, &o, hook),
+    }
 }
 
 fn scenario(name: &str) -> Result<Scenario, AnyError> {

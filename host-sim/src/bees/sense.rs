@@ -77,20 +77,46 @@ impl<const K: usize> Selected<K> {
     }
 }
 
-/// Sorts distinct keys: by rank (for each key, how many are smaller: no data-dependent
-/// branch) when there are few, else the standard sort.
-fn sort_small(keys: &mut [u64], scratch: &mut Vec<u64>) {
-    if keys.len() > 32 {
-        keys.sort_unstable();
+/// Sorts entries with distinct keys by key: insertion sort when there are few (the usual
+/// handful of neighbours), else the standard sort.
+fn sort_small(items: &mut [(u64, u32)]) {
+    if items.len() > 24 {
+        items.sort_unstable_by_key(|e| e.0);
         return;
     }
-    scratch.clear();
-    scratch.resize(keys.len(), 0);
-    for &a in keys.iter() {
-        let rank: usize = keys.iter().map(|&b| usize::from(b < a)).sum();
-        scratch[rank] = a;
+    for a in 1..items.len() {
+        let x = items[a];
+        let mut b = a;
+        while b > 0 && items[b - 1].0 > x.0 {
+            items[b] = items[b - 1];
+            b -= 1;
+        }
+        items[b] = x;
     }
-    keys.copy_from_slice(scratch);
+}
+
+/// Writes the (at most `N`) entries of `keyed` into `out` sorted by key, placing each by its
+/// rank among the distances (the high halves of the keys, compared 16 at a time without a
+/// data-dependent branch). Returns `false`, writing nothing meaningful, when there are more
+/// than `N` entries or two equal distances (then the caller sorts by the full key).
+fn rank_distinct(keyed: &[(u64, u32)], out: &mut [(u64, u32); N]) -> bool {
+    const { assert!(N <= 16) };
+    if keyed.len() > N {
+        return false;
+    }
+    let mut dist = [u32::MAX; 16];
+    for (d, &(k, _)) in dist.iter_mut().zip(keyed) {
+        *d = (k >> 32) as u32;
+    }
+    let mut placed = 0u32;
+    for (&d, &e) in dist.iter().zip(keyed) {
+        let rank = dist.iter().map(|&x| u32::from(x < d)).sum::<u32>() as usize;
+        if let Some(slot) = out.get_mut(rank) {
+            *slot = e;
+        }
+        placed |= 1 << rank;
+    }
+    placed == (1u32 << keyed.len()) - 1
 }
 
 /// The `K` entries of `grid` nearest to `p` strictly within `range`, `skip` excluded, ties
@@ -155,10 +181,18 @@ pub fn neighbour_slots(w: &BeeWorld, i: usize) -> impl Iterator<Item = usize> {
 #[derive(Debug, Default)]
 pub(crate) struct BlockCache {
     cell: Option<u32>,
+    /// The block's candidates, struct of arrays (the distance loop vectorizes): positions and
+    /// slots.
+    xs: Vec<f32>,
+    ys: Vec<f32>,
+    zs: Vec<f32>,
+    slots: Vec<u32>,
+    /// How many of them there are (the vectors are longer: room for a block).
+    n: usize,
+    /// Squared distances of the candidates to the current bee.
     d: Vec<f32>,
-    keys: Vec<u64>,
-    sorted: Vec<u64>,
-    gathered: Vec<([f32; 3], u32)>,
+    /// (selection key, slot) of the candidates in range.
+    keyed: Vec<(u64, u32)>,
 }
 
 impl BlockCache {
@@ -174,14 +208,21 @@ impl BlockCache {
             self.fill(w, cell, center);
         }
         // Distances exactly as `d2f` computes them.
-        for (d, (q, _)) in self.d.iter_mut().zip(&self.gathered) {
-            *d = d2f(*q, p);
+        let n = self.n;
+        let (xs, ys, zs) = (&self.xs[..n], &self.ys[..n], &self.zs[..n]);
+        for (((d, &x), &y), &z) in self.d[..n].iter_mut().zip(xs).zip(ys).zip(zs) {
+            let (dx, dy, dz) = (x - p[0], y - p[1], z - p[2]);
+            *d = dx * dx + dy * dy + dz * dz;
         }
-        // Keys (distance bits, block index) of those in range: a bit mask per 64 candidates
-        // (vectorizable), then one step per set bit.
-        let (r2, me) = (w.range * w.range, i as u32);
+        // Keys (distance bits, stable id: the order `neighbour_slots` uses) of those in range:
+        // a bit mask per 64 candidates (vectorizable), then one step per set bit.
+        let (r2, me, ids) = (w.range * w.range, i as u32, &w.sensed.id);
         let mut len = 0usize;
-        for (c, ds) in self.d.chunks(64).enumerate() {
+        // `d` is padded with +∞ to whole chunks of 64 (see `fill`).
+        for (c, ds) in self.d[..n.next_multiple_of(64)]
+            .chunks_exact(64)
+            .enumerate()
+        {
             let mut flags = [0u8; 64];
             for (f, &d) in flags.iter_mut().zip(ds) {
                 *f = u8::from(d < r2);
@@ -195,31 +236,17 @@ impl BlockCache {
             while mask != 0 {
                 let k = c * 64 + mask.trailing_zeros() as usize;
                 mask &= mask - 1;
-                self.keys[len] = key(self.d[k], k as u32);
-                len += usize::from(self.gathered[k].1 != me);
+                let slot = self.slots[k];
+                self.keyed[len] = (key(self.d[k], ids[slot as usize]), slot);
+                len += usize::from(slot != me);
             }
         }
-        let keys = &mut self.keys[..len];
-        sort_small(keys, &mut self.sorted);
-        // Equal distances: the block order depends on the slots, so order by stable id.
-        let ids = &w.sensed.id;
-        let slot = |k: u64| self.gathered[(k & 0xffff_ffff) as usize].1;
-        let mut a = 0;
-        while a + 1 < keys.len() && a < N {
-            let d = keys[a] >> 32;
-            let mut b = a + 1;
-            while b < keys.len() && keys[b] >> 32 == d {
-                b += 1;
-            }
-            if b - a > 1 {
-                keys[a..b].sort_unstable_by_key(|&k| ids[slot(k) as usize]);
-            }
-            a = b;
-        }
+        let keyed = &mut self.keyed[..len];
         let mut out = Selected::new();
-        out.len = keys.len().min(N);
-        for (item, &k) in out.items.iter_mut().zip(keys.iter()) {
-            *item = (k, slot(k));
+        out.len = len.min(N);
+        if !rank_distinct(keyed, &mut out.items) {
+            sort_small(keyed);
+            out.items[..out.len].copy_from_slice(&keyed[..out.len]);
         }
         out
     }
@@ -227,14 +254,39 @@ impl BlockCache {
     /// Gathers the candidates of `cell`'s 3×3×3 block.
     fn fill(&mut self, w: &BeeWorld, cell: u32, center: [f32; 3]) {
         self.cell = Some(cell);
-        self.gathered.clear();
-        w.grid
-            .for_each_candidate(center, w.grid_geometry.cell(), |j, q| {
-                self.gathered.push((q, j));
-            });
-        let n = self.gathered.len();
-        self.d.resize(n, 0.0);
-        self.keys.resize(n, 0);
+        loop {
+            // Written by index into slices of the current room (no per-candidate growth
+            // check); with too little room, grow and gather again.
+            let room = self.slots.len();
+            let (xs, ys, zs) = (
+                &mut self.xs[..room],
+                &mut self.ys[..room],
+                &mut self.zs[..room],
+            );
+            let slots = &mut self.slots[..room];
+            let mut n = 0usize;
+            w.grid
+                .for_each_candidate(center, w.grid_geometry.cell(), |j, q| {
+                    if n < room {
+                        (xs[n], ys[n], zs[n], slots[n]) = (q[0], q[1], q[2], j);
+                    }
+                    n += 1;
+                });
+            if n <= room {
+                self.n = n;
+                // Padding for the chunks of 64 of the range test: never in range.
+                self.d[n..n.next_multiple_of(64)].fill(f32::INFINITY);
+                return;
+            }
+            // A power of two of at least 64: a multiple of 64.
+            let room = n.next_power_of_two().max(64);
+            self.xs.resize(room, 0.0);
+            self.ys.resize(room, 0.0);
+            self.zs.resize(room, 0.0);
+            self.slots.resize(room, 0);
+            self.d.resize(room, 0.0);
+            self.keyed.resize(room, (0, 0));
+        }
     }
 }
 
@@ -258,6 +310,7 @@ pub fn bee_frame<S: SimScalar>(
 }
 
 /// [`bee_frame`] with the neighbours found through `cache` (the same frame, faster).
+#[cfg(test)]
 pub(crate) fn bee_frame_cached<S: SimScalar>(
     w: &BeeWorld,
     i: usize,
@@ -265,7 +318,22 @@ pub(crate) fn bee_frame_cached<S: SimScalar>(
     t: S,
     cache: &mut BlockCache,
 ) -> BeeSimFrame<S> {
-    frame_with(w, i, &cache.neighbours(w, i), group_goal, t)
+    let mut frame = BeeFrame::new(t);
+    fill_frame(w, i, group_goal, t, cache, &mut frame);
+    frame
+}
+
+/// [`bee_frame_cached`] written into `frame` (the engine reuses one frame per thread).
+pub(crate) fn fill_frame<S: SimScalar>(
+    w: &BeeWorld,
+    i: usize,
+    group_goal: Option<[f32; 3]>,
+    t: S,
+    cache: &mut BlockCache,
+    frame: &mut BeeSimFrame<S>,
+) {
+    let near = cache.neighbours(w, i);
+    fill_with(w, i, &near, group_goal, t, frame);
 }
 
 fn frame_with<S: SimScalar>(
@@ -275,9 +343,24 @@ fn frame_with<S: SimScalar>(
     group_goal: Option<[f32; 3]>,
     t: S,
 ) -> BeeSimFrame<S> {
+    let mut frame = BeeFrame::new(t);
+    fill_with(w, i, near, group_goal, t, &mut frame);
+    frame
+}
+
+fn fill_with<S: SimScalar>(
+    w: &BeeWorld,
+    i: usize,
+    near: &Selected<N>,
+    group_goal: Option<[f32; 3]>,
+    t: S,
+    frame: &mut BeeSimFrame<S>,
+) {
     let s = &w.sensed;
     let me = s.pos[i];
-    let mut frame = BeeFrame::new(t);
+    frame.t = t;
+    frame.neighbours.clear();
+    frame.targets.clear();
     for j in near.slots() {
         let _ = frame.neighbours.push(BeeNeighbor {
             pos: v3(s.pos[j]),
@@ -319,7 +402,6 @@ fn frame_with<S: SimScalar>(
         }
     }
     frame.obstacle = best.map(|(_, o)| o);
-    frame
 }
 
 #[cfg(test)]

@@ -4,10 +4,11 @@
 //! bee inside an obstacle or outside the bounds) and counts every correction it had to make.
 
 use rayon::prelude::*;
-use swarm_core::bee::{self, BeeDecision, BeeParams, BeeState};
+use swarm_core::bee::oscillation::wrap_time;
+use swarm_core::bee::{self, BeeDecision, BeeFrame, BeeParams, BeeState};
 use swarm_core::{Checked, Fx, Scalar, Vec3};
 
-use super::sense::{BlockCache, bee_frame_cached};
+use super::sense::{BlockCache, fill_frame};
 use super::world::BeeWorld;
 use crate::by_scalar;
 use crate::error::{Result, SimError};
@@ -35,6 +36,15 @@ impl std::ops::AddAssign for Contacts {
         self.obstacle += o.obstacle;
         self.bounds += o.bounds;
     }
+}
+
+/// The frame time of step `step`: `step·dt` seconds, wrapped below the controller's input
+/// limit by [`wrap_time`] (the same bits as `step·dt` for the first 16000 s; after that the
+/// maneuvering functions of eq. 3-4 keep their phase, see [`TIME_WRAP`]).
+///
+/// [`TIME_WRAP`]: swarm_core::bee::oscillation::TIME_WRAP
+pub fn frame_time(step: u32, dt: f64) -> f64 {
+    wrap_time(f64::from(step) * dt)
 }
 
 /// A decision before the first step: nothing decided yet.
@@ -101,7 +111,9 @@ impl<S: SimScalar> BeeGroup<S> {
     fn decide(&mut self, w: &BeeWorld, step: u32) -> Result<()> {
         let (first, params) = (self.first, &self.params);
         let goal = self.goal.and_then(|g| w.target_center(g));
-        let t = S::from_f64(f64::from(step) * params.dt.to_f64());
+        let t = S::from_f64(frame_time(step, params.dt.to_f64()));
+        // The kernels and maneuvering functions, once for the group at this time.
+        let consts = bee::StepConsts::new(params, t);
         self.next
             .par_iter_mut()
             .zip(self.decisions.par_iter_mut())
@@ -109,10 +121,10 @@ impl<S: SimScalar> BeeGroup<S> {
             .zip(self.states.par_iter().zip(self.ids.par_iter()))
             .enumerate()
             .try_for_each_init(
-                BlockCache::default,
-                |cache, (k, (((out, dec), fix), (s, &id)))| {
-                    let frame = bee_frame_cached::<S>(w, first + k, goal, t, cache);
-                    let (d, mut next) = bee::step_checked(s, &frame, params)
+                || (BlockCache::default(), BeeFrame::new(t)),
+                |(cache, frame), (k, (((out, dec), fix), (s, &id)))| {
+                    fill_frame::<S>(w, first + k, goal, t, cache, frame);
+                    let (d, mut next) = bee::step_with(s, frame, params, &consts)
                         .map_err(|e| SimError::controller("bee step", step, id, e))?;
                     *fix = w.confine(&mut next);
                     *dec = d;

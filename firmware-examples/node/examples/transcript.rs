@@ -1,0 +1,320 @@
+//! Writes a session transcript for a serial node: every request frame a host would send and
+//! the exact reply frame the node must answer, computed here on the host by the same
+//! `swarm-core` endpoint with the node's parameters. `scripts/qemu-serial.sh --replay` sends
+//! the requests to an image in QEMU and checks every reply byte for byte, without the
+//! `swarm-hil` harness.
+//!
+//! ```text
+//! cargo run -p fw-node --example transcript -- ant|bee f32|fixed STEPS > transcript.txt
+//! ```
+//!
+//! One line per request: `<request hex> <reply hex>` (whole frames, delimiter included; the
+//! first line starts with a lone `00`). The session: `Hello` → `Identity`, `Configure` →
+//! `Configured`, then STEPS ticks of a small world driven by the node's own replies:
+//!
+//! * ants: 12 ants of one colony around a nest, a food source, a rock and a disturbance in a
+//!   40 × 40 arena; each tick an `AntPlanRequest` per ant, then an `AntResolveRequest` per ant
+//!   with the neighbours' predictions (2 requests per ant and tick);
+//! * bees: 10 bees near a flower (8 target particles), a rock and a goal; one `BeeStepRequest`
+//!   per bee and step.
+//!
+//! The last two lines are a `Ping` and a `StatsRequest` (whose reply counts the whole session).
+
+use std::io::Write as _;
+
+use fw_node::swarm_core::ant::{AntNeighbor, AntObject, AntPlan, AntState, PlanFrame};
+use fw_node::swarm_core::bee::{BeeNeighbor, BeeState, ObstacleSense};
+use fw_node::swarm_core::wire::{
+    self, AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, BeeStepReply,
+    BeeStepRequest, Configure, Controller, DeviceEndpoint, Hello, Identity, Message, Ping,
+    StatsRequest, WireBeeFrame, WireResolveFrame,
+};
+use fw_node::swarm_core::{Fx, Rect, Scalar, StepCtx, Vec2, Vec3, rand::rand};
+use fw_node::{NodeScalar, ant_device, bee_device};
+
+const SEED: u32 = 5;
+
+/// Deterministic value in [lo, hi).
+fn uniform(key: u32, salt: u32, lo: f32, hi: f32) -> f32 {
+    let u = (rand(0x7a4e_5c11, key, salt, 0) >> 8) as f32 / (1u32 << 24) as f32;
+    lo + u * (hi - lo)
+}
+
+struct Session<C, const RX: usize, const TX: usize> {
+    device: DeviceEndpoint<C, RX, TX>,
+    seq: u16,
+    lines: Vec<String>,
+}
+
+fn hex(b: &[u8]) -> String {
+    b.iter().map(|x| format!("{x:02x}")).collect()
+}
+
+impl<C: Controller, const RX: usize, const TX: usize> Session<C, RX, TX> {
+    /// Sends `msg` (with `prefix` bytes before it), records the exchange, returns the reply.
+    fn send<M: Message>(&mut self, prefix: &[u8], msg: &M) -> Vec<u8> {
+        self.seq = self.seq.wrapping_add(1);
+        let mut line = prefix.to_vec();
+        let mut buf = vec![0u8; 1024];
+        let n = wire::encode_message(self.seq, msg, &mut buf).expect("request fits");
+        line.extend_from_slice(&buf[..n]);
+        let mut replies = Vec::new();
+        self.device
+            .serve(&line, |r| {
+                replies.push(r.to_vec());
+                Ok::<_, ()>(())
+            })
+            .unwrap();
+        assert_eq!(replies.len(), 1, "one reply per request");
+        let reply = replies.pop().unwrap();
+        self.lines.push(format!("{} {}", hex(&line), hex(&reply)));
+        reply
+    }
+
+    fn open(&mut self) {
+        let reply = self.send(&[0], &Hello);
+        let mut raw = reply[..reply.len() - 1].to_vec();
+        let (_, id) = wire::decode_message::<Identity>(&mut raw).unwrap();
+        let configure = Configure {
+            session: 0x5e55,
+            params_hash: id.params_hash,
+            reset_stats: true,
+        };
+        self.send(&[], &configure);
+    }
+
+    fn close(mut self) -> Vec<String> {
+        self.send(&[], &Ping { nonce: 0xfeed_beef });
+        self.send(&[], &StatsRequest);
+        self.lines
+    }
+}
+
+/// The reply's message, or `None` for an `ErrorReply`.
+fn decode<M: Message>(reply: &[u8]) -> Option<M> {
+    let mut raw = reply[..reply.len() - 1].to_vec();
+    wire::decode_message::<M>(&mut raw).ok().map(|(_, m)| m)
+}
+
+fn ants<S: NodeScalar + serde::Serialize + serde::de::DeserializeOwned>(
+    name: &str,
+    steps: u32,
+) -> Vec<String>
+where
+    fw_node::swarm_core::ant::AntParams<S>: Controller,
+{
+    const N: usize = 12;
+    let v = Vec2::<S>::from_f32;
+    let s = S::from_f32;
+    let bounds = Rect::new(v(0.0, 0.0), v(40.0, 40.0));
+    let (nest, food, rock, danger) = (
+        (v(10.0, 10.0), 3.0),
+        (v(30.0, 28.0), 3.0),
+        (v(20.0, 19.0), 2.5),
+        (v(9.0, 31.0), 3.0),
+    );
+    let mut ants: Vec<AntState<S>> = (0..N as u32)
+        .map(|i| {
+            let a = uniform(i, 1, 0.0, std::f32::consts::TAU);
+            let r = uniform(i, 2, 0.0, 5.0);
+            let pos = v(10.0 + r * a.cos(), 10.0 + r * a.sin());
+            let h = v(a.cos(), a.sin());
+            match i % 4 {
+                // a few start far out, exploring or laden, so every branch runs early
+                1 => {
+                    AntState::exploring(0, v(uniform(i, 3, 2.0, 38.0), uniform(i, 4, 2.0, 38.0)), h)
+                }
+                2 => AntState::at_nest(0, v(29.0 + r * 0.2, 27.0), h),
+                _ => AntState::at_nest(0, pos, h),
+            }
+        })
+        .collect();
+    let mut session = Session {
+        device: ant_device::<S>(name).unwrap(),
+        seq: 0,
+        lines: Vec::new(),
+    };
+    session.open();
+    let hear = s(3.0);
+    for step in 0..steps {
+        let mut plans: Vec<Option<AntPlan<S>>> = Vec::with_capacity(N);
+        for i in 0..N {
+            let me = ants[i].pos;
+            let mut frame = PlanFrame::new(bounds);
+            for (j, a) in ants.iter().enumerate() {
+                if j != i && (a.pos - me).length() <= hear {
+                    let _ = frame.neighbours.push(AntNeighbor {
+                        id: j as u32,
+                        pos: a.pos,
+                        label: a.label,
+                        nest: a.nest,
+                        origin: a.origin,
+                        arrival: a.arrival,
+                    });
+                }
+            }
+            let sense = s(8.0);
+            let near = |c: Vec2<S>, r: f32| (c - me).length() <= sense + s(r);
+            if near(nest.0, nest.1) {
+                let _ = frame.objects.push(AntObject::Nest {
+                    id: 0,
+                    center: nest.0,
+                    radius: s(nest.1),
+                });
+            }
+            if near(food.0, food.1) {
+                let _ = frame.objects.push(AntObject::Food {
+                    id: 1,
+                    center: food.0,
+                    radius: s(food.1),
+                });
+            }
+            if let Some(u) = (me - rock.0).normalized() {
+                let closest = rock.0 + u * s(rock.1);
+                if (closest - me).length() <= sense {
+                    let _ = frame.objects.push(AntObject::Obstacle { closest });
+                }
+            }
+            if near(danger.0, danger.1) {
+                let _ = frame.objects.push(AntObject::Disturbance {
+                    center: danger.0,
+                    radius: s(danger.1),
+                });
+            }
+            let req = AntPlanRequest {
+                state: ants[i],
+                frame,
+                ctx: StepCtx {
+                    seed: SEED,
+                    agent: i as u32,
+                    step,
+                },
+            };
+            let reply = session.send(&[], &req);
+            plans.push(decode::<AntPlanReply<S>>(&reply).map(|r| r.plan));
+        }
+        for i in 0..N {
+            let Some(plan) = plans[i] else { continue };
+            let mut frame = WireResolveFrame::new(bounds);
+            for (j, p) in plans.iter().enumerate() {
+                if let Some(p) = p
+                    && j != i
+                    && (p.predicted - plan.predicted).length() <= hear
+                {
+                    let _ = frame.neighbours.push(p.predicted);
+                }
+            }
+            let reply = session.send(&[], &AntResolveRequest { plan, frame });
+            if let Some(r) = decode::<AntResolveReply<S>>(&reply) {
+                ants[i] = r.state;
+            }
+        }
+    }
+    session.close()
+}
+
+fn bees<S: Scalar + serde::Serialize + serde::de::DeserializeOwned>(
+    name: &str,
+    steps: u32,
+) -> Vec<String>
+where
+    fw_node::swarm_core::bee::BeeParams<S>: Controller,
+{
+    const N: usize = 10;
+    let v = Vec3::<S>::from_f32;
+    let p = fw_node::bee_params::<S>();
+    let flower = v(6.0, 1.0, 0.0);
+    let petals: Vec<Vec3<S>> = (0..8)
+        .map(|k| {
+            let a = k as f32 * std::f32::consts::TAU / 8.0;
+            flower + v(0.8 * a.cos(), 0.0, 0.8 * a.sin())
+        })
+        .collect();
+    let (rock, rock_r) = (v(3.0, 1.0, -1.3), 1.0);
+    let mut bees: Vec<BeeState<S>> = (0..N as u32)
+        .map(|i| {
+            BeeState::new(
+                v(
+                    uniform(i, 5, -1.5, 1.5),
+                    uniform(i, 6, 0.5, 2.0),
+                    uniform(i, 7, -2.5, 1.5),
+                ),
+                v(uniform(i, 8, 0.3, 1.0), 0.0, uniform(i, 9, -0.2, 0.4)),
+            )
+        })
+        .collect();
+    let mut session = Session {
+        device: bee_device::<S>(name).unwrap(),
+        seq: 0,
+        lines: Vec::new(),
+    };
+    session.open();
+    for step in 0..steps {
+        let prev = bees.clone();
+        for i in 0..N {
+            let me = prev[i].pos;
+            let mut frame = WireBeeFrame::new(S::from_i32(step as i32) * p.dt);
+            for (j, b) in prev.iter().enumerate() {
+                if j != i && (b.pos - me).length() < p.h {
+                    let _ = frame.neighbours.push(BeeNeighbor {
+                        pos: b.pos,
+                        vel: b.vel,
+                        density: b.density,
+                    });
+                }
+            }
+            for &q in &petals {
+                if (q - me).length() < p.h {
+                    let _ = frame.targets.push(q);
+                }
+            }
+            if i != N - 1 {
+                frame.goal = Some(flower);
+            }
+            let away = me - rock;
+            if let Some(n) = away.normalized()
+                && away.length() - S::from_f32(rock_r) < S::from_f32(4.0)
+            {
+                frame.obstacle = Some(ObstacleSense {
+                    point: rock + n * S::from_f32(rock_r),
+                    normal: n,
+                });
+            }
+            let reply = session.send(
+                &[],
+                &BeeStepRequest {
+                    state: prev[i],
+                    frame,
+                },
+            );
+            if let Some(r) = decode::<BeeStepReply<S>>(&reply) {
+                bees[i] = r.state;
+            }
+        }
+    }
+    session.close()
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let usage = "usage: transcript ant|bee f32|fixed STEPS";
+    let [model, scalar, steps] = args.as_slice() else {
+        eprintln!("{usage}");
+        std::process::exit(2);
+    };
+    let steps: u32 = steps.parse().expect(usage);
+    let lines = match (model.as_str(), scalar.as_str()) {
+        ("ant", "f32") => ants::<f32>("ant-node", steps),
+        ("ant", "fixed") => ants::<Fx>("ant-node-fixed", steps),
+        ("bee", "f32") => bees::<f32>("bee-node", steps),
+        ("bee", "fixed") => bees::<Fx>("bee-node-fixed", steps),
+        _ => {
+            eprintln!("{usage}");
+            std::process::exit(2);
+        }
+    };
+    let mut out = std::io::stdout().lock();
+    for l in lines {
+        writeln!(out, "{l}").unwrap();
+    }
+}

@@ -1,0 +1,54 @@
+//! Polled UART drivers for the two QEMU boards, implementing the `embedded-io` 0.6 traits
+//! ([`Read`](embedded_io::Read), [`Write`](embedded_io::Write),
+//! [`ErrorType`](embedded_io::ErrorType)), which is all `fw_node::run` needs.
+//!
+//! * [`Lm3sUart0`] (feature `lm3s6965evb`): TI Stellaris LM3S6965 UART0 (ARM PL011 with
+//!   Luminary extensions) at `0x4000_C000`, pins PA0 (U0Rx) / PA1 (U0Tx);
+//! * [`CmsdkUart0`] (feature `mps2-an386`): ARM CMSDK APB UART0 of the MPS2 AN386 FPGA image at
+//!   `0x4000_4000` (QEMU `info mtree`; `0x4020_0000` on that board is the LAN9118 Ethernet).
+//!
+//! Both are polled (no interrupt, no DMA) and 8N1. `read` blocks until one byte is there, then
+//! returns every byte the receiver already holds (up to the buffer); `write` blocks until each
+//! byte is in the transmitter. Line errors (framing, parity, break, overrun) are not reported:
+//! `Error = Infallible`. A damaged byte damages its frame, which the endpoint then drops on its
+//! COBS/CRC check (and counts in `DeviceStats.link`); the host retries.
+//!
+//! Each driver is a singleton: `take` returns it once (a second `take` gives `None`), after
+//! configuring the clocks, pins and baud rate.
+
+use core::sync::atomic::{AtomicBool, Ordering};
+
+#[cfg(feature = "mps2-an386")]
+mod cmsdk;
+#[cfg(feature = "lm3s6965evb")]
+mod pl011;
+
+#[cfg(feature = "mps2-an386")]
+pub use cmsdk::CmsdkUart0;
+#[cfg(feature = "lm3s6965evb")]
+pub use pl011::Lm3sUart0;
+
+/// The baud rate the examples use (8N1). QEMU ignores it (its UARTs move bytes as fast as the
+/// host reads them); on a real board both ends must agree.
+pub const BAUD: u32 = 115_200;
+
+/// Set once a driver was handed out.
+static TAKEN: AtomicBool = AtomicBool::new(false);
+
+/// True the first time only.
+fn claim() -> bool {
+    !TAKEN.swap(true, Ordering::AcqRel)
+}
+
+#[inline(always)]
+fn rd(addr: usize) -> u32 {
+    // SAFETY: only called with the MMIO register addresses of this module's UARTs, which are
+    // always mapped on their board; a volatile read has no other effect than the device's.
+    unsafe { core::ptr::read_volatile(addr as *const u32) }
+}
+
+#[inline(always)]
+fn wr(addr: usize, v: u32) {
+    // SAFETY: as for `rd`; the register writes are those the board's manual prescribes.
+    unsafe { core::ptr::write_volatile(addr as *mut u32, v) }
+}

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# Mirrors every firmware image in QEMU through `swarm-hil qemu` (issue 5): each node × scalar
+# type mirrors at least 2,000 decisions with zero mismatches; each node survives 64 KiB of
+# random bytes on its UART and a reset of the board mid-run (re-handshake, reset reported);
+# a device built for other parameters is refused at the handshake, naming the difference.
+#
+#   scripts/hil-qemu.sh            (after firmware-examples/build.sh)
+#
+# Reports go to target/hil-qemu/*.json. Exit status: the number of failed checks (0: all good).
+set -uo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+command -v qemu-system-arm >/dev/null 2>&1 \
+    || { echo "hil-qemu.sh: error: qemu-system-arm not found (apt-get install qemu-system-arm)" >&2; exit 1; }
+cargo build --release -q -p swarm-hil || exit 1
+HIL=target/release/swarm-hil
+OUT=target/hil-qemu
+mkdir -p "$OUT"
+FAILED=0
+
+scenario_of() { case "$1" in ant-node) echo ants-fig7a-single-colony ;; bee-node) echo bees-fig14-shafts ;; esac; }
+# 2,000 decisions: ants plan + resolve for 20 ants × 50 steps; bees 40 bees × 50 steps.
+agents_of() { case "$1" in ant-node) echo 20 ;; bee-node) echo 40 ;; esac; }
+
+field() { grep -o "\"$2\": *[0-9]*" "$1" | head -n1 | grep -o '[0-9]*$'; }
+
+check() { # label, json, want_decisions, want_resets
+    local label=$1 json=$2 want=$3 resets=${4:-0} d m r
+    d=$(field "$json" decisions); m=$(field "$json" mismatches); r=$(field "$json" resets)
+    if [ "${d:-0}" -ge "$want" ] && [ "${m:-1}" = 0 ] && [ "${r:-0}" -ge "$resets" ]; then
+        echo "PASS  $label: $d decisions, 0 mismatches, $r resets"
+    else
+        echo "FAIL  $label: decisions=${d:-?} (want ≥ $want), mismatches=${m:-?}, resets=${r:-?} (want ≥ $resets)"
+        FAILED=$((FAILED + 1))
+    fi
+}
+
+for node in ant-node bee-node; do
+    sc=$(scenario_of $node); k=$(agents_of $node)
+    for scalar in f32 fixed; do
+        json="$OUT/$node-$scalar.json"
+        if "$HIL" qemu --firmware $node --scalar $scalar --scenario "$sc" --agents "$k" --steps 50 \
+            --timeout-ms 500 --quiet --json "$json" >"$OUT/$node-$scalar.log" 2>&1; then
+            check "$node $scalar" "$json" 2000
+        else
+            echo "FAIL  $node $scalar: swarm-hil exited $? ($(tail -n1 "$OUT/$node-$scalar.log"))"
+            FAILED=$((FAILED + 1))
+        fi
+    done
+    json="$OUT/$node-garbage-reset.json"
+    if "$HIL" qemu --firmware $node --scenario "$sc" --agents "$k" --steps 20 --garbage 65536 \
+        --reset-at-step 10 --timeout-ms 500 --quiet --json "$json" >"$OUT/$node-garbage-reset.log" 2>&1; then
+        check "$node after 64 KiB of garbage and a reset at step 10" "$json" 800 1
+    else
+        echo "FAIL  $node garbage/reset: swarm-hil exited $? ($(tail -n1 "$OUT/$node-garbage-reset.log"))"
+        FAILED=$((FAILED + 1))
+    fi
+    # Other parameters on the host side: the image's own must be refused.
+    other="$OUT/$node-other-params.toml"
+    case $node in
+        ant-node) sed 's/^model = "ant"$/model = "ant"\nant = { w0 = 0.5 }/' "scenarios/$sc.toml" >"$other" ;;
+        bee-node) sed 's/^bee = { /bee = { kappa2 = 3.21, /' "scenarios/$sc.toml" >"$other" ;;
+    esac
+    log="$OUT/$node-other-params.log"
+    "$HIL" qemu --firmware $node --scenario "$other" --agents 2 --steps 1 --quiet >"$log" 2>&1
+    rc=$?
+    if [ $rc -ne 0 ] && grep -q "params hash 0x" "$log"; then
+        echo "PASS  $node refuses other parameters: $(grep -o 'params hash 0x[0-9a-f]* ≠ 0x[0-9a-f]*' "$log" | head -n1)"
+    else
+        echo "FAIL  $node with other parameters: exit $rc, expected a handshake refusal ($(tail -n1 "$log"))"
+        FAILED=$((FAILED + 1))
+    fi
+done
+
+[ $FAILED -eq 0 ] && echo "hil-qemu: all checks passed" || echo "hil-qemu: $FAILED check(s) failed"
+exit $FAILED
