@@ -866,6 +866,7 @@ fn bee_param_range(field: &str) -> String {
         "h" | "grid_edge" | "mass" | "d0" | "dt" | "max_speed" => {
             format!("a number in [{MIN_POSITIVE}, {LIMIT}]")
         }
+        "damping" => format!("a number in [0, {LIMIT}] with damping·dt ≤ 1"),
         _ => format!("a number in [0, {LIMIT}]"),
     }
 }

@@ -599,6 +599,21 @@ fn parameter_overrides_are_validated_by_the_controllers() {
         "groups[0].bee.h",
         "invalid bee parameter `h`",
     );
+    // Drag so strong one explicit step would reverse the velocity (dt 0.05 in the presets).
+    let text = edit(BEES, "kappa2 = 3.0", "damping = 40");
+    expect_error(
+        &text,
+        line_of(&text, "bee = {"),
+        "groups[0].bee.damping",
+        "damping·dt ≤ 1",
+    );
+    let ok = edit(BEES, "kappa2 = 3.0", "damping = 2.5");
+    assert_eq!(
+        Scenario::from_str(&ok, FILE).unwrap().groups[0]
+            .bee_params()
+            .damping,
+        2.5
+    );
     // Fixed point: a value f32 accepts but I16F16 cannot hold.
     let big = edit(BEES, "kappa2 = 3.0", "stiffness = 15000.0");
     assert!(Scenario::from_str(&big, FILE).is_ok());
@@ -966,7 +981,7 @@ fn overrides_apply_on_their_base() {
     assert_eq!(p.h, 2.5);
     assert_eq!(p.kappa2, BeeParams::<f32>::grassland().kappa2);
     assert_eq!(BeeParamsOverride::default().params(), BeeParams::default());
-    assert_eq!(BeeParamsOverride::FIELDS.len(), 16);
+    assert_eq!(BeeParamsOverride::FIELDS.len(), 17);
 }
 
 #[test]

@@ -674,6 +674,7 @@ overrides! {
         stiffness: f32,
         rest_density: f32,
         max_speed: f32,
+        damping: f32,
     }
     extra {
         /// The base the fields apply to (default `optimized`).
