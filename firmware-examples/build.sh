@@ -159,14 +159,16 @@ if [ -z "$ONLY" ] || [ "$ONLY" = ant ]; then
     IMAGES+=("ant-node thumbv7m-none-eabi lm3s6965evb f32 - -"
              "ant-node-fixed thumbv7m-none-eabi lm3s6965evb I16F16 16384 4096"
              "ant-node-selfcheck thumbv7m-none-eabi lm3s6965evb f32 - -"
-             "ant-node-fixed-selfcheck thumbv7m-none-eabi lm3s6965evb I16F16 - -")
+             "ant-node-fixed-selfcheck thumbv7m-none-eabi lm3s6965evb I16F16 - -"
+             "ant-node-other thumbv7m-none-eabi lm3s6965evb f32 - -")
 fi
 if [ -z "$ONLY" ] || [ "$ONLY" = bee ]; then
     build bee-node thumbv7em-none-eabihf
     IMAGES+=("bee-node thumbv7em-none-eabihf mps2-an386 f32 32768 8192"
              "bee-node-fixed thumbv7em-none-eabihf mps2-an386 I16F16 32768 8192"
              "bee-node-selfcheck thumbv7em-none-eabihf mps2-an386 f32 - -"
-             "bee-node-fixed-selfcheck thumbv7em-none-eabihf mps2-an386 I16F16 - -")
+             "bee-node-fixed-selfcheck thumbv7em-none-eabihf mps2-an386 I16F16 - -"
+             "bee-node-other thumbv7em-none-eabihf mps2-an386 f32 - -")
 fi
 
 # --- sizes ------------------------------------------------------------------------------------
