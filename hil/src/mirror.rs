@@ -12,7 +12,8 @@ use swarm_core::ant::{self, AntParams, AntPlan};
 use swarm_core::bee::{self, BeeParams, BeeState};
 use swarm_core::wire::{
     AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, BeeStepReply, BeeStepRequest,
-    DeviceStats, ErrorReply, Identity, MAX_ANT_FRAME, MAX_BEE_FRAME, Message, params_hash,
+    Controller, DeviceStats, ErrorReply, Identity, MAX_ANT_FRAME, MAX_BEE_FRAME, Message,
+    params_hash,
 };
 use swarm_core::{Checked, StepCtx};
 use swarm_sim::ants::{AntSim, plan_frame, resolve_frame};
@@ -468,92 +469,71 @@ where
     AntSim: GroupsOf<S>,
 {
     let params: Checked<AntParams<S>> = sim.single_params()?;
-    let expected = Identity::of(&*params, MAX_ANT_FRAME, "host").map_err(core_err)?;
-    let hash = params_hash(&*params).map_err(core_err)?;
-    let (mut session, device) = Session::open(client, expected, hash, opts.session)?;
-    let chosen = pick_agents(sim.agents(), opts.agents);
-    let bar = bar(opts.progress, opts.steps);
-    let mut tally = Tally::default();
-    let t0 = Instant::now();
-    for _ in 0..opts.steps {
-        let step = sim.step;
-        before_step(step)?;
-        sim.plan_phase().map_err(sim_err)?;
-        let slots = slots_by_id(&sim);
-        let mut plans = Vec::with_capacity(chosen.len());
-        let mut host_plans = Vec::with_capacity(chosen.len());
-        for &id in &chosen {
-            let slot = slots[id as usize];
-            let state = sim.state_of(slot)?;
-            let frame = plan_frame::<S>(&sim.world, slot);
-            let ctx = StepCtx {
-                seed: sim.seed,
-                agent: id,
-                step,
-            };
-            host_plans.push(ant::plan_checked(&state, &frame, &params, ctx));
-            plans.push(AntPlanRequest { state, frame, ctx });
-        }
-        let host_plans = host_plans
-            .into_iter()
-            .zip(&chosen)
-            .map(|(h, id)| {
-                h.map_err(|e| {
-                    HilError::Invalid(format!("the host refused ant {id} at step {step}: {e}"))
-                })
-            })
-            .collect::<Result<Vec<AntPlan<S>>>>()?;
-        let device = session.ask(client, &plans, &host_plans, |r: &AntPlanReply<S>| r.plan)?;
-        let mut resolves = Vec::with_capacity(chosen.len());
-        let mut host_next = Vec::with_capacity(chosen.len());
-        for ((&id, req), (host, dev)) in chosen
-            .iter()
-            .zip(&plans)
-            .zip(host_plans.iter().zip(&device))
-        {
-            tally.check((step, id, "plan"), req, host, dev);
-            let frame = resolve_frame::<S>(&sim.world, slots[id as usize]);
-            let next = ant::resolve_checked(host, &frame, &params).map_err(|e| {
-                HilError::Invalid(format!("the host refused ant {id} at step {step}: {e}"))
-            })?;
-            host_next.push(next);
-            resolves.push(AntResolveRequest { plan: *host, frame });
-        }
-        let device = session.ask(client, &resolves, &host_next, |r: &AntResolveReply<S>| {
-            r.state
-        })?;
-        for ((&id, req), (host, dev)) in chosen
-            .iter()
-            .zip(&resolves)
-            .zip(host_next.iter().zip(&device))
-        {
-            tally.check((step, id, "resolve"), req, host, dev);
-        }
-        sim.resolve_phase().map_err(sim_err)?;
-        bar.inc(1);
-        bar.set_message(format!(
-            "{} decisions, {} mismatches",
-            tally.decisions, tally.mismatches
-        ));
-    }
-    bar.finish_and_clear();
-    let seconds = t0.elapsed().as_secs_f64();
-    let device_stats = client.device_stats().ok();
-    let mut r = report(
+    let agents = sim.agents();
+    let run = Run::open(client, &*params, MAX_ANT_FRAME, agents, opts)?;
+    run.finish(
         name,
         "ants",
-        &device,
         client,
-        chosen.len(),
-        opts.steps,
-        tally,
-        seconds,
-        device_stats,
-    );
-    r.resets = session.resets;
-    r.reasked = session.reasked;
-    r.transport = client.link_mut().name();
-    Ok(r)
+        opts,
+        |session, client, tally, chosen| {
+            let step = sim.step;
+            before_step(step)?;
+            sim.plan_phase().map_err(sim_err)?;
+            let slots = slots_by_id(&sim);
+            let mut plans = Vec::with_capacity(chosen.len());
+            let mut host_plans = Vec::with_capacity(chosen.len());
+            for &id in chosen {
+                let slot = slots[id as usize];
+                let state = sim.state_of(slot)?;
+                let frame = plan_frame::<S>(&sim.world, slot);
+                let ctx = StepCtx {
+                    seed: sim.seed,
+                    agent: id,
+                    step,
+                };
+                host_plans.push(ant::plan_checked(&state, &frame, &params, ctx));
+                plans.push(AntPlanRequest { state, frame, ctx });
+            }
+            let host_plans = host_plans
+                .into_iter()
+                .zip(chosen)
+                .map(|(h, id)| {
+                    h.map_err(|e| {
+                        HilError::Invalid(format!("the host refused ant {id} at step {step}: {e}"))
+                    })
+                })
+                .collect::<Result<Vec<AntPlan<S>>>>()?;
+            let device = session.ask(client, &plans, &host_plans, |r: &AntPlanReply<S>| r.plan)?;
+            let mut resolves = Vec::with_capacity(chosen.len());
+            let mut host_next = Vec::with_capacity(chosen.len());
+            for ((&id, req), (host, dev)) in chosen
+                .iter()
+                .zip(&plans)
+                .zip(host_plans.iter().zip(&device))
+            {
+                tally.check((step, id, "plan"), req, host, dev);
+                let frame = resolve_frame::<S>(&sim.world, slots[id as usize]);
+                let next = ant::resolve_checked(host, &frame, &params).map_err(|e| {
+                    HilError::Invalid(format!("the host refused ant {id} at step {step}: {e}"))
+                })?;
+                host_next.push(next);
+                resolves.push(AntResolveRequest { plan: *host, frame });
+            }
+            let device = session.ask(client, &resolves, &host_next, |r: &AntResolveReply<S>| {
+                r.state
+            })?;
+            for ((&id, req), (host, dev)) in chosen
+                .iter()
+                .zip(&resolves)
+                .zip(host_next.iter().zip(&device))
+            {
+                tally.check((step, id, "resolve"), req, host, dev);
+            }
+            sim.resolve_phase().map_err(sim_err)?;
+            Ok(())
+        },
+    )
 }
 
 /// Mirrors the bees of `sim` (every group in scalar type `S`) on the device behind `client`:
@@ -586,64 +566,44 @@ where
     BeeSim: BeeGroupsOf<S>,
 {
     let params: Checked<BeeParams<S>> = sim.single_params()?;
-    let expected = Identity::of(&*params, MAX_BEE_FRAME, "host").map_err(core_err)?;
-    let hash = params_hash(&*params).map_err(core_err)?;
-    let (mut session, device) = Session::open(client, expected, hash, opts.session)?;
-    let chosen = pick_agents(sim.agents(), opts.agents);
-    let bar = bar(opts.progress, opts.steps);
-    let mut tally = Tally::default();
-    let t0 = Instant::now();
-    for _ in 0..opts.steps {
-        let step = sim.step;
-        before_step(step)?;
-        // The frames of this step, from the world as the step will see it.
-        sim.world.index_positions();
-        let slots = bee_slots_by_id(&sim);
-        let t = S::from_f64(frame_time(step, params.dt.to_f64()));
-        let mut requests = Vec::with_capacity(chosen.len());
-        let mut host = Vec::with_capacity(chosen.len());
-        for &id in &chosen {
-            let slot = slots[id as usize];
-            let (state, goal) = sim.bee_of(slot)?;
-            let goal = goal.and_then(|g| sim.world.target_center(g));
-            let frame = bee_frame::<S>(&sim.world, slot, goal, t);
-            host.push(bee::step_checked(&state, &frame, &params).map_err(|e| {
-                HilError::Invalid(format!("the host refused bee {id} at step {step}: {e}"))
-            })?);
-            requests.push(BeeStepRequest { state, frame });
-        }
-        let device = session.ask(client, &requests, &host, |r: &BeeStepReply<S>| {
-            (r.decision, r.state)
-        })?;
-        for ((&id, req), (host, dev)) in chosen.iter().zip(&requests).zip(host.iter().zip(&device))
-        {
-            tally.check((step, id, "step"), req, host, dev);
-        }
-        sim.step().map_err(sim_err)?;
-        bar.inc(1);
-        bar.set_message(format!(
-            "{} decisions, {} mismatches",
-            tally.decisions, tally.mismatches
-        ));
-    }
-    bar.finish_and_clear();
-    let seconds = t0.elapsed().as_secs_f64();
-    let device_stats = client.device_stats().ok();
-    let mut r = report(
+    let agents = sim.agents();
+    let run = Run::open(client, &*params, MAX_BEE_FRAME, agents, opts)?;
+    run.finish(
         name,
         "bees",
-        &device,
         client,
-        chosen.len(),
-        opts.steps,
-        tally,
-        seconds,
-        device_stats,
-    );
-    r.resets = session.resets;
-    r.reasked = session.reasked;
-    r.transport = client.link_mut().name();
-    Ok(r)
+        opts,
+        |session, client, tally, chosen| {
+            let step = sim.step;
+            before_step(step)?;
+            // The frames of this step, from the world as the step will see it.
+            sim.world.index_positions();
+            let slots = bee_slots_by_id(&sim);
+            let t = S::from_f64(frame_time(step, params.dt.to_f64()));
+            let mut requests = Vec::with_capacity(chosen.len());
+            let mut host = Vec::with_capacity(chosen.len());
+            for &id in chosen {
+                let slot = slots[id as usize];
+                let (state, goal) = sim.bee_of(slot)?;
+                let goal = goal.and_then(|g| sim.world.target_center(g));
+                let frame = bee_frame::<S>(&sim.world, slot, goal, t);
+                host.push(bee::step_checked(&state, &frame, &params).map_err(|e| {
+                    HilError::Invalid(format!("the host refused bee {id} at step {step}: {e}"))
+                })?);
+                requests.push(BeeStepRequest { state, frame });
+            }
+            let device = session.ask(client, &requests, &host, |r: &BeeStepReply<S>| {
+                (r.decision, r.state)
+            })?;
+            for ((&id, req), (host, dev)) in
+                chosen.iter().zip(&requests).zip(host.iter().zip(&device))
+            {
+                tally.check((step, id, "step"), req, host, dev);
+            }
+            sim.step().map_err(sim_err)?;
+            Ok(())
+        },
+    )
 }
 
 /// Slot of every bee id, this step.
@@ -765,6 +725,76 @@ fn report<T: Transport>(
 
 fn sim_err(e: swarm_sim::SimError) -> HilError {
     HilError::Invalid(format!("simulation: {e}"))
+}
+
+/// The scaffolding both mirrors share: the session, the chosen agents, the tally, the progress
+/// bar, the clock and the report.
+struct Run {
+    session: Session,
+    device: Identity,
+    chosen: Vec<u32>,
+}
+
+impl Run {
+    /// Handshake and configure for a device running `params` (frames up to `max_frame`), and
+    /// the agents to mirror out of `agents`.
+    fn open<T: Transport, P: Controller>(
+        client: &mut Client<T>,
+        params: &P,
+        max_frame: usize,
+        agents: usize,
+        opts: &MirrorOptions,
+    ) -> Result<Run> {
+        let expected = Identity::of(params, max_frame, "host").map_err(core_err)?;
+        let hash = params_hash(params).map_err(core_err)?;
+        let (session, device) = Session::open(client, expected, hash, opts.session)?;
+        Ok(Run {
+            session,
+            device,
+            chosen: pick_agents(agents, opts.agents),
+        })
+    }
+
+    /// Runs `tick` (one simulation step: ask, compare, advance) `opts.steps` times, then asks
+    /// for the device's counters and writes the report.
+    fn finish<T: Transport>(
+        mut self,
+        name: &str,
+        model: &str,
+        client: &mut Client<T>,
+        opts: &MirrorOptions,
+        mut tick: impl FnMut(&mut Session, &mut Client<T>, &mut Tally, &[u32]) -> Result<()>,
+    ) -> Result<MirrorReport> {
+        let bar = bar(opts.progress, opts.steps);
+        let mut tally = Tally::default();
+        let t0 = Instant::now();
+        for _ in 0..opts.steps {
+            tick(&mut self.session, client, &mut tally, &self.chosen)?;
+            bar.inc(1);
+            bar.set_message(format!(
+                "{} decisions, {} mismatches",
+                tally.decisions, tally.mismatches
+            ));
+        }
+        bar.finish_and_clear();
+        let seconds = t0.elapsed().as_secs_f64();
+        let device_stats = client.device_stats().ok();
+        let mut r = report(
+            name,
+            model,
+            &self.device,
+            client,
+            self.chosen.len(),
+            opts.steps,
+            tally,
+            seconds,
+            device_stats,
+        );
+        r.resets = self.session.resets;
+        r.reasked = self.session.reasked;
+        r.transport = client.link_mut().name();
+        Ok(r)
+    }
 }
 
 /// Slot of every agent id, this step (slots move when the simulator reorders them).
