@@ -480,7 +480,7 @@ where
             let step = sim.step;
             before_step(step)?;
             sim.plan_phase().map_err(sim_err)?;
-            let slots = slots_by_id(&sim);
+            let slots = slots_by_id(&sim.world.sensed.id);
             let mut plans = Vec::with_capacity(chosen.len());
             let mut host_plans = Vec::with_capacity(chosen.len());
             for &id in chosen {
@@ -578,7 +578,7 @@ where
             before_step(step)?;
             // The frames of this step, from the world as the step will see it.
             sim.world.index_positions();
-            let slots = bee_slots_by_id(&sim);
+            let slots = slots_by_id(&sim.world.sensed.id);
             let t = S::from_f64(frame_time(step, params.dt.to_f64()));
             let mut requests = Vec::with_capacity(chosen.len());
             let mut host = Vec::with_capacity(chosen.len());
@@ -604,15 +604,6 @@ where
             Ok(())
         },
     )
-}
-
-/// Slot of every bee id, this step.
-fn bee_slots_by_id(sim: &BeeSim) -> Vec<usize> {
-    let mut out = vec![0; sim.agents()];
-    for (slot, &id) in sim.world.sensed.id.iter().enumerate() {
-        out[id as usize] = slot;
-    }
-    out
 }
 
 /// Access to the bee groups of one scalar type.
@@ -798,9 +789,9 @@ impl Run {
 }
 
 /// Slot of every agent id, this step (slots move when the simulator reorders them).
-fn slots_by_id(sim: &AntSim) -> Vec<usize> {
-    let mut out = vec![0; sim.agents()];
-    for (slot, &id) in sim.world.sensed.id.iter().enumerate() {
+fn slots_by_id(ids: &[u32]) -> Vec<usize> {
+    let mut out = vec![0; ids.len()];
+    for (slot, &id) in ids.iter().enumerate() {
         out[id as usize] = slot;
     }
     out

@@ -138,6 +138,29 @@ impl Grid {
     }
 }
 
+/// The slots of `items` (agent `ids`) sorted by the cell `cell` gives, then by id: the
+/// permutation the engines reorder their slots by, for memory locality. Ids are unique, so any
+/// sort gives this same order.
+pub fn order_by_cell<T: Sync>(
+    items: &[T],
+    ids: &[u32],
+    cell: impl Fn(&T) -> u32 + Sync,
+) -> Vec<u32> {
+    let mut keyed: Vec<(u64, u32)> = items
+        .par_iter()
+        .zip(ids.par_iter())
+        .enumerate()
+        .map(|(k, (t, &id))| ((u64::from(cell(t)) << 32) | u64::from(id), k as u32))
+        .collect();
+    keyed.par_sort_unstable();
+    keyed.into_iter().map(|(_, k)| k).collect()
+}
+
+/// `src` in the order `perm` gives (`perm[k]` is the slot that moves to `k`).
+pub fn permuted<T: Copy + Send + Sync>(src: &[T], perm: &[u32]) -> Vec<T> {
+    perm.par_iter().map(|&k| src[k as usize]).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -13,6 +13,7 @@ use super::sense::{bounds, fill_plan_frame, fill_resolve_frame};
 use super::world::{AntObjectKind, AntWorld};
 use crate::by_scalar;
 use crate::error::{Result, SimError};
+use crate::grid::{order_by_cell, permuted};
 use crate::scalar::{AgentGroup, ByScalar, SimScalar, a2};
 
 /// A group of ants sharing parameters and a scalar type. The group owns the world slots
@@ -153,17 +154,9 @@ impl<S: SimScalar> AntGroup<S> {
     /// Sorts the group's slots by `key` (then id): a permutation of the slots that changes no
     /// result, only memory locality. Rewrites the group's part of the sensed world.
     fn reorder(&mut self, key: impl Fn(&AntState<S>) -> u32 + Sync, w: &mut AntWorld) {
-        let mut keys: Vec<(u32, u32, u32)> = (self.states.par_iter(), self.ids.par_iter())
-            .into_par_iter()
-            .enumerate()
-            .map(|(k, (s, &id))| (key(s), id, k as u32))
-            .collect();
-        keys.par_sort_unstable();
-        (self.next.par_iter_mut(), keys.par_iter())
-            .into_par_iter()
-            .for_each(|(out, &(_, _, k))| *out = self.states[k as usize]);
-        self.ids = keys.into_iter().map(|(_, id, _)| id).collect();
-        std::mem::swap(&mut self.states, &mut self.next);
+        let perm = order_by_cell(&self.states, &self.ids, key);
+        self.states = permuted(&self.states, &perm);
+        self.ids = permuted(&self.ids, &perm);
         w.sensed.write(self.first, &self.ids, &self.states);
     }
 

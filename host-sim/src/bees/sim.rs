@@ -12,6 +12,7 @@ use super::sense::{BlockCache, fill_frame};
 use super::world::BeeWorld;
 use crate::by_scalar;
 use crate::error::{Result, SimError};
+use crate::grid::{order_by_cell, permuted};
 use crate::scalar::{AgentGroup, ByScalar, SimScalar};
 
 /// Corrections the world made because the controller's move would have left a bee inside an
@@ -149,32 +150,11 @@ impl<S: SimScalar> BeeGroup<S> {
     /// Sorts the group's slots by `cell` (then id): a permutation of the slots that changes no
     /// result, only memory locality. Rewrites the group's part of the sensed world.
     fn reorder(&mut self, cell: impl Fn(&BeeState<S>) -> u32 + Sync, w: &mut BeeWorld) {
-        // Keys are unique (ids are): any sort gives the same order.
-        let mut keyed: Vec<(u64, u32)> = self
-            .states
-            .par_iter()
-            .zip(self.ids.par_iter())
-            .enumerate()
-            .map(|(k, (s, &id))| ((u64::from(cell(s)) << 32) | u64::from(id), k as u32))
-            .collect();
-        keyed.par_sort_unstable();
-        let states = &self.states;
-        self.next
-            .par_iter_mut()
-            .zip(keyed.par_iter())
-            .for_each(|(out, &(_, k))| *out = states[k as usize]);
-        std::mem::swap(&mut self.states, &mut self.next);
-        let decisions = &self.decisions;
-        self.decisions = keyed
-            .par_iter()
-            .map(|&(_, k)| decisions[k as usize])
-            .collect();
-        self.corrected = keyed
-            .iter()
-            .map(|&(_, k)| self.corrected[k as usize])
-            .collect();
-        // The low half of a key is the id.
-        self.ids = keyed.iter().map(|&(key, _)| key as u32).collect();
+        let perm = order_by_cell(&self.states, &self.ids, cell);
+        self.states = permuted(&self.states, &perm);
+        self.decisions = permuted(&self.decisions, &perm);
+        self.corrected = permuted(&self.corrected, &perm);
+        self.ids = permuted(&self.ids, &perm);
         w.sensed.write(self.first, &self.ids, &self.states);
     }
 
