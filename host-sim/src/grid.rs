@@ -86,36 +86,81 @@ impl Grid {
             + c[0] as usize
     }
 
-    /// Rebuilds the grid for `items` (agent `i` at `pos(&items[i])`): counting sort. The cells
-    /// and the sorted positions are computed in parallel; the histogram and the scatter, which
-    /// fix the within-cell order (increasing index), run in index order.
+    /// Rebuilds the grid for `items` (agent `i` at `pos(&items[i])`): counting sort, in
+    /// parallel. The cells are computed in parallel; then each worker takes one contiguous range
+    /// of cells and, scanning every agent in index order, counts, places and copies the
+    /// positions of the agents in its range only. A worker writes only its own part of
+    /// `starts`, `order` and `sorted`, and each cell lists its agents in increasing index:
+    /// the grid is the same for any number of workers.
     pub fn rebuild<T: Sync>(&mut self, items: &[T], pos: impl Fn(&T) -> [f32; 3] + Sync) {
         let probe = self.clone_geometry();
         items
             .par_iter()
             .map(|t| probe.cell_of(pos(t)))
             .collect_into_vec(&mut self.cells);
-        // Histogram (shifted by one), then the exclusive prefix sum.
-        self.starts.iter_mut().for_each(|s| *s = 0);
-        for &c in &self.cells {
-            self.starts[c as usize + 1] += 1;
+        let n_cells = self.starts.len() - 1;
+        let workers = rayon::current_num_threads().clamp(1, n_cells);
+        let span = n_cells.div_ceil(workers);
+        let cells = &self.cells;
+        // Counts, then each range's running sum: starts[c + 1] = agents in its range up to c.
+        let totals: Vec<u32> = self.starts[1..]
+            .par_chunks_mut(span)
+            .enumerate()
+            .map(|(w, counts)| {
+                let lo = (w * span) as u32;
+                counts.fill(0);
+                for &c in cells {
+                    if let Some(k) = c.checked_sub(lo).filter(|&k| (k as usize) < counts.len()) {
+                        counts[k as usize] += 1;
+                    }
+                }
+                let mut run = 0;
+                for k in counts.iter_mut() {
+                    run += *k;
+                    *k = run;
+                }
+                run
+            })
+            .collect();
+        // Each range's first slot, then the global starts.
+        let mut bases = Vec::with_capacity(totals.len());
+        let mut run = 0u32;
+        for t in totals {
+            bases.push(run);
+            run += t;
         }
-        for i in 1..self.starts.len() {
-            self.starts[i] += self.starts[i - 1];
-        }
-        // Scatter in index order: each cell lists its agents in increasing index.
+        self.starts[0] = 0;
+        self.starts[1..]
+            .par_chunks_mut(span)
+            .zip(&bases)
+            .for_each(|(counts, &base)| counts.iter_mut().for_each(|k| *k += base));
+        // Scatter: each range fills its contiguous part of `order` and `sorted`.
+        let n = items.len();
+        self.order.resize(n, 0);
+        self.sorted.resize(n, [0.0; 3]);
         self.fill.clear();
-        self.fill.extend_from_slice(&self.starts);
-        self.order.resize(self.cells.len(), 0);
-        for (i, &c) in self.cells.iter().enumerate() {
-            let slot = &mut self.fill[c as usize];
-            self.order[*slot as usize] = i as u32;
-            *slot += 1;
+        self.fill.extend_from_slice(&self.starts[..n_cells]);
+        let mut parts = Vec::with_capacity(bases.len());
+        let (mut order, mut sorted) = (&mut self.order[..], &mut self.sorted[..]);
+        for (w, fill) in self.fill.chunks_mut(span).enumerate() {
+            let hi = ((w + 1) * span).min(n_cells);
+            let len = (self.starts[hi] - self.starts[w * span]) as usize;
+            let (o, o_rest) = order.split_at_mut(len);
+            let (p, p_rest) = sorted.split_at_mut(len);
+            (order, sorted) = (o_rest, p_rest);
+            parts.push((w * span, fill, o, p));
         }
-        self.order
-            .par_iter()
-            .map(|&i| pos(&items[i as usize]))
-            .collect_into_vec(&mut self.sorted);
+        parts.into_par_iter().for_each(|(lo, fill, order, sorted)| {
+            let base = fill.first().copied().unwrap_or(0);
+            for (i, &c) in cells.iter().enumerate() {
+                if let Some(k) = (c as usize).checked_sub(lo).filter(|&k| k < fill.len()) {
+                    let slot = (fill[k] - base) as usize;
+                    fill[k] += 1;
+                    order[slot] = i as u32;
+                    sorted[slot] = pos(&items[i]);
+                }
+            }
+        });
     }
 
     /// Calls `f` with every agent whose cell overlaps the cube of half-edge `radius` around

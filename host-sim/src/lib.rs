@@ -15,6 +15,7 @@ pub mod bench;
 mod error;
 pub mod grid;
 pub mod output;
+mod par;
 pub mod run;
 pub mod scalar;
 pub mod scenario;

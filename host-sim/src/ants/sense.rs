@@ -192,13 +192,17 @@ pub(crate) fn fill_resolve_frame<S: SimScalar>(
     let r2 = w.collision_range * w.collision_range;
     let mut near = Nearest::<N>::new();
     let p = [me[0] as f32, me[1] as f32, 0.0];
-    w.predicted_grid
-        .for_each_candidate(p, w.collision_range, |j, q| {
-            let d = d2f(q, p);
-            if j as usize != i && d < r2 {
-                near.offer(d, w.sensed.id[j as usize], j);
-            }
-        });
+    // Every prediction lies within `max_shift` (along x and y) of its ant's sensed position, so
+    // the ants sensed within `collision_range + max_shift` of p* include every ant predicted
+    // within `collision_range` of it.
+    let reach = w.collision_range + w.max_shift + w.rounding_margin();
+    w.grid.for_each_candidate(p, reach, |j, _| {
+        let [x, y] = w.predicted[j as usize];
+        let d = d2f([x as f32, y as f32, 0.0], p);
+        if j as usize != i && d < r2 {
+            near.offer(d, w.sensed.id[j as usize], j);
+        }
+    });
     for j in near.slots() {
         let _ = frame.neighbours.push(v2(w.predicted[j]));
     }

@@ -14,6 +14,7 @@ use super::world::{AntObjectKind, AntWorld};
 use crate::by_scalar;
 use crate::error::{Result, SimError};
 use crate::grid::{order_by_cell, permuted};
+use crate::par::for_each_agent;
 use crate::scalar::{AgentGroup, ByScalar, SimScalar, a2};
 
 /// A group of ants sharing parameters and a scalar type. The group owns the world slots
@@ -65,63 +66,69 @@ impl<S: SimScalar> AntGroup<S> {
     fn plan(&mut self, w: &AntWorld, seed: u32, step: u32) -> Result<()> {
         let (first, params) = (self.first, &self.params);
         let idle = PlanFrame::new(bounds::<S>(w));
-        self.plans
-            .par_iter_mut()
-            .zip(self.states.par_iter().zip(self.ids.par_iter()))
-            .enumerate()
-            .try_for_each_init(
-                || idle.clone(),
-                |frame, (k, (out, (s, &id)))| {
-                    let ctx = StepCtx {
-                        seed,
-                        agent: id,
-                        step,
-                    };
-                    // An ant that stays stopped this tick reads nothing of its frame
-                    // (xiang2018 §4.1): an empty one changes no result and saves the queries.
-                    let stays = s.stop.is_some_and(|t| t.remaining > 1);
-                    let frame = if stays {
-                        &idle
-                    } else {
-                        fill_plan_frame(w, first + k, frame);
-                        &*frame
-                    };
-                    *out = ant::plan_checked(s, frame, params, ctx)
-                        .map_err(|e| SimError::controller("ant plan", step, id, e))?;
-                    Ok(())
-                },
-            )
+        for_each_agent(
+            self.plans
+                .par_iter_mut()
+                .zip(self.states.par_iter().zip(self.ids.par_iter())),
+            || idle.clone(),
+            |frame, k, (out, (s, &id))| {
+                let ctx = StepCtx {
+                    seed,
+                    agent: id,
+                    step,
+                };
+                // An ant that stays stopped this tick reads nothing of its frame
+                // (xiang2018 §4.1): an empty one changes no result and saves the queries.
+                let stays = s.stop.is_some_and(|t| t.remaining > 1);
+                let frame = if stays {
+                    &idle
+                } else {
+                    fill_plan_frame(w, first + k, frame);
+                    &*frame
+                };
+                *out = ant::plan_checked(s, frame, params, ctx)
+                    .map_err(|e| SimError::controller("ant plan", step, id, e))?;
+                Ok(())
+            },
+        )
     }
 
-    fn write_predictions(&self, predicted: &mut [[f64; 2]]) {
-        predicted[self.first..self.first + self.plans.len()]
+    /// Publishes the plans' predictions p*(t+1); returns the largest distance along x or y
+    /// between a prediction and its ant's sensed position.
+    fn write_predictions(&self, w: &mut AntWorld) -> f32 {
+        let r = self.first..self.first + self.plans.len();
+        w.predicted[r.clone()]
             .par_iter_mut()
+            .zip(&w.sensed.pos[r])
             .zip(&self.plans)
-            .for_each(|(out, p)| *out = a2(p.predicted));
+            .map(|((out, pos), p)| {
+                *out = a2(p.predicted);
+                (out[0] - pos[0]).abs().max((out[1] - pos[1]).abs()) as f32
+            })
+            .reduce(|| 0.0, f32::max)
     }
 
     fn resolve(&mut self, w: &AntWorld, step: u32) -> Result<()> {
         let (first, params) = (self.first, &self.params);
         let idle = ResolveFrame::new(bounds::<S>(w));
-        self.next
-            .par_iter_mut()
-            .zip(self.plans.par_iter().zip(self.ids.par_iter()))
-            .enumerate()
-            .try_for_each_init(
-                || idle.clone(),
-                |frame, (k, (out, (p, &id)))| {
-                    // A stopped ant does not move: its resolve frame is never read.
-                    let frame = if p.state.is_stopped() {
-                        &idle
-                    } else {
-                        fill_resolve_frame(w, first + k, frame);
-                        &*frame
-                    };
-                    *out = ant::resolve_checked(p, frame, params)
-                        .map_err(|e| SimError::controller("ant resolve", step, id, e))?;
-                    Ok(())
-                },
-            )
+        for_each_agent(
+            self.next
+                .par_iter_mut()
+                .zip(self.plans.par_iter().zip(self.ids.par_iter())),
+            || idle.clone(),
+            |frame, k, (out, (p, &id))| {
+                // A stopped ant does not move: its resolve frame is never read.
+                let frame = if p.state.is_stopped() {
+                    &idle
+                } else {
+                    fill_resolve_frame(w, first + k, frame);
+                    &*frame
+                };
+                *out = ant::resolve_checked(p, frame, params)
+                    .map_err(|e| SimError::controller("ant resolve", step, id, e))?;
+                Ok(())
+            },
+        )
     }
 
     /// Makes the resolved states current and writes the sensed world; returns what happened,
@@ -326,10 +333,11 @@ impl AntSim {
         for g in &mut self.groups {
             by_scalar!(g, g => g.plan(&self.world, seed, step))?;
         }
+        let mut shift = 0.0f32;
         for g in &self.groups {
-            by_scalar!(g, g => g.write_predictions(&mut self.world.predicted));
+            shift = shift.max(by_scalar!(g, g => g.write_predictions(&mut self.world)));
         }
-        self.world.index_predictions();
+        self.world.max_shift = shift;
         Ok(())
     }
 

@@ -145,8 +145,11 @@ pub struct AntWorld {
     pub sensed: Sensed,
     /// Predicted positions p*(t+1) of the current step's plans.
     pub predicted: Vec<[f64; 2]>,
+    /// The largest distance along x or y between an ant's prediction and its sensed position,
+    /// this step: the resolve-phase query widens the position grid's by this much.
+    pub(crate) max_shift: f32,
+    /// The sensed positions, by cell (both phases query it).
     pub(crate) grid: Grid,
-    pub(crate) predicted_grid: Grid,
 }
 
 /// What an ant's neighbours can sense of it: struct of arrays, indexed by agent.
@@ -216,12 +219,12 @@ impl AntWorld {
             route: Vec::new(),
             sensed: Sensed::default(),
             predicted: Vec::new(),
-            predicted_grid: grid.clone(),
+            max_shift: 0.0,
             grid,
         }
     }
 
-    /// Sizes the neighbour grids for `n` ants: cells no smaller than the query ranges, and about
+    /// Sizes the neighbour grid for `n` ants: cells no smaller than the query ranges, and about
     /// one ant per cell in sparse worlds (fewer, fuller cells: less to clear and scan per
     /// rebuild, while a query still reads a few contiguous rows).
     pub fn size_grids(&mut self, n: usize) {
@@ -233,7 +236,6 @@ impl AntWorld {
             [self.max[0], self.max[1], 0.0],
         );
         self.grid = Grid::new(lo, hi, cell);
-        self.predicted_grid = Grid::new(lo, hi, cell);
     }
 
     /// Sets the route from the world's way points, in increasing `order`.
@@ -279,9 +281,13 @@ impl AntWorld {
             .rebuild(&self.sensed.pos, |p| [p[0] as f32, p[1] as f32, 0.0]);
     }
 
-    /// Rebuilds the grid of predicted positions.
-    pub fn index_predictions(&mut self) {
-        self.predicted_grid
-            .rebuild(&self.predicted, |p| [p[0] as f32, p[1] as f32, 0.0]);
+    /// What a grid query adds to its radius for the rounding of positions to `f32` (a few
+    /// ulps of the largest coordinate, and some).
+    pub(crate) fn rounding_margin(&self) -> f32 {
+        let extent = [self.min, self.max]
+            .iter()
+            .flatten()
+            .fold(0.0f32, |m, c| m.max(c.abs()));
+        1e-3 + extent * 1e-6
     }
 }

@@ -1,0 +1,72 @@
+//! Parallel loops over agents whose failures are deterministic.
+
+use std::sync::Mutex;
+
+use rayon::prelude::*;
+
+use crate::error::{Result, SimError};
+
+/// Runs `f(scratch, k, item)` on every `(k, item)` of `items` in parallel, each worker with its
+/// own `scratch` from `init`. Returns the error of the lowest `k` that failed, whatever the
+/// thread count.
+///
+/// Unlike rayon's `try_for_each_init`, no result travels through the reduction: an agent step
+/// that succeeds costs nothing beyond the call (failures are rare and only end a run).
+pub(crate) fn for_each_agent<I, T, W>(
+    items: I,
+    init: impl Fn() -> W + Sync + Send,
+    f: impl Fn(&mut W, usize, T) -> Result<()> + Sync + Send,
+) -> Result<()>
+where
+    I: IndexedParallelIterator<Item = T>,
+{
+    let first: Mutex<Option<(usize, SimError)>> = Mutex::new(None);
+    items.enumerate().for_each_init(init, |w, (k, item)| {
+        if let Err(e) = f(w, k, item) {
+            let mut slot = first.lock().unwrap_or_else(|p| p.into_inner());
+            if slot.as_ref().is_none_or(|(j, _)| k < *j) {
+                *slot = Some((k, e));
+            }
+        }
+    });
+    match first.into_inner().unwrap_or_else(|p| p.into_inner()) {
+        Some((_, e)) => Err(e),
+        None => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_lowest_failing_index_wins_at_any_thread_count() {
+        for threads in [1, 2, 4] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let mut out = vec![0u32; 10_000];
+            let r = pool.install(|| {
+                for_each_agent(
+                    out.par_iter_mut(),
+                    || (),
+                    |_, k, o| {
+                        *o = k as u32;
+                        if k % 997 == 996 {
+                            Err(SimError::Invalid(format!("agent {k}")))
+                        } else {
+                            Ok(())
+                        }
+                    },
+                )
+            });
+            assert_eq!(
+                r.unwrap_err().to_string(),
+                SimError::Invalid("agent 996".into()).to_string()
+            );
+            assert!(out.iter().enumerate().all(|(k, &o)| o == k as u32));
+        }
+        assert!(for_each_agent((0..10u32).into_par_iter(), || (), |_, _, _| Ok(())).is_ok());
+    }
+}
