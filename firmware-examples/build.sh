@@ -10,7 +10,10 @@
 #   bee-node-fixed            thumbv7em-none-eabihf  QEMU mps2-an386  (Cortex-M4F)  Fx (I16F16)
 # are the serial nodes (the device endpoint on UART0; scripts/qemu-serial.sh runs them), and
 #   ant-node-selfcheck, ant-node-fixed-selfcheck, bee-node-selfcheck, bee-node-fixed-selfcheck
-# the self-check images (replay a scenario, compare with the host; scripts/qemu-run.sh).
+# the self-check images (replay a scenario, compare with the host; scripts/qemu-run.sh), and
+#   ant-node-cycles, ant-node-fixed-cycles, bee-node-cycles, bee-node-fixed-cycles
+# the measurement images (time the controller call by call; scripts/qemu-cycles.sh).
+# (ant-node-other and bee-node-other serve other parameters: scripts/hil-qemu.sh's refusal test.)
 #
 # Toolchain, per target: rustup's cargo if `rustup target list --installed` has the target;
 # otherwise Debian's rustc/cargo (packages rustc-web cargo-web rust-web-src lld) with
@@ -26,7 +29,8 @@
 #   ram_static = .data + .bss + .uninit (the stack is not included; qemu-run.sh reports its peak)
 # Budgets (see README.md), for the serial nodes: ant-node-fixed <= 16 KiB flash / 4 KiB RAM;
 # bee-node, bee-node-fixed <= 32 KiB / 8 KiB. The self-check images carry their scenario and
-# its expected-decision table on top and have no budget.
+# its expected-decision table on top, the measurement images their scenario and timing code;
+# neither has a budget.
 # Over budget is a warning, or an error with --enforce-budgets (or FW_ENFORCE_BUDGETS=1).
 set -euo pipefail
 
@@ -160,7 +164,9 @@ if [ -z "$ONLY" ] || [ "$ONLY" = ant ]; then
              "ant-node-fixed thumbv7m-none-eabi lm3s6965evb I16F16 16384 4096"
              "ant-node-selfcheck thumbv7m-none-eabi lm3s6965evb f32 - -"
              "ant-node-fixed-selfcheck thumbv7m-none-eabi lm3s6965evb I16F16 - -"
-             "ant-node-other thumbv7m-none-eabi lm3s6965evb f32 - -")
+             "ant-node-other thumbv7m-none-eabi lm3s6965evb f32 - -"
+             "ant-node-cycles thumbv7m-none-eabi lm3s6965evb f32 - -"
+             "ant-node-fixed-cycles thumbv7m-none-eabi lm3s6965evb I16F16 - -")
 fi
 if [ -z "$ONLY" ] || [ "$ONLY" = bee ]; then
     build bee-node thumbv7em-none-eabihf
@@ -168,7 +174,9 @@ if [ -z "$ONLY" ] || [ "$ONLY" = bee ]; then
              "bee-node-fixed thumbv7em-none-eabihf mps2-an386 I16F16 32768 8192"
              "bee-node-selfcheck thumbv7em-none-eabihf mps2-an386 f32 - -"
              "bee-node-fixed-selfcheck thumbv7em-none-eabihf mps2-an386 I16F16 - -"
-             "bee-node-other thumbv7em-none-eabihf mps2-an386 f32 - -")
+             "bee-node-other thumbv7em-none-eabihf mps2-an386 f32 - -"
+             "bee-node-cycles thumbv7em-none-eabihf mps2-an386 f32 - -"
+             "bee-node-fixed-cycles thumbv7em-none-eabihf mps2-an386 I16F16 - -")
 fi
 
 # --- sizes ------------------------------------------------------------------------------------

@@ -81,6 +81,7 @@ elif ((firmware_ok == 1)); then
     stage "firmware: scenario branch coverage (host)" bash -c 'cd firmware-examples && cargo test -q -p fw-scenario --features std,fixed && cargo test -q -p fw-scenario --features std'
     stage "firmware: node loop and parameters (host)" bash -c 'cd firmware-examples && cargo test -q -p fw-node'
     stage "firmware: every image in qemu-system-arm equals the host, and a corrupted table fails" scripts/qemu-run.sh --self-test
+    stage "firmware: instructions per controller step in QEMU -icount (counted-loop cross-check; a wrong shift fails)" scripts/qemu-cycles.sh --self-test
     stage "firmware: swarm-hil mirrors every serial node in QEMU (2,000 decisions each, garbage, reset, refusal)" scripts/hil-qemu.sh
 fi
 

@@ -15,12 +15,15 @@
 //! `plan.predicted.{x,y}`, `plan.state.heading.{x,y}`, `discrete(plan.state)`,
 //! `next.pos.{x,y}`, `next.heading.{x,y}`, `discrete(next)`, `next.arrival.{x,y}`
 //! — 12 words; then the probes (see [`probes`]).
+//!
+//! [`cost`] is the other use of this world: a larger colony, timed call by call (the
+//! `ant-node-cycles` images).
 
-use crate::{Sink, Word};
+use crate::{Meter, Sink, Stats, Word, uniform};
 use swarm_core::ant::{
     self, AntNeighbor, AntObject, AntParams, AntPlan, AntState, Label, PlanFrame, ResolveFrame,
 };
-use swarm_core::{Rect, Scalar, StepCtx, Vec2};
+use swarm_core::{Checked, Rect, Scalar, StepCtx, Vec2};
 
 /// Ants in the scenario.
 pub const AGENTS: usize = 8;
@@ -67,7 +70,7 @@ impl<S: Scalar> World<S> {
 
     /// What ant `i` senses in the plan phase: ants within [`HEAR`] in id order, and the objects
     /// within [`SENSE`] (at most [`O`]: nest, food, rock, disturbance).
-    fn plan_frame(&self, ants: &[AntState<S>; AGENTS], i: usize) -> PlanFrame<S, N, O> {
+    fn plan_frame(&self, ants: &[AntState<S>], i: usize) -> PlanFrame<S, N, O> {
         let me = ants[i].pos;
         let mut f = PlanFrame::new(self.bounds);
         let hear = S::from_f32(HEAR);
@@ -116,7 +119,7 @@ impl<S: Scalar> World<S> {
 
     /// What ant `i` hears in the resolve phase: the predictions of the others within [`HEAR`]
     /// of its own prediction, in id order.
-    fn resolve_frame(&self, plans: &[Option<AntPlan<S>>; AGENTS], i: usize) -> ResolveFrame<S, N> {
+    fn resolve_frame(&self, plans: &[Option<AntPlan<S>>], i: usize) -> ResolveFrame<S, N> {
         let mut f = ResolveFrame::new(self.bounds);
         let Some(me) = plans[i] else { return f };
         let hear = S::from_f32(HEAR);
@@ -214,6 +217,114 @@ pub fn run<S: Word>(out: &mut impl Sink) {
         }
     }
     probes(&w, &ants, &params, out);
+}
+
+/// Ants in the colony of [`cost`].
+pub const COST_AGENTS: usize = 24;
+/// Ticks of [`cost`]: `COST_AGENTS * COST_TICKS` ant-steps are timed.
+pub const COST_TICKS: u32 = 16;
+
+/// What [`cost`] measured, in the meter's ticks.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AntCost {
+    /// One `ant::plan_checked` call (phase 1).
+    pub plan: Stats,
+    /// One `ant::resolve_checked` call (phase 2).
+    pub resolve: Stats,
+    /// One ant-step: the plan and the resolve of one ant in one tick.
+    pub step: Stats,
+    /// The ant-steps of ants that were not stopped after their plan (a stopped ant's plan
+    /// returns early and its resolve does nothing).
+    pub moving: Stats,
+    /// Neighbours in the plan frames, summed (the mean is `neighbours / plan.n`).
+    pub neighbours: u32,
+    /// Plan frames holding [`N`] neighbours, the capacity.
+    pub full_frames: u32,
+    /// Controller calls that returned an error (0 expected: only decisions are timed).
+    pub errors: u32,
+}
+
+/// The colony of [`cost`] at tick 0: three crowds (half the colony around the nest, a quarter
+/// on the way past the rock, a quarter at the food source), the labels mixed (S_nothing, S_nest, laden), headings spread.
+fn cost_colony<S: Scalar>(w: &World<S>) -> [AntState<S>; COST_AGENTS] {
+    core::array::from_fn(|i| {
+        let k = i as u32;
+        // (x range, y range) of the crowd.
+        let ((x0, x1), (y0, y1)) = match i % 4 {
+            0 | 2 => ((4.0, 9.0), (3.0, 8.0)),
+            1 => ((11.0, 16.0), (7.0, 12.0)),
+            _ => ((20.0, 25.0), (17.0, 22.0)),
+        };
+        let pos = Vec2::new(uniform(k, 1, x0, x1), uniform(k, 2, y0, y1));
+        let heading = Vec2::new(uniform(k, 3, -1.0, 1.0), uniform(k, 4, -1.0, 1.0));
+        match (i / 3) % 3 {
+            0 => AntState::exploring(NEST_ID, pos, heading),
+            1 => AntState::at_nest(NEST_ID, pos, heading),
+            _ => AntState {
+                label: Label::Food,
+                origin: FOOD_ID,
+                arrival: w.food.0,
+                ..AntState::at_nest(NEST_ID, pos, heading)
+            },
+        }
+    })
+}
+
+/// Times the ant controller as a serial node runs it, call by call: [`COST_AGENTS`] ants of
+/// one colony in this module's world for [`COST_TICKS`] two-phase ticks, every ant's
+/// `ant::plan_checked` on its plan frame, then every ant's `ant::resolve_checked` with its
+/// neighbours' predictions (the calls `AntDevice` makes for `AntPlanRequest` and
+/// `AntResolveRequest`, parameters validated once). The frames are built outside the timed
+/// blocks; only the controller call (its input validation included) is timed.
+pub fn cost<S: Scalar>(params: &Checked<AntParams<S>>, meter: &mut impl Meter) -> AntCost {
+    let w = World::<S>::new();
+    let mut ants = cost_colony(&w);
+    let mut c = AntCost {
+        plan: Stats::EMPTY,
+        resolve: Stats::EMPTY,
+        step: Stats::EMPTY,
+        moving: Stats::EMPTY,
+        ..AntCost::default()
+    };
+    for step in 0..COST_TICKS {
+        let mut plans: [Option<AntPlan<S>>; COST_AGENTS] = [None; COST_AGENTS];
+        let mut plan_ticks = [0u32; COST_AGENTS];
+        for i in 0..COST_AGENTS {
+            let ctx = StepCtx {
+                seed: SEED,
+                agent: i as u32,
+                step,
+            };
+            let frame = w.plan_frame(&ants, i);
+            c.neighbours += frame.neighbours.len() as u32;
+            c.full_frames += u32::from(frame.neighbours.len() == N);
+            let (r, t) = meter.measure((&ants[i], &frame), |(s, f)| {
+                ant::plan_checked(s, f, params, ctx)
+            });
+            c.plan.add(t);
+            plan_ticks[i] = t;
+            match r {
+                Ok(p) => plans[i] = Some(p),
+                Err(_) => c.errors += 1,
+            }
+        }
+        for i in 0..COST_AGENTS {
+            let Some(plan) = plans[i] else { continue };
+            let frame = w.resolve_frame(&plans, i);
+            let (r, t) =
+                meter.measure((&plan, &frame), |(p, f)| ant::resolve_checked(p, f, params));
+            c.resolve.add(t);
+            c.step.add(plan_ticks[i].saturating_add(t));
+            if !plan.state.is_stopped() {
+                c.moving.add(plan_ticks[i].saturating_add(t));
+            }
+            match r {
+                Ok(next) => ants[i] = next,
+                Err(_) => c.errors += 1,
+            }
+        }
+    }
+    c
 }
 
 /// A probe's outcome: the error's marker and code, or (wrongly accepted) the plan.
@@ -431,6 +542,44 @@ mod tests {
     #[test]
     fn fixed_scenario_exercises_every_branch() {
         coverage::<swarm_core::Fx>();
+    }
+
+    /// A meter that counts calls (one tick each).
+    struct Calls;
+
+    impl Meter for Calls {
+        fn measure<I, R>(&mut self, input: I, f: impl FnOnce(I) -> R) -> (R, u32) {
+            (f(input), 1)
+        }
+    }
+
+    fn cost_covers<S: Scalar>() {
+        let params = params_of_node::<S>().checked().unwrap();
+        let c = cost(&params, &mut Calls);
+        let steps = COST_AGENTS as u32 * COST_TICKS;
+        assert_eq!(c.errors, 0, "only decisions are timed");
+        assert_eq!((c.plan.n, c.resolve.n, c.step.n), (steps, steps, steps));
+        assert_eq!((c.step.min, c.step.max), (2, 2));
+        assert!(c.moving.n > steps / 2 && c.moving.n < steps, "{c:?}");
+        let mean = c.neighbours as f32 / steps as f32;
+        assert!((2.0..7.0).contains(&mean), "mean neighbours {mean}");
+        assert!(c.full_frames > 0, "some frames are full");
+    }
+
+    /// The serial nodes' ant parameters (`fw_node::ant_params`: the defaults).
+    fn params_of_node<S: Scalar>() -> AntParams<S> {
+        AntParams::<f32>::default().cast()
+    }
+
+    #[test]
+    fn f32_cost_run_times_decisions_in_crowds() {
+        cost_covers::<f32>();
+    }
+
+    #[cfg(feature = "fixed")]
+    #[test]
+    fn fixed_cost_run_times_decisions_in_crowds() {
+        cost_covers::<swarm_core::Fx>();
     }
 
     #[test]

@@ -14,10 +14,13 @@
 //!
 //! Words per bee and step: `accel.{x,y,z}`, `velocity.{x,y,z}`, `roll`, `pitch`, `density`,
 //! `avoiding`, `next.pos.{x,y,z}` — 13 words; then the probes (see [`probes`]).
+//!
+//! [`cost`] is the other use of this world: a larger swarm, timed call by call (the
+//! `bee-node-cycles` images).
 
-use crate::{Sink, Word};
+use crate::{Meter, Sink, Stats, Word, uniform};
 use swarm_core::bee::{self, BeeFrame, BeeNeighbor, BeeParams, BeeState, ObstacleSense};
-use swarm_core::{Scalar, Vec3};
+use swarm_core::{Checked, Scalar, Vec3};
 
 /// Bees in the scenario.
 pub const AGENTS: usize = 6;
@@ -72,10 +75,20 @@ impl<S: Scalar> World<S> {
     }
 
     /// What bee `i` senses at step `step`, from the previous step's states.
-    fn frame(&self, bees: &[BeeState<S>; AGENTS], i: usize, step: u32) -> Frame<S> {
+    fn frame(&self, bees: &[BeeState<S>], i: usize, step: u32) -> Frame<S> {
+        self.frame_in(bees, i, step)
+    }
+
+    /// [`World::frame`] in a frame of any capacity (neighbours beyond it are dropped).
+    fn frame_in<const NN: usize, const PP: usize>(
+        &self,
+        bees: &[BeeState<S>],
+        i: usize,
+        step: u32,
+    ) -> BeeFrame<S, NN, PP> {
         let p = BeeParams::<S>::default();
         let me = bees[i].pos;
-        let mut f = Frame::new(S::from_i32(step as i32) * p.dt);
+        let mut f = BeeFrame::new(S::from_i32(step as i32) * p.dt);
         for (j, b) in bees.iter().enumerate() {
             if j != i && (b.pos - me).length() < p.h {
                 let _ = f.neighbours.push(BeeNeighbor {
@@ -150,6 +163,88 @@ pub fn run<S: Word>(out: &mut impl Sink) {
         }
     }
     probes(&w, &bees, &params, out);
+}
+
+/// Bees in the swarm of [`cost`].
+pub const COST_AGENTS: usize = 20;
+/// Steps of [`cost`]: `COST_AGENTS * COST_STEPS` bee steps are timed.
+pub const COST_STEPS: u32 = 16;
+
+/// What [`cost`] measured, in the meter's ticks.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct BeeCost {
+    /// One `bee::step_checked` call.
+    pub step: Stats,
+    /// Neighbours in the frames, summed (the mean is `neighbours / step.n`).
+    pub neighbours: u32,
+    /// Target particles in the frames, summed.
+    pub targets: u32,
+    /// Frames holding as many neighbours as they can.
+    pub full_frames: u32,
+    /// Steps whose bee was avoiding the obstacle (eq. 5-7) afterwards.
+    pub avoiding: u32,
+    /// Controller calls that returned an error (0 expected: only decisions are timed).
+    pub errors: u32,
+}
+
+/// The swarm of [`cost`] at step 0: a cloud between the rock and the flower, flying toward
+/// the flower at varied speeds; every seventh bee has no goal.
+fn cost_swarm<S: Scalar>() -> [BeeState<S>; COST_AGENTS] {
+    core::array::from_fn(|i| {
+        let k = 100 + i as u32;
+        let pos = Vec3::new(
+            uniform(k, 1, -3.0, 7.0),
+            uniform(k, 2, 0.3, 2.5),
+            uniform(k, 3, -3.0, 3.0),
+        );
+        let vel = Vec3::new(
+            uniform(k, 4, 0.0, 1.5),
+            uniform(k, 5, -0.2, 0.2),
+            uniform(k, 6, -0.5, 0.5),
+        );
+        BeeState::new(pos, vel)
+    })
+}
+
+/// Times the bee controller as a serial node runs it, call by call: [`COST_AGENTS`] bees in
+/// this module's world for [`COST_STEPS`] steps, every bee's `bee::step_checked` on a frame of
+/// capacity `NN` neighbours and `PP` target particles (the node's wire capacities), built from
+/// the previous step's states (the call `BeeDevice` makes for a `BeeStepRequest`, parameters
+/// validated once). The frames are built outside the timed blocks; only the controller call
+/// (its input validation included) is timed.
+pub fn cost<S: Scalar, const NN: usize, const PP: usize>(
+    params: &Checked<BeeParams<S>>,
+    meter: &mut impl Meter,
+) -> BeeCost {
+    let w = World::<S>::new();
+    let mut bees = cost_swarm::<S>();
+    let mut c = BeeCost {
+        step: Stats::EMPTY,
+        ..BeeCost::default()
+    };
+    for step in 0..COST_STEPS {
+        let prev = bees;
+        for (i, bee) in bees.iter_mut().enumerate() {
+            let mut frame: BeeFrame<S, NN, PP> = w.frame_in(&prev, i, step);
+            if i % 7 == 6 {
+                frame.goal = None;
+            }
+            c.neighbours += frame.neighbours.len() as u32;
+            c.targets += frame.targets.len() as u32;
+            c.full_frames += u32::from(frame.neighbours.len() == NN);
+            let (r, t) =
+                meter.measure((&prev[i], &frame), |(s, f)| bee::step_checked(s, f, params));
+            c.step.add(t);
+            match r {
+                Ok((d, next)) => {
+                    c.avoiding += u32::from(d.avoiding);
+                    *bee = next;
+                }
+                Err(_) => c.errors += 1,
+            }
+        }
+    }
+    c
 }
 
 /// A probe's outcome: the error's marker and code, or (wrongly accepted) the velocity.
@@ -261,6 +356,45 @@ mod tests {
         let p = BeeParams::<S>::default();
         let (d4, _) = bee::step(&bees[4], &f(4), &p).unwrap();
         assert!(d4.density > S::ZERO, "target particles add density");
+    }
+
+    /// A meter that counts calls (one tick each).
+    struct Calls;
+
+    impl Meter for Calls {
+        fn measure<I, R>(&mut self, input: I, f: impl FnOnce(I) -> R) -> (R, u32) {
+            (f(input), 1)
+        }
+    }
+
+    fn cost_covers<S: Scalar>() {
+        // The serial nodes' parameters (`fw_node::bee_params`) and wire capacities (16, 16).
+        let params = BeeParams::<f32>::default().cast::<S>().checked().unwrap();
+        let c = cost::<S, 16, 16>(&params, &mut Calls);
+        let steps = COST_AGENTS as u32 * COST_STEPS;
+        assert_eq!(c.errors, 0, "only decisions are timed");
+        assert_eq!((c.step.n, c.step.min, c.step.max), (steps, 1, 1));
+        let mean = c.neighbours as f32 / steps as f32;
+        assert!((3.0..12.0).contains(&mean), "mean neighbours {mean}");
+        assert!(
+            c.targets > 0,
+            "some bees sense the flower's particles: {c:?}"
+        );
+        assert!(
+            c.avoiding > 0 && c.avoiding < steps / 2,
+            "some bees avoid the rock: {c:?}"
+        );
+    }
+
+    #[test]
+    fn f32_cost_run_times_decisions_in_a_swarm() {
+        cost_covers::<f32>();
+    }
+
+    #[cfg(feature = "fixed")]
+    #[test]
+    fn fixed_cost_run_times_decisions_in_a_swarm() {
+        cost_covers::<swarm_core::Fx>();
     }
 
     #[test]

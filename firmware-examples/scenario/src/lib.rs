@@ -89,6 +89,55 @@ impl<F: FnMut(u32)> Sink for F {
     }
 }
 
+/// Times one block of code (the `*-cycles` images: `fw_support::cycles::SysTickMeter`).
+///
+/// [`ant::cost`] and [`bee::cost`] call the controllers through a meter, one call per timed
+/// block, with the sensor frame built beforehand, so only the controller call is timed.
+pub trait Meter {
+    /// Runs `f(input)` once and returns its result and what it took, in the meter's ticks,
+    /// the meter's own overhead (an empty block) subtracted. Pass references in `input`:
+    /// an implementation hides `input` behind an optimisation barrier after its first clock
+    /// reading, so no work of `f` can be hoisted out of the timed region.
+    fn measure<I, R>(&mut self, input: I, f: impl FnOnce(I) -> R) -> (R, u32);
+}
+
+/// Count, minimum, maximum and sum of a series of measurements (ticks).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Stats {
+    /// Measurements taken.
+    pub n: u32,
+    /// The smallest (`u32::MAX` while `n == 0`).
+    pub min: u32,
+    /// The largest.
+    pub max: u32,
+    /// Their sum (the mean is `sum / n`).
+    pub sum: u64,
+}
+
+impl Stats {
+    /// No measurement yet.
+    pub const EMPTY: Stats = Stats {
+        n: 0,
+        min: u32::MAX,
+        max: 0,
+        sum: 0,
+    };
+
+    /// Adds one measurement.
+    pub fn add(&mut self, v: u32) {
+        self.n += 1;
+        self.min = self.min.min(v);
+        self.max = self.max.max(v);
+        self.sum += u64::from(v);
+    }
+}
+
+impl Default for Stats {
+    fn default() -> Self {
+        Stats::EMPTY
+    }
+}
+
 /// A deterministic value in `[lo, hi)` from the scenario's own counter-based hash (used to
 /// scatter the initial world; the controllers draw their own randomness from `StepCtx`).
 pub fn uniform<S: Scalar>(key: u32, salt: u32, lo: f32, hi: f32) -> S {

@@ -10,7 +10,9 @@
 //!   `EXIT_SUCCESS` only if every word matched. It also measures the peak stack use (the stack
 //!   is painted before the run and scanned afterwards);
 //! * [`paint_stack`]: the serial nodes paint the stack too, so a debugger or QEMU's monitor
-//!   can read the peak afterwards (`scripts/qemu-serial.sh --stack`).
+//!   can read the peak afterwards (`scripts/qemu-serial.sh --stack`);
+//! * [`cycles`]: the measurement images (`*-cycles`): the controllers timed call by call with
+//!   SysTick, for instruction counts under QEMU's `-icount` (`scripts/qemu-cycles.sh`).
 //!
 //! Self-test of the check: run a self-check image with the semihosting argument `corrupt`
 //! (`-semihosting-config enable=on,target=native,arg=corrupt`); the checker then flips one bit
@@ -22,6 +24,7 @@ use cortex_m_rt::ExceptionFrame;
 use cortex_m_semihosting::{debug, hio, nr};
 use fw_scenario::Sink;
 
+pub mod cycles;
 pub mod mem;
 pub mod uart;
 
@@ -277,17 +280,25 @@ macro_rules! node_handlers {
 }
 
 /// A line of text for the semihosting console, built without `core::fmt` (which would cost
-/// a few KiB of flash): strings, decimal and hex numbers; silently truncated when full.
-pub struct Line {
-    buf: [u8; 160],
+/// a few KiB of flash): strings, decimal and hex numbers; silently truncated when full
+/// (`CAP` bytes, the newline included).
+pub struct Line<const CAP: usize = 160> {
+    buf: [u8; CAP],
     len: usize,
 }
 
 impl Line {
-    /// An empty line.
+    /// An empty line of the default capacity (160 bytes).
     pub const fn new() -> Self {
+        Line::with_capacity()
+    }
+}
+
+impl<const CAP: usize> Line<CAP> {
+    /// An empty line of capacity `CAP`.
+    pub const fn with_capacity() -> Self {
         Line {
-            buf: [0; 160],
+            buf: [0; CAP],
             len: 0,
         }
     }
