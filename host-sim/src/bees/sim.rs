@@ -13,6 +13,7 @@ use super::world::BeeWorld;
 use crate::by_scalar;
 use crate::error::{Result, SimError};
 use crate::grid::{order_by_cell, permuted};
+use crate::par::for_each_agent;
 use crate::scalar::{AgentGroup, ByScalar, SimScalar};
 
 /// Corrections the world made because the controller's move would have left a bee inside an
@@ -115,24 +116,23 @@ impl<S: SimScalar> BeeGroup<S> {
         let t = S::from_f64(frame_time(step, params.dt.to_f64()));
         // The kernels and maneuvering functions, once for the group at this time.
         let consts = bee::StepConsts::new(params, t);
-        self.next
-            .par_iter_mut()
-            .zip(self.decisions.par_iter_mut())
-            .zip(self.corrected.par_iter_mut())
-            .zip(self.states.par_iter().zip(self.ids.par_iter()))
-            .enumerate()
-            .try_for_each_init(
-                || (BlockCache::default(), BeeFrame::new(t)),
-                |(cache, frame), (k, (((out, dec), fix), (s, &id)))| {
-                    fill_frame::<S>(w, first + k, goal, t, cache, frame);
-                    let (d, mut next) = bee::step_with(s, frame, params, &consts)
-                        .map_err(|e| SimError::controller("bee step", step, id, e))?;
-                    *fix = w.confine(&mut next);
-                    *dec = d;
-                    *out = next;
-                    Ok(())
-                },
-            )
+        for_each_agent(
+            self.next
+                .par_iter_mut()
+                .zip(self.decisions.par_iter_mut())
+                .zip(self.corrected.par_iter_mut())
+                .zip(self.states.par_iter().zip(self.ids.par_iter())),
+            || (BlockCache::default(), BeeFrame::new(t)),
+            |(cache, frame), k, (((out, dec), fix), (s, &id))| {
+                fill_frame::<S>(w, first + k, goal, t, cache, frame);
+                let (d, mut next) = bee::step_with(s, frame, params, &consts)
+                    .map_err(|e| SimError::controller("bee step", step, id, e))?;
+                *fix = w.confine(&mut next);
+                *dec = d;
+                *out = next;
+                Ok(())
+            },
+        )
     }
 
     /// Makes the new states current, writes the sensed world and counts the corrections.
