@@ -58,6 +58,37 @@ impl<const K: usize> Nearest<K> {
     }
 }
 
+/// The ants sensed within a radius of an ant in the plan phase (`reach`, at least the
+/// collision range plus twice the longest step): every ant whose prediction can come within
+/// the collision range of this ant's, so the resolve frame is built from this short list
+/// instead of a second grid query. More than [`Around::CAP`] of them: the list is dropped and
+/// the resolve frame asks the grid.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Around {
+    /// The list, then one scratch slot (where candidates not kept are written).
+    slots: [u32; Around::CAP + 1],
+    /// Ants found; above `CAP`, the list overflowed.
+    len: u8,
+}
+
+impl Around {
+    /// Slots kept.
+    pub(crate) const CAP: usize = 8;
+
+    /// Notes slot `j` if `keep` (no branch on `keep`: it is a coin toss).
+    #[inline]
+    fn note(&mut self, j: u32, keep: bool) {
+        self.slots[usize::from(self.len).min(Self::CAP)] = j;
+        self.len = self.len.saturating_add(u8::from(keep));
+    }
+
+    /// The list, unless it overflowed.
+    pub(crate) fn slots(&self) -> Option<&[u32]> {
+        let len = usize::from(self.len);
+        (len <= Self::CAP).then(|| &self.slots[..len])
+    }
+}
+
 /// Squared distance in the plane, from the grid's `f32` copy of the positions (selection
 /// only: the frame itself carries the exact positions).
 fn d2f(a: [f32; 3], b: [f32; 3]) -> f32 {
@@ -86,6 +117,17 @@ pub fn plan_frame<S: SimScalar>(w: &AntWorld, i: usize) -> AntPlanFrame<S> {
 
 /// [`plan_frame`] written into `frame` (whose bounds are the world's), reusing its storage.
 pub(crate) fn fill_plan_frame<S: SimScalar>(w: &AntWorld, i: usize, frame: &mut AntPlanFrame<S>) {
+    fill_plan_frame_noting(w, i, frame, None);
+}
+
+/// [`fill_plan_frame`], also noting in `around` the ants sensed within `reach` of ant `i`
+/// (`reach` ≥ the contact range): what [`fill_resolve_frame_from`] needs.
+pub(crate) fn fill_plan_frame_noting<S: SimScalar>(
+    w: &AntWorld,
+    i: usize,
+    frame: &mut AntPlanFrame<S>,
+    mut around: Option<(&mut Around, f32)>,
+) {
     frame.neighbours.clear();
     frame.objects.clear();
     let me = w.sensed.pos[i];
@@ -95,8 +137,17 @@ pub(crate) fn fill_plan_frame<S: SimScalar>(w: &AntWorld, i: usize, frame: &mut 
     let r2 = w.contact_range * w.contact_range;
     let mut near = Nearest::<N>::new();
     let p = [me[0] as f32, me[1] as f32, 0.0];
-    w.grid.for_each_candidate(p, w.contact_range, |j, q| {
+    let radius = around
+        .as_ref()
+        .map_or(w.contact_range, |&(_, reach)| reach.max(w.contact_range));
+    if let Some((list, _)) = &mut around {
+        **list = Around::default();
+    }
+    w.grid.for_each_candidate(p, radius, |j, q| {
         let d = d2f(q, p);
+        if let Some((list, reach)) = &mut around {
+            list.note(j, (d <= *reach * *reach) & (j as usize != i));
+        }
         if j as usize != i && d <= r2 && same_leg(j as usize) {
             near.offer(d, w.sensed.id[j as usize], j);
         }
@@ -181,6 +232,34 @@ pub fn resolve_frame<S: SimScalar>(w: &AntWorld, i: usize) -> AntResolveFrame<S>
     frame
 }
 
+/// [`fill_resolve_frame`] from the ants noted in the plan phase (see [`Around`]): the same
+/// frame, without a grid query unless the list overflowed.
+pub(crate) fn fill_resolve_frame_from<S: SimScalar>(
+    w: &AntWorld,
+    i: usize,
+    around: &Around,
+    frame: &mut AntResolveFrame<S>,
+) {
+    let Some(slots) = around.slots() else {
+        return fill_resolve_frame(w, i, frame);
+    };
+    frame.neighbours.clear();
+    let me = w.predicted[i];
+    let r2 = w.collision_range * w.collision_range;
+    let p = [me[0] as f32, me[1] as f32, 0.0];
+    let mut near = Nearest::<N>::new();
+    for &j in slots {
+        let [x, y] = w.predicted[j as usize];
+        let d = d2f([x as f32, y as f32, 0.0], p);
+        if d < r2 {
+            near.offer(d, w.sensed.id[j as usize], j);
+        }
+    }
+    for j in near.slots() {
+        let _ = frame.neighbours.push(v2(w.predicted[j]));
+    }
+}
+
 /// [`resolve_frame`] written into `frame` (whose bounds are the world's), reusing its storage.
 pub(crate) fn fill_resolve_frame<S: SimScalar>(
     w: &AntWorld,
@@ -211,6 +290,24 @@ pub(crate) fn fill_resolve_frame<S: SimScalar>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn around_keeps_what_it_is_told_and_gives_up_past_its_capacity() {
+        let mut a = Around::default();
+        for j in 0..Around::CAP as u32 {
+            a.note(j, true);
+            a.note(100 + j, false);
+        }
+        // Full, and candidates not kept leave the list alone.
+        a.note(99, false);
+        assert_eq!(a.slots(), Some(&[0, 1, 2, 3, 4, 5, 6, 7][..]));
+        a.note(8, true);
+        assert_eq!(a.slots(), None);
+        for _ in 0..300 {
+            a.note(9, true);
+        }
+        assert_eq!(a.slots(), None);
+    }
 
     #[test]
     fn nearest_keeps_the_k_smallest_in_order_whatever_the_arrival_order() {

@@ -9,7 +9,9 @@ use swarm_core::ant::{
 use swarm_core::rand;
 use swarm_core::{Checked, Fx, Scalar, StepCtx};
 
-use super::sense::{bounds, fill_plan_frame, fill_resolve_frame};
+use super::sense::{
+    Around, bounds, fill_plan_frame_noting, fill_resolve_frame, fill_resolve_frame_from,
+};
 use super::world::{AntObjectKind, AntWorld};
 use crate::by_scalar;
 use crate::error::{Result, SimError};
@@ -35,6 +37,8 @@ pub struct AntGroup<S> {
     pub ids: Vec<u32>,
     plans: Vec<AntPlan<S>>,
     next: Vec<AntState<S>>,
+    /// Per slot, the ants noted by this tick's plan query for the resolve frame.
+    around: Vec<Around>,
 }
 
 impl<S: SimScalar> AntGroup<S> {
@@ -58,20 +62,23 @@ impl<S: SimScalar> AntGroup<S> {
             params,
             ids: (first as u32..(first + states.len()) as u32).collect(),
             next: states.clone(),
+            around: vec![Around::default(); states.len()],
             states,
             plans,
         }
     }
 
-    fn plan(&mut self, w: &AntWorld, seed: u32, step: u32) -> Result<()> {
+    /// Every ant plans; each also notes the ants within `reach` for its resolve frame.
+    fn plan(&mut self, w: &AntWorld, seed: u32, step: u32, reach: f32) -> Result<()> {
         let (first, params) = (self.first, &self.params);
         let idle = PlanFrame::new(bounds::<S>(w));
         for_each_agent(
             self.plans
                 .par_iter_mut()
+                .zip(self.around.par_iter_mut())
                 .zip(self.states.par_iter().zip(self.ids.par_iter())),
             || idle.clone(),
-            |frame, k, (out, (s, &id))| {
+            |frame, k, ((out, around), (s, &id))| {
                 let ctx = StepCtx {
                     seed,
                     agent: id,
@@ -83,7 +90,7 @@ impl<S: SimScalar> AntGroup<S> {
                 let frame = if stays {
                     &idle
                 } else {
-                    fill_plan_frame(w, first + k, frame);
+                    fill_plan_frame_noting(w, first + k, frame, Some((around, reach)));
                     &*frame
                 };
                 *out = ant::plan_checked(s, frame, params, ctx)
@@ -93,8 +100,8 @@ impl<S: SimScalar> AntGroup<S> {
         )
     }
 
-    /// Publishes the plans' predictions p*(t+1); returns the largest distance along x or y
-    /// between a prediction and its ant's sensed position.
+    /// Publishes the plans' predictions p*(t+1); returns the largest distance between a
+    /// prediction and its ant's sensed position.
     fn write_predictions(&self, w: &mut AntWorld) -> f32 {
         let r = self.first..self.first + self.plans.len();
         w.predicted[r.clone()]
@@ -103,23 +110,34 @@ impl<S: SimScalar> AntGroup<S> {
             .zip(&self.plans)
             .map(|((out, pos), p)| {
                 *out = a2(p.predicted);
-                (out[0] - pos[0]).abs().max((out[1] - pos[1]).abs()) as f32
+                (out[0] - pos[0]).hypot(out[1] - pos[1]) as f32
             })
             .reduce(|| 0.0, f32::max)
     }
 
-    fn resolve(&mut self, w: &AntWorld, step: u32) -> Result<()> {
+    /// The longest step an ant of this group can predict: v·Δt·|O*| with |O*| < 1.01 (the
+    /// state check), and some for the rounding.
+    fn step_bound(&self) -> f32 {
+        (self.params.speed * self.params.dt).to_f32().abs() * 1.02 + 1e-3
+    }
+
+    /// Every ant resolves; with `noted`, from the ants its plan query noted.
+    fn resolve(&mut self, w: &AntWorld, step: u32, noted: bool) -> Result<()> {
         let (first, params) = (self.first, &self.params);
         let idle = ResolveFrame::new(bounds::<S>(w));
         for_each_agent(
             self.next
                 .par_iter_mut()
-                .zip(self.plans.par_iter().zip(self.ids.par_iter())),
+                .zip(self.plans.par_iter().zip(self.ids.par_iter()))
+                .zip(self.around.par_iter()),
             || idle.clone(),
-            |frame, k, (out, (p, &id))| {
+            |frame, k, ((out, (p, &id)), around)| {
                 // A stopped ant does not move: its resolve frame is never read.
                 let frame = if p.state.is_stopped() {
                     &idle
+                } else if noted {
+                    fill_resolve_frame_from(w, first + k, around, frame);
+                    &*frame
                 } else {
                     fill_resolve_frame(w, first + k, frame);
                     &*frame
@@ -278,6 +296,9 @@ pub struct AntSim {
     pub step: u32,
     /// Re-sort the slots by grid cell every this many ticks (0: never). Changes no result.
     pub reorder_every: u32,
+    /// Whether this tick's predictions stayed within the step bound the plan queries assumed
+    /// (then the resolve frames come from the noted ants).
+    noted: bool,
 }
 
 impl AntSim {
@@ -296,6 +317,7 @@ impl AntSim {
             seed,
             step: 0,
             reorder_every: 16,
+            noted: false,
         };
         sim.reorder();
         sim
@@ -330,14 +352,23 @@ impl AntSim {
     pub fn plan_phase(&mut self) -> Result<()> {
         let (seed, step) = (self.seed, self.step);
         self.world.index_positions();
+        // Two ants' predictions within the collision range of each other are sensed within
+        // the collision range plus both steps: each plan query notes those ants.
+        let bound = self
+            .groups
+            .iter()
+            .map(|g| by_scalar!(g, g => g.step_bound()))
+            .fold(0.0, f32::max);
+        let reach = self.world.collision_range + 2.0 * bound + self.world.rounding_margin();
         for g in &mut self.groups {
-            by_scalar!(g, g => g.plan(&self.world, seed, step))?;
+            by_scalar!(g, g => g.plan(&self.world, seed, step, reach))?;
         }
         let mut shift = 0.0f32;
         for g in &self.groups {
             shift = shift.max(by_scalar!(g, g => g.write_predictions(&mut self.world)));
         }
         self.world.max_shift = shift;
+        self.noted = shift <= bound;
         Ok(())
     }
 
@@ -345,8 +376,9 @@ impl AntSim {
     /// states advance, the tick counter moves on.
     pub fn resolve_phase(&mut self) -> Result<Vec<AntEvent>> {
         let (seed, step) = (self.seed, self.step);
+        let noted = self.noted;
         for g in &mut self.groups {
-            by_scalar!(g, g => g.resolve(&self.world, step))?;
+            by_scalar!(g, g => g.resolve(&self.world, step, noted))?;
         }
         let mut events = Vec::new();
         for g in &mut self.groups {
@@ -356,6 +388,7 @@ impl AntSim {
             self.reorder();
         }
         self.consume_food(&events);
+        self.noted = false;
         self.step += 1;
         Ok(events)
     }
@@ -480,6 +513,45 @@ mod tests {
             }
             (hash(&sim), delivered)
         })
+    }
+
+    /// The resolve frames built from the ants each plan query noted are the grid's, for every
+    /// moving ant, in a crowd at the nest (lists that overflow included) and spread out.
+    fn noted_frames_are_the_grids<S: SimScalar>()
+    where
+        AnyAntGroup: From<AntGroup<S>>,
+    {
+        let mut sim = world_sim::<S>(400);
+        let (mut listed, mut overflowed) = (0, 0);
+        for _ in 0..300 {
+            sim.plan_phase().unwrap();
+            assert!(sim.noted);
+            let g = by_scalar!(&sim.groups[0], g => g.around.clone());
+            for (k, around) in g.iter().enumerate() {
+                let stopped = by_scalar!(&sim.groups[0], g => g.plans[k].state.is_stopped());
+                if stopped {
+                    continue;
+                }
+                let mut from_list = ResolveFrame::new(bounds::<S>(&sim.world));
+                fill_resolve_frame_from(&sim.world, k, around, &mut from_list);
+                assert_eq!(from_list, super::super::resolve_frame::<S>(&sim.world, k));
+                match around.slots() {
+                    Some(_) => listed += 1,
+                    None => overflowed += 1,
+                }
+            }
+            sim.resolve_phase().unwrap();
+        }
+        assert!(
+            listed > 10_000 && overflowed > 1_000,
+            "{listed} {overflowed}"
+        );
+    }
+
+    #[test]
+    fn noted_resolve_frames_equal_the_grids() {
+        noted_frames_are_the_grids::<f32>();
+        noted_frames_are_the_grids::<Fx>();
     }
 
     #[test]
