@@ -75,11 +75,12 @@ impl Around {
     /// Slots kept.
     pub(crate) const CAP: usize = 8;
 
-    /// Notes slot `j` if `keep` (no branch on `keep`: it is a coin toss).
+    /// Notes slot `j` as the list's entry number `len` if `keep` (no branch on `keep`: it is
+    /// a coin toss); returns the new count. The caller sets [`Around::len`] at the end.
     #[inline]
-    fn note(&mut self, j: u32, keep: bool) {
-        self.slots[usize::from(self.len).min(Self::CAP)] = j;
-        self.len = self.len.saturating_add(u8::from(keep));
+    fn note(&mut self, len: u8, j: u32, keep: bool) -> u8 {
+        self.slots[usize::from(len).min(Self::CAP)] = j;
+        len.saturating_add(u8::from(keep))
     }
 
     /// The list, unless it overflowed.
@@ -126,7 +127,7 @@ pub(crate) fn fill_plan_frame_noting<S: SimScalar>(
     w: &AntWorld,
     i: usize,
     frame: &mut AntPlanFrame<S>,
-    mut around: Option<(&mut Around, f32)>,
+    around: Option<(&mut Around, f32)>,
 ) {
     frame.neighbours.clear();
     frame.objects.clear();
@@ -137,21 +138,22 @@ pub(crate) fn fill_plan_frame_noting<S: SimScalar>(
     let r2 = w.contact_range * w.contact_range;
     let mut near = Nearest::<N>::new();
     let p = [me[0] as f32, me[1] as f32, 0.0];
-    let radius = around
-        .as_ref()
-        .map_or(w.contact_range, |&(_, reach)| reach.max(w.contact_range));
-    if let Some((list, _)) = &mut around {
-        **list = Around::default();
-    }
+    // Noting costs nothing when not asked for: a reach of -1 keeps no ant.
+    let mut scratch = Around::default();
+    let (list, radius, reach2) = match around {
+        Some((list, reach)) => (list, reach.max(w.contact_range), reach * reach),
+        None => (&mut scratch, w.contact_range, -1.0),
+    };
+    // The slots go straight to the list; the count stays in a register through the scan.
+    let mut len = 0u8;
     w.grid.for_each_candidate(p, radius, |j, q| {
         let d = d2f(q, p);
-        if let Some((list, reach)) = &mut around {
-            list.note(j, (d <= *reach * *reach) & (j as usize != i));
-        }
+        len = list.note(len, j, (d <= reach2) & (j as usize != i));
         if j as usize != i && d <= r2 && same_leg(j as usize) {
             near.offer(d, w.sensed.id[j as usize], j);
         }
     });
+    list.len = len;
     for j in near.slots() {
         let s = &w.sensed;
         let _ = frame.neighbours.push(AntNeighbor {
@@ -294,18 +296,21 @@ mod tests {
     #[test]
     fn around_keeps_what_it_is_told_and_gives_up_past_its_capacity() {
         let mut a = Around::default();
+        let mut len = 0;
         for j in 0..Around::CAP as u32 {
-            a.note(j, true);
-            a.note(100 + j, false);
+            len = a.note(len, j, true);
+            len = a.note(len, 100 + j, false);
         }
         // Full, and candidates not kept leave the list alone.
-        a.note(99, false);
+        a.len = a.note(len, 99, false);
         assert_eq!(a.slots(), Some(&[0, 1, 2, 3, 4, 5, 6, 7][..]));
-        a.note(8, true);
+        len = a.note(a.len, 8, true);
+        a.len = len;
         assert_eq!(a.slots(), None);
         for _ in 0..300 {
-            a.note(9, true);
+            len = a.note(len, 9, true);
         }
+        a.len = len;
         assert_eq!(a.slots(), None);
     }
 

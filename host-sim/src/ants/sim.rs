@@ -110,7 +110,8 @@ impl<S: SimScalar> AntGroup<S> {
             .zip(&self.plans)
             .map(|((out, pos), p)| {
                 *out = a2(p.predicted);
-                (out[0] - pos[0]).hypot(out[1] - pos[1]) as f32
+                let d = [out[0] - pos[0], out[1] - pos[1]];
+                (d[0] * d[0] + d[1] * d[1]).sqrt() as f32
             })
             .reduce(|| 0.0, f32::max)
     }
