@@ -72,6 +72,24 @@ impl Grid {
         self.cell
     }
 
+    /// The number of cells.
+    pub fn cells(&self) -> usize {
+        self.starts.len() - 1
+    }
+
+    /// Calls `f` with the index of every cell that overlaps the box `[lo, hi]` (clamped to the
+    /// grid like [`Grid::cell_of`]: a point of the box is in one of these cells).
+    pub fn for_each_cell_in(&self, lo: [f32; 3], hi: [f32; 3], mut f: impl FnMut(usize)) {
+        let (lo, hi) = (self.coord(lo), self.coord(hi));
+        for z in lo[2]..=hi[2] {
+            for y in lo[1]..=hi[1] {
+                for x in lo[0]..=hi[0] {
+                    f(self.index([x, y, z]));
+                }
+            }
+        }
+    }
+
     fn coord(&self, p: [f32; 3]) -> [u32; 3] {
         std::array::from_fn(|k| {
             // `max` maps NaN to 0; truncation is the floor for non-negative values; beyond the

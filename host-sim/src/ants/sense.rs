@@ -121,13 +121,15 @@ pub(crate) fn fill_plan_frame<S: SimScalar>(w: &AntWorld, i: usize, frame: &mut 
     fill_plan_frame_noting(w, i, frame, None);
 }
 
-/// [`fill_plan_frame`], also noting in `around` the ants sensed within `reach` of ant `i`
-/// (`reach` ≥ the contact range): what [`fill_resolve_frame_from`] needs.
+/// [`fill_plan_frame`] for the engine's tick (`engine` given): it also notes in the
+/// [`Around`] the ants sensed within the reach (≥ the contact range) of ant `i`, what
+/// [`fill_resolve_frame_from`] needs, and visits only the objects this tick's index puts near
+/// the ant ([`AntWorld::index_positions`]). The frame is the same either way.
 pub(crate) fn fill_plan_frame_noting<S: SimScalar>(
     w: &AntWorld,
     i: usize,
     frame: &mut AntPlanFrame<S>,
-    around: Option<(&mut Around, f32)>,
+    engine: Option<(&mut Around, f32)>,
 ) {
     frame.neighbours.clear();
     frame.objects.clear();
@@ -140,7 +142,8 @@ pub(crate) fn fill_plan_frame_noting<S: SimScalar>(
     let p = [me[0] as f32, me[1] as f32, 0.0];
     // Noting costs nothing when not asked for: a reach of -1 keeps no ant.
     let mut scratch = Around::default();
-    let (list, radius, reach2) = match around {
+    let indexed = engine.is_some();
+    let (list, radius, reach2) = match engine {
         Some((list, reach)) => (list, reach.max(w.contact_range), reach * reach),
         None => (&mut scratch, w.contact_range, -1.0),
     };
@@ -174,9 +177,9 @@ pub(crate) fn fill_plan_frame_noting<S: SimScalar>(
         AntObjectKind::Food { .. } => target.is_none(),
         _ => true,
     };
-    for (k, o) in w.objects.iter().enumerate().filter(|(_, o)| o.active) {
-        if !o.may_be_within(p2, w.sense_range) || !on_leg(o) {
-            continue;
+    let mut visit = |k: usize, o: &AntObjectDef| {
+        if !o.active || !o.may_be_within(p2, w.sense_range) || !on_leg(o) {
+            return;
         }
         let (closest, inside) = o.closest(p2);
         let dist = if inside {
@@ -187,6 +190,17 @@ pub(crate) fn fill_plan_frame_noting<S: SimScalar>(
         if dist <= w.sense_range {
             objects.offer(dist, k as u32, k as u32);
         }
+    };
+    // The engine's tick visits only the objects indexed near the ant (this tick's index).
+    match indexed.then(|| w.objects_near(p2)).flatten() {
+        Some(mut near) => {
+            while near != 0 {
+                let k = near.trailing_zeros() as usize;
+                near &= near - 1;
+                visit(k, &w.objects[k]);
+            }
+        }
+        None => w.objects.iter().enumerate().for_each(|(k, o)| visit(k, o)),
     }
     for k in objects.slots() {
         let o = &w.objects[k];

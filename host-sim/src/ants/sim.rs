@@ -516,8 +516,9 @@ mod tests {
         })
     }
 
-    /// The resolve frames built from the ants each plan query noted are the grid's, for every
-    /// moving ant, in a crowd at the nest (lists that overflow included) and spread out.
+    /// The engine's frames are the public functions': its plan frames (objects from the index)
+    /// and the resolve frames built from the ants each plan query noted, for every moving ant,
+    /// in a crowd at the nest (lists that overflow included) and spread out.
     fn noted_frames_are_the_grids<S: SimScalar>()
     where
         AnyAntGroup: From<AntGroup<S>>,
@@ -533,6 +534,10 @@ mod tests {
                 if stopped {
                     continue;
                 }
+                let mut engine_plan = PlanFrame::new(bounds::<S>(&sim.world));
+                let mut scratch = Around::default();
+                fill_plan_frame_noting(&sim.world, k, &mut engine_plan, Some((&mut scratch, 3.0)));
+                assert_eq!(engine_plan, super::super::plan_frame::<S>(&sim.world, k));
                 let mut from_list = ResolveFrame::new(bounds::<S>(&sim.world));
                 fill_resolve_frame_from(&sim.world, k, around, &mut from_list);
                 assert_eq!(from_list, super::super::resolve_frame::<S>(&sim.world, k));

@@ -88,6 +88,25 @@ impl AntObjectDef {
         }
     }
 
+    /// The smallest axis-aligned box holding the object: (lower, upper corner).
+    pub fn bounding_box(&self) -> ([f32; 2], [f32; 2]) {
+        match &self.shape {
+            Shape2::Circle { center, radius } => (
+                [center[0] - radius, center[1] - radius],
+                [center[0] + radius, center[1] + radius],
+            ),
+            Shape2::Polygon { points } => points.iter().fold(
+                ([f32::INFINITY; 2], [f32::NEG_INFINITY; 2]),
+                |(lo, hi), p| {
+                    (
+                        [lo[0].min(p[0]), lo[1].min(p[1])],
+                        [hi[0].max(p[0]), hi[1].max(p[1])],
+                    )
+                },
+            ),
+        }
+    }
+
     /// Centre and radius, for circles.
     pub fn circle(&self) -> Option<([f32; 2], f32)> {
         match self.shape {
@@ -150,6 +169,10 @@ pub struct AntWorld {
     pub(crate) max_shift: f32,
     /// The sensed positions, by cell (both phases query it).
     pub(crate) grid: Grid,
+    /// Per grid cell, bit `k` set if object `k` may be within sensing range of a point of the
+    /// cell (the engine's plan frames visit only those objects); empty when the world has
+    /// more than 64 objects. Rebuilt with the grid, each tick.
+    pub(crate) object_cells: Vec<u64>,
 }
 
 /// What an ant's neighbours can sense of it: struct of arrays, indexed by agent.
@@ -221,6 +244,7 @@ impl AntWorld {
             predicted: Vec::new(),
             max_shift: 0.0,
             grid,
+            object_cells: Vec::new(),
         }
     }
 
@@ -275,10 +299,35 @@ impl AntWorld {
         self.len() == 0
     }
 
-    /// Rebuilds the neighbour grid from the sensed positions.
+    /// Rebuilds the neighbour grid from the sensed positions, and the objects' cells.
     pub fn index_positions(&mut self) {
         self.grid
             .rebuild(&self.sensed.pos, |p| [p[0] as f32, p[1] as f32, 0.0]);
+        self.index_objects();
+    }
+
+    /// Marks in [`AntWorld::object_cells`] the cells within sensing range of each active object's
+    /// bounding box (and a margin for rounding).
+    fn index_objects(&mut self) {
+        self.object_cells.clear();
+        if self.objects.len() > 64 {
+            return;
+        }
+        self.object_cells.resize(self.grid.cells(), 0);
+        let reach = self.sense_range + self.rounding_margin();
+        for (k, o) in self.objects.iter().enumerate().filter(|(_, o)| o.active) {
+            let (lo, hi) = o.bounding_box();
+            let lo = [lo[0] - reach, lo[1] - reach, 0.0];
+            let hi = [hi[0] + reach, hi[1] + reach, 0.0];
+            let cells = &mut self.object_cells;
+            self.grid.for_each_cell_in(lo, hi, |c| cells[c] |= 1 << k);
+        }
+    }
+
+    /// The objects that may be within sensing range of `p` (bit `k`: object `k`), if indexed.
+    pub(crate) fn objects_near(&self, p: [f32; 2]) -> Option<u64> {
+        let cell = self.grid.cell_of([p[0], p[1], 0.0]) as usize;
+        self.object_cells.get(cell).copied()
     }
 
     /// What a grid query adds to its radius for the rounding of positions to `f32` (a few
