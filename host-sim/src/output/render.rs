@@ -483,16 +483,21 @@ fn draw_base(canvas: &mut Canvas, view: &View, scene: &Scene) {
 /// Index meaning "nothing drawn here" in an overlay.
 const CLEAR: u8 = 255;
 
-/// The objects visible at `step` on a clear canvas: filled shapes first, then rings (so rings
-/// stay visible). Drawn over the trails and under the agents.
+/// The objects visible at `step` on a clear canvas: obstacles first, then nests, food and
+/// targets (a nest on the ground box of a bee scene stays visible from above), then rings.
+/// Drawn over the trails and under the agents.
 fn draw_objects(canvas: &mut Canvas, view: &View, scene: &Scene, step: u32) {
     canvas.px.fill(CLEAR);
-    let rings = |k: ShapeKind| matches!(k, ShapeKind::Disturbance | ShapeKind::Waypoint);
-    for ring_layer in [false, true] {
+    let layer = |k: ShapeKind| match k {
+        ShapeKind::Rock | ShapeKind::Shaft | ShapeKind::Sphere => 0,
+        ShapeKind::Nest | ShapeKind::Food | ShapeKind::Target => 1,
+        ShapeKind::Disturbance | ShapeKind::Waypoint => 2,
+    };
+    for l in 0..3 {
         for s in scene
             .shapes
             .iter()
-            .filter(|s| rings(s.kind) == ring_layer && s.visible_at(step))
+            .filter(|s| layer(s.kind) == l && s.visible_at(step))
         {
             draw_shape(canvas, view, scene, s);
         }
@@ -1086,6 +1091,38 @@ mod tests {
         assert!(
             img.pixels()
                 .any(|px| px.0 == agent_color(ColorBy::Group, 1))
+        );
+    }
+
+    #[test]
+    fn a_nest_on_the_ground_box_stays_visible_from_above() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut sc = Scene::new_3d([0.0, 0.0, 0.0], [100.0, 30.0, 50.0]);
+        // The ground box comes after the nest in the scene, as in bees-fig15-nest.
+        sc.shapes = vec![
+            Shape::circle([50.0, 2.0, 25.0], 5.0, ShapeKind::Target),
+            Shape::cuboid([0.0, 0.0, 0.0], [100.0, 1.0, 50.0], ShapeKind::Rock),
+        ];
+        let fr = vec![Frame {
+            step: 0,
+            agents: vec![AgentSample {
+                pos: [5.0, 15.0, 5.0],
+                ..Default::default()
+            }],
+        }];
+        let p = dir.path().join("n.png");
+        render_png(&sc, &fr, &p, &RenderOptions::default()).unwrap();
+        let img = image::open(&p).unwrap().to_rgb8();
+        let view = View::new(&sc, 1024);
+        let (x, y) = view.world(&sc, [50.0, 2.0, 25.0]);
+        assert_eq!(
+            img.get_pixel(x.round() as u32, y.round() as u32).0,
+            kind_color(ShapeKind::Target)
+        );
+        let (x, y) = view.world(&sc, [90.0, 0.5, 45.0]);
+        assert_eq!(
+            img.get_pixel(x.round() as u32, y.round() as u32).0,
+            kind_color(ShapeKind::Rock)
         );
     }
 
