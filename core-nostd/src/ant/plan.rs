@@ -133,10 +133,13 @@ pub fn predict<S: Scalar>(
     let step = params.speed * params.dt;
     let mut h = heading;
     let p = pos + h * step;
-    if (p.x < bounds.min.x && h.x < S::ZERO) || (p.x > bounds.max.x && h.x > S::ZERO) {
+    // Non-short-circuit `&` and `|`: one rarely taken branch per axis, not one on the sign of
+    // the heading (a coin toss for the branch predictor).
+    let zero = S::ZERO;
+    if (p.x < bounds.min.x) & (h.x < zero) | (p.x > bounds.max.x) & (h.x > zero) {
         h.x = -h.x;
     }
-    if (p.y < bounds.min.y && h.y < S::ZERO) || (p.y > bounds.max.y && h.y > S::ZERO) {
+    if (p.y < bounds.min.y) & (h.y < zero) | (p.y > bounds.max.y) & (h.y > zero) {
         h.y = -h.y;
     }
     (h, bounds.clamp(pos + h * step))
