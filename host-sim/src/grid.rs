@@ -120,65 +120,65 @@ impl Grid {
         let workers = rayon::current_num_threads().clamp(1, n_cells);
         let span = n_cells.div_ceil(workers);
         let cells = &self.cells;
-        // Counts, then each range's running sum: starts[c + 1] = agents in its range up to c.
+        self.fill.resize(n_cells, 0);
+        // Per range of cells: the count of each cell, kept as `fill` = the cell's first slot
+        // within the range's part of `order` and `starts[c + 1]` = the slot after its last.
         let totals: Vec<u32> = self.starts[1..]
             .par_chunks_mut(span)
+            .zip(self.fill.par_chunks_mut(span))
             .enumerate()
-            .map(|(w, counts)| {
-                let lo = (w * span) as u32;
-                counts.fill(0);
+            .map(|(w, (ends, fill))| {
+                let lo = w * span;
+                fill.fill(0);
                 for &c in cells {
-                    if let Some(k) = c.checked_sub(lo).filter(|&k| (k as usize) < counts.len()) {
-                        counts[k as usize] += 1;
+                    if let Some(k) = (c as usize).checked_sub(lo).filter(|&k| k < fill.len()) {
+                        fill[k] += 1;
                     }
                 }
                 let mut run = 0;
-                for k in counts.iter_mut() {
-                    run += *k;
-                    *k = run;
+                for (end, f) in ends.iter_mut().zip(fill.iter_mut()) {
+                    let count = *f;
+                    *f = run;
+                    run += count;
+                    *end = run;
                 }
                 run
             })
             .collect();
-        // Each range's first slot, then the global starts.
-        let mut bases = Vec::with_capacity(totals.len());
-        let mut run = 0u32;
-        for t in totals {
-            bases.push(run);
-            run += t;
-        }
-        self.starts[0] = 0;
-        self.starts[1..]
-            .par_chunks_mut(span)
-            .zip(&bases)
-            .for_each(|(counts, &base)| counts.iter_mut().for_each(|k| *k += base));
-        // Scatter: each range fills its contiguous part of `order` and `sorted`.
+        // Each range's part of `order`, then, in parallel: its `starts` made global and its
+        // agents placed (in index order) with their positions.
         let n = items.len();
         self.order.resize(n, 0);
         self.sorted.resize(n, [0.0; 3]);
-        self.fill.clear();
-        self.fill.extend_from_slice(&self.starts[..n_cells]);
-        let mut parts = Vec::with_capacity(bases.len());
+        self.starts[0] = 0;
+        let mut parts = Vec::with_capacity(totals.len());
         let (mut order, mut sorted) = (&mut self.order[..], &mut self.sorted[..]);
-        for (w, fill) in self.fill.chunks_mut(span).enumerate() {
-            let hi = ((w + 1) * span).min(n_cells);
-            let len = (self.starts[hi] - self.starts[w * span]) as usize;
-            let (o, o_rest) = order.split_at_mut(len);
-            let (p, p_rest) = sorted.split_at_mut(len);
+        let mut base = 0;
+        for (w, ((ends, fill), &total)) in self.starts[1..]
+            .chunks_mut(span)
+            .zip(self.fill.chunks_mut(span))
+            .zip(&totals)
+            .enumerate()
+        {
+            let (o, o_rest) = order.split_at_mut(total as usize);
+            let (p, p_rest) = sorted.split_at_mut(total as usize);
             (order, sorted) = (o_rest, p_rest);
-            parts.push((w * span, fill, o, p));
+            parts.push((w * span, base, ends, fill, o, p));
+            base += total;
         }
-        parts.into_par_iter().for_each(|(lo, fill, order, sorted)| {
-            let base = fill.first().copied().unwrap_or(0);
-            for (i, &c) in cells.iter().enumerate() {
-                if let Some(k) = (c as usize).checked_sub(lo).filter(|&k| k < fill.len()) {
-                    let slot = (fill[k] - base) as usize;
-                    fill[k] += 1;
-                    order[slot] = i as u32;
-                    sorted[slot] = pos(&items[i]);
+        parts
+            .into_par_iter()
+            .for_each(|(lo, base, ends, fill, order, sorted)| {
+                ends.iter_mut().for_each(|e| *e += base);
+                for (i, &c) in cells.iter().enumerate() {
+                    if let Some(k) = (c as usize).checked_sub(lo).filter(|&k| k < fill.len()) {
+                        let slot = fill[k] as usize;
+                        fill[k] += 1;
+                        order[slot] = i as u32;
+                        sorted[slot] = pos(&items[i]);
+                    }
                 }
-            }
-        });
+            });
     }
 
     /// Calls `f` with every agent whose cell overlaps the cube of half-edge `radius` around

@@ -173,6 +173,8 @@ pub struct AntWorld {
     /// cell (the engine's plan frames visit only those objects); empty when the world has
     /// more than 64 objects. Rebuilt with the grid, each tick.
     pub(crate) object_cells: Vec<u64>,
+    /// The cells marked in `object_cells` (cleared one by one: objects cover few cells).
+    object_marked: Vec<u32>,
 }
 
 /// What an ant's neighbours can sense of it: struct of arrays, indexed by agent.
@@ -245,6 +247,7 @@ impl AntWorld {
             max_shift: 0.0,
             grid,
             object_cells: Vec::new(),
+            object_marked: Vec::new(),
         }
     }
 
@@ -309,18 +312,30 @@ impl AntWorld {
     /// Marks in [`AntWorld::object_cells`] the cells within sensing range of each active object's
     /// bounding box (and a margin for rounding).
     fn index_objects(&mut self) {
-        self.object_cells.clear();
-        if self.objects.len() > 64 {
-            return;
+        let n = self.grid.cells();
+        if self.objects.len() > 64 || self.object_cells.len() != n {
+            self.object_cells.clear();
+            self.object_marked.clear();
+            if self.objects.len() > 64 {
+                return;
+            }
+            self.object_cells.resize(n, 0);
         }
-        self.object_cells.resize(self.grid.cells(), 0);
+        for c in self.object_marked.drain(..) {
+            self.object_cells[c as usize] = 0;
+        }
         let reach = self.sense_range + self.rounding_margin();
+        let (cells, marked) = (&mut self.object_cells, &mut self.object_marked);
         for (k, o) in self.objects.iter().enumerate().filter(|(_, o)| o.active) {
             let (lo, hi) = o.bounding_box();
             let lo = [lo[0] - reach, lo[1] - reach, 0.0];
             let hi = [hi[0] + reach, hi[1] + reach, 0.0];
-            let cells = &mut self.object_cells;
-            self.grid.for_each_cell_in(lo, hi, |c| cells[c] |= 1 << k);
+            self.grid.for_each_cell_in(lo, hi, |c| {
+                if cells[c] == 0 {
+                    marked.push(c as u32);
+                }
+                cells[c] |= 1 << k;
+            });
         }
     }
 
