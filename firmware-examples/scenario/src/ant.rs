@@ -14,7 +14,7 @@
 //! Words per ant and tick (in ant order, ticks in order):
 //! `plan.predicted.{x,y}`, `plan.state.heading.{x,y}`, `discrete(plan.state)`,
 //! `next.pos.{x,y}`, `next.heading.{x,y}`, `discrete(next)`, `next.arrival.{x,y}`
-//! — 12 words; then the probes (see [`probes`]).
+//! — 12 words; then the probes (see `probes` below).
 //!
 //! [`cost`] is the other use of this world: a larger colony, timed call by call (the
 //! `ant-node-cycles` images).

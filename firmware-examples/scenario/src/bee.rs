@@ -13,7 +13,7 @@
 //! Oscillation (eq. 2-4) and curl noise (eq. 8-9) act on all.
 //!
 //! Words per bee and step: `accel.{x,y,z}`, `velocity.{x,y,z}`, `roll`, `pitch`, `density`,
-//! `avoiding`, `next.pos.{x,y,z}` — 13 words; then the probes (see [`probes`]).
+//! `avoiding`, `next.pos.{x,y,z}` — 13 words; then the probes (see `probes` below).
 //!
 //! [`cost`] is the other use of this world: a larger swarm, timed call by call (the
 //! `bee-node-cycles` images).
