@@ -204,6 +204,20 @@ struct Tally {
 }
 
 impl Tally {
+    /// [`Tally::check`] for every chosen agent of one phase of `step`, in order.
+    fn check_all<Q: Serialize, D: Serialize>(
+        &mut self,
+        (step, phase): (u32, &'static str),
+        chosen: &[u32],
+        requests: &[Q],
+        host: &[D],
+        device: &[std::result::Result<D, ErrorReply>],
+    ) {
+        for ((&id, req), (h, d)) in chosen.iter().zip(requests).zip(host.iter().zip(device)) {
+            self.check((step, id, phase), req, h, d);
+        }
+    }
+
     /// Compares `device` with `host` bit for bit (their postcard bytes).
     fn check<Q: Serialize, D: Serialize>(
         &mut self,
@@ -438,6 +452,15 @@ impl Session {
     }
 }
 
+/// The error for a frame the host's own controller refused (the harness built it wrong).
+fn host_refused(
+    model: &'static str,
+    id: u32,
+    step: u32,
+) -> impl FnOnce(swarm_core::Error) -> HilError {
+    move |e| HilError::Invalid(format!("the host refused {model} {id} at step {step}: {e}"))
+}
+
 /// Mirrors the ants of `sim` (every group in scalar type `S`) on the device behind `client`:
 /// handshake, configure, then every step a plan request and a resolve request per chosen ant.
 pub fn mirror_ants<S, T>(
@@ -498,38 +521,23 @@ where
             let host_plans = host_plans
                 .into_iter()
                 .zip(chosen)
-                .map(|(h, id)| {
-                    h.map_err(|e| {
-                        HilError::Invalid(format!("the host refused ant {id} at step {step}: {e}"))
-                    })
-                })
+                .map(|(h, &id)| h.map_err(host_refused("ant", id, step)))
                 .collect::<Result<Vec<AntPlan<S>>>>()?;
             let device = session.ask(client, &plans, &host_plans, |r: &AntPlanReply<S>| r.plan)?;
+            tally.check_all((step, "plan"), chosen, &plans, &host_plans, &device);
             let mut resolves = Vec::with_capacity(chosen.len());
             let mut host_next = Vec::with_capacity(chosen.len());
-            for ((&id, req), (host, dev)) in chosen
-                .iter()
-                .zip(&plans)
-                .zip(host_plans.iter().zip(&device))
-            {
-                tally.check((step, id, "plan"), req, host, dev);
+            for (&id, host) in chosen.iter().zip(&host_plans) {
                 let frame = resolve_frame::<S>(&sim.world, slots[id as usize]);
-                let next = ant::resolve_checked(host, &frame, &params).map_err(|e| {
-                    HilError::Invalid(format!("the host refused ant {id} at step {step}: {e}"))
-                })?;
+                let next = ant::resolve_checked(host, &frame, &params)
+                    .map_err(host_refused("ant", id, step))?;
                 host_next.push(next);
                 resolves.push(AntResolveRequest { plan: *host, frame });
             }
             let device = session.ask(client, &resolves, &host_next, |r: &AntResolveReply<S>| {
                 r.state
             })?;
-            for ((&id, req), (host, dev)) in chosen
-                .iter()
-                .zip(&resolves)
-                .zip(host_next.iter().zip(&device))
-            {
-                tally.check((step, id, "resolve"), req, host, dev);
-            }
+            tally.check_all((step, "resolve"), chosen, &resolves, &host_next, &device);
             sim.resolve_phase().map_err(sim_err)?;
             Ok(())
         },
@@ -587,19 +595,16 @@ where
                 let (state, goal) = sim.bee_of(slot)?;
                 let goal = goal.and_then(|g| sim.world.target_center(g));
                 let frame = bee_frame::<S>(&sim.world, slot, goal, t);
-                host.push(bee::step_checked(&state, &frame, &params).map_err(|e| {
-                    HilError::Invalid(format!("the host refused bee {id} at step {step}: {e}"))
-                })?);
+                host.push(
+                    bee::step_checked(&state, &frame, &params)
+                        .map_err(host_refused("bee", id, step))?,
+                );
                 requests.push(BeeStepRequest { state, frame });
             }
             let device = session.ask(client, &requests, &host, |r: &BeeStepReply<S>| {
                 (r.decision, r.state)
             })?;
-            for ((&id, req), (host, dev)) in
-                chosen.iter().zip(&requests).zip(host.iter().zip(&device))
-            {
-                tally.check((step, id, "step"), req, host, dev);
-            }
+            tally.check_all((step, "step"), chosen, &requests, &host, &device);
             sim.step().map_err(sim_err)?;
             Ok(())
         },

@@ -287,7 +287,7 @@ pub(crate) fn fill_resolve_frame<S: SimScalar>(
     let r2 = w.collision_range * w.collision_range;
     let mut near = Nearest::<N>::new();
     let p = [me[0] as f32, me[1] as f32, 0.0];
-    // Every prediction lies within `max_shift` (along x and y) of its ant's sensed position, so
+    // Every prediction lies within `max_shift` of its ant's sensed position, so
     // the ants sensed within `collision_range + max_shift` of p* include every ant predicted
     // within `collision_range` of it.
     let reach = w.collision_range + w.max_shift + w.rounding_margin();

@@ -164,8 +164,8 @@ pub struct AntWorld {
     pub sensed: Sensed,
     /// Predicted positions p*(t+1) of the current step's plans.
     pub predicted: Vec<[f64; 2]>,
-    /// The largest distance along x or y between an ant's prediction and its sensed position,
-    /// this step: the resolve-phase query widens the position grid's by this much.
+    /// The largest distance between an ant's prediction and its sensed position, this step:
+    /// a resolve frame that asks the grid widens its query by this much.
     pub(crate) max_shift: f32,
     /// The sensed positions, by cell (both phases query it).
     pub(crate) grid: Grid,
