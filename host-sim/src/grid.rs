@@ -9,7 +9,13 @@ use rayon::prelude::*;
 /// A uniform grid over an axis-aligned box, with cells of edge `cell`.
 #[derive(Clone, Debug, Default)]
 pub struct Grid {
-    origin: [f32; 3],
+    /// The box.
+    min: [f32; 3],
+    max: [f32; 3],
+    /// The centre of the first cell.
+    first_centre: [f32; 3],
+    /// `dims - 1`, as floats.
+    last: [f32; 3],
     cell: f32,
     inv_cell: f32,
     dims: [u32; 3],
@@ -35,11 +41,15 @@ impl Grid {
         };
         let dims = std::array::from_fn(|k| {
             let n = ((max[k] - min[k]) / cell).ceil();
-            (n.clamp(1.0, 65_536.0)) as u32
+            // A NaN extent gives one cell.
+            (n.clamp(1.0, 65_536.0) as u32).max(1)
         });
         let cells = dims.iter().map(|&d| d as usize).product::<usize>();
         Grid {
-            origin: min,
+            min,
+            max,
+            first_centre: std::array::from_fn(|k| min[k] + 0.5 * cell),
+            last: dims.map(|d| (d - 1) as f32),
             cell,
             inv_cell: 1.0 / cell,
             dims,
@@ -54,7 +64,10 @@ impl Grid {
     /// The same geometry with no agents (for computing cells elsewhere).
     pub fn clone_geometry(&self) -> Grid {
         Grid {
-            origin: self.origin,
+            min: self.min,
+            max: self.max,
+            first_centre: self.first_centre,
+            last: self.last,
             cell: self.cell,
             inv_cell: self.inv_cell,
             dims: self.dims,
@@ -65,6 +78,18 @@ impl Grid {
     /// The cell index of `p` (row-major; outside the box: the nearest border cell).
     pub fn cell_of(&self, p: [f32; 3]) -> u32 {
         self.index(self.coord(p)) as u32
+    }
+
+    /// For `p` inside the grid's box: its cell index (as [`Grid::cell_of`] gives it) and that
+    /// cell's centre. `None` outside the box (where points are clamped into border cells).
+    #[inline]
+    pub fn cell_center(&self, p: [f32; 3]) -> Option<(u32, [f32; 3])> {
+        if (0..3).any(|k| !(p[k] >= self.min[k] && p[k] <= self.max[k])) {
+            return None;
+        }
+        let c = self.coord(p);
+        let center = std::array::from_fn(|k| self.first_centre[k] + c[k] as f32 * self.cell);
+        Some((self.index(c) as u32, center))
     }
 
     /// The cell edge.
@@ -90,12 +115,23 @@ impl Grid {
         }
     }
 
+    /// The grid coordinates of the cell whose centre is nearest to `p` (beyond the box: the
+    /// nearest border cell; NaN: the first). The map is monotone in each axis, so a box of points
+    /// maps into the cells between its corners' cells, which is all the queries rely on.
+    #[inline]
     fn coord(&self, p: [f32; 3]) -> [u32; 3] {
         std::array::from_fn(|k| {
-            // `max` maps NaN to 0; truncation is the floor for non-negative values; beyond the
-            // box, the border cells.
-            let c = ((p[k] - self.origin[k]) * self.inv_cell).max(0.0);
-            (c as u32).min(self.dims[k] - 1)
+            // A flat axis (the ants' z) has one cell: nothing to compute.
+            if self.last[k] == 0.0 {
+                return 0;
+            }
+            let c = (p[k] - self.first_centre[k]) * self.inv_cell;
+            // Clamped to [0, last] (a NaN fails `c > 0`), then rounded to the nearest integer
+            // by adding 2^23, whose float has no fraction bits left: cheaper than a saturating
+            // cast, and exact below 2^22.
+            let c = if c > 0.0 { c } else { 0.0 };
+            let c = if c < self.last[k] { c } else { self.last[k] };
+            (c + 8_388_608.0).to_bits() - 0x4b00_0000
         })
     }
 
@@ -257,6 +293,40 @@ mod tests {
                     .collect();
                 assert_eq!(got, want, "agent {i} radius {r}");
             }
+        }
+    }
+
+    #[test]
+    fn cell_centres_lie_in_their_cells() {
+        for (min, max, cell) in [
+            ([0.0; 3], [60.0, 30.0, 60.0], 3.5),
+            ([-7.5, 0.25, 3.0], [205.7, 73.7, 205.7], 4.43),
+            ([0.0; 3], [7.0, 7.0, 7.0], 3.6),
+        ] {
+            let grid = Grid::new(min, max, cell);
+            for i in 0..5000u32 {
+                let u = |k| swarm_core::rand::rand(2, i, 0, k) as f32 / 4_294_967_296.0;
+                let mut p: [f32; 3] =
+                    std::array::from_fn(|k| min[k] + (max[k] - min[k]) * u(k as u32));
+                // Some points exactly on cell boundaries and on the box faces.
+                if i % 3 == 0 {
+                    p[0] = (min[0] + (i % 40) as f32 * cell).min(max[0]);
+                }
+                if i % 7 == 0 {
+                    p[1] = max[1];
+                }
+                let (c, center) = grid.cell_center(p).unwrap();
+                assert_eq!(c, grid.cell_of(p), "{p:?}");
+                assert_eq!(grid.cell_of(center), c, "{p:?}");
+                // The cell's block of 3×3×3 holds every point within one edge of `p`.
+                let mut block = Vec::new();
+                grid.for_each_cell_in(center.map(|x| x - cell), center.map(|x| x + cell), |k| {
+                    block.push(k as u32)
+                });
+                let q = [p[0] + 0.999 * cell, p[1] - 0.999 * cell, p[2]];
+                assert!(block.contains(&grid.cell_of(q)), "{p:?}");
+            }
+            assert!(grid.cell_center([min[0] - 1.0, min[1], min[2]]).is_none());
         }
     }
 

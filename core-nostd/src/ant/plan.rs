@@ -45,6 +45,7 @@ pub fn plan<S: Scalar, const N: usize, const O: usize>(
 }
 
 /// [`plan`] with parameters validated beforehand (the state and frame are still checked).
+#[inline]
 pub fn plan_checked<S: Scalar, const N: usize, const O: usize>(
     state: &AntState<S>,
     frame: &PlanFrame<S, N, O>,

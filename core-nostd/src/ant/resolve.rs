@@ -55,6 +55,7 @@ pub fn resolve<S: Scalar, const N: usize>(
 }
 
 /// [`resolve`] with parameters validated beforehand (the plan and frame are still checked).
+#[inline]
 pub fn resolve_checked<S: Scalar, const N: usize>(
     plan: &AntPlan<S>,
     frame: &ResolveFrame<S, N>,

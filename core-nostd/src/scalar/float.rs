@@ -97,6 +97,12 @@ impl Scalar for f32 {
     fn is_finite(self) -> bool {
         f32::is_finite(self)
     }
+    /// Clears the sign bit: one instruction, where the trait's default compares (a library
+    /// call on a core without an FPU). −0 gives +0.
+    #[inline]
+    fn abs(self) -> f32 {
+        f32::abs(self)
+    }
     #[inline]
     fn unit_open(bits: u32) -> f32 {
         // 24 random bits, centred in their cell: (k + 0.5) / 2^24, strictly inside (0, 1).

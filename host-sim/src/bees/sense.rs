@@ -200,7 +200,7 @@ impl BlockCache {
     pub(crate) fn neighbours(&mut self, w: &BeeWorld, i: usize) -> Selected<N> {
         let me = w.sensed.pos[i];
         let p = [me[0] as f32, me[1] as f32, me[2] as f32];
-        let Some((cell, center)) = w.grid_geometry.cell_center(p) else {
+        let Some((cell, center)) = w.grid.cell_center(p) else {
             return neighbours(w, i);
         };
         debug_assert_eq!(cell, w.grid.cell_of(p));
@@ -265,13 +265,12 @@ impl BlockCache {
             );
             let slots = &mut self.slots[..room];
             let mut n = 0usize;
-            w.grid
-                .for_each_candidate(center, w.grid_geometry.cell(), |j, q| {
-                    if n < room {
-                        (xs[n], ys[n], zs[n], slots[n]) = (q[0], q[1], q[2], j);
-                    }
-                    n += 1;
-                });
+            w.grid.for_each_candidate(center, w.grid.cell(), |j, q| {
+                if n < room {
+                    (xs[n], ys[n], zs[n], slots[n]) = (q[0], q[1], q[2], j);
+                }
+                n += 1;
+            });
             if n <= room {
                 self.n = n;
                 // Padding for the chunks of 64 of the range test: never in range.

@@ -472,57 +472,7 @@ pub struct BeeWorld {
     /// Centre and radius of each active target's particle sphere (quick rejection).
     pub(crate) target_spheres: Vec<([f32; 3], f32)>,
     pub(crate) grid: Grid,
-    pub(crate) grid_geometry: GridGeometry,
     pub(crate) particle_grid: Grid,
-}
-
-/// The geometry of the neighbour grid, as [`Grid::new`] computes it from the same inputs: the
-/// engine shares one scan of a cell's 3×3×3 block among the bees of that cell.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct GridGeometry {
-    origin: [f32; 3],
-    max: [f32; 3],
-    cell: f32,
-    inv_cell: f32,
-    dims: [u32; 3],
-}
-
-impl GridGeometry {
-    fn new(min: [f32; 3], max: [f32; 3], cell: f32) -> Self {
-        GridGeometry {
-            origin: min,
-            max,
-            cell,
-            inv_cell: 1.0 / cell,
-            dims: std::array::from_fn(|k| {
-                let n = ((max[k] - min[k]) / cell).ceil();
-                (n.clamp(1.0, 65_536.0)) as u32
-            }),
-        }
-    }
-
-    /// The cell edge.
-    pub(crate) fn cell(&self) -> f32 {
-        self.cell
-    }
-
-    /// For `p` inside the grid's box: its cell index (as `Grid::cell_of` gives it) and that
-    /// cell's centre. `None` outside the box (where the grid clamps into border cells).
-    #[inline]
-    pub(crate) fn cell_center(&self, p: [f32; 3]) -> Option<(u32, [f32; 3])> {
-        if (0..3).any(|k| !(p[k] >= self.origin[k] && p[k] <= self.max[k])) {
-            return None;
-        }
-        // The same f32 operations as `Grid::coord`.
-        let c: [u32; 3] = std::array::from_fn(|k| {
-            let c = ((p[k] - self.origin[k]) * self.inv_cell).max(0.0);
-            (c as u32).min(self.dims[k] - 1)
-        });
-        let index = (c[2] as usize * self.dims[1] as usize + c[1] as usize) * self.dims[0] as usize
-            + c[0] as usize;
-        let center = std::array::from_fn(|k| self.origin[k] + (c[k] as f32 + 0.5) * self.cell);
-        Some((index as u32, center))
-    }
 }
 
 impl BeeWorld {
@@ -545,7 +495,6 @@ impl BeeWorld {
             particles: Vec::new(),
             target_spheres: Vec::new(),
             grid: Grid::default(),
-            grid_geometry: GridGeometry::default(),
             particle_grid: Grid::new(min, min, range),
         };
         w.size_grids(0);
@@ -561,7 +510,6 @@ impl BeeWorld {
             .product();
         let cell = (self.range * 1.001).max((volume / n.max(1) as f32).cbrt());
         self.grid = Grid::new(self.min, self.max, cell);
-        self.grid_geometry = GridGeometry::new(self.min, self.max, cell);
     }
 
     /// The number of bees.
@@ -773,39 +721,6 @@ mod tests {
         for p in [[3.0, -4.0, 25.0], [10.0, 20.0, 20.0], [11.0, 1.5, 21.0]] {
             let s = shaft_surface(c, r, y0, y1, p);
             assert!((norm(s.normal) - 1.0).abs() < 1e-12, "{p:?}");
-        }
-    }
-
-    #[test]
-    fn grid_geometry_matches_the_grid() {
-        for (min, max, n) in [
-            ([0.0; 3], [60.0, 30.0, 60.0], 1000),
-            ([-7.5, 0.25, 3.0], [205.7, 73.7, 205.7], 100_000),
-            ([0.0; 3], [7.0, 7.0, 7.0], 5),
-        ] {
-            let mut w = BeeWorld::new(min, max, 3.5, 4.0);
-            w.size_grids(n);
-            assert!(w.grid.cell() >= 3.5 * 1.001);
-            for i in 0..5000u32 {
-                let u = |k| swarm_core::rand::rand(2, i, 0, k) as f32 / 4_294_967_296.0;
-                let mut p: [f32; 3] =
-                    std::array::from_fn(|k| min[k] + (max[k] - min[k]) * u(k as u32));
-                // Some points exactly on cell boundaries and on the box faces.
-                if i % 3 == 0 {
-                    p[0] = (min[0] + (i % 40) as f32 * w.grid.cell()).min(max[0]);
-                }
-                if i % 7 == 0 {
-                    p[1] = max[1];
-                }
-                let (cell, center) = w.grid_geometry.cell_center(p).unwrap();
-                assert_eq!(cell, w.grid.cell_of(p), "{p:?}");
-                assert_eq!(w.grid.cell_of(center), cell, "{p:?}");
-            }
-            assert!(
-                w.grid_geometry
-                    .cell_center([min[0] - 1.0, min[1], min[2]])
-                    .is_none()
-            );
         }
     }
 
