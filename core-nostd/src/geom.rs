@@ -35,6 +35,19 @@ wire_type! {
     }
 }
 
+/// The squared length of a vector (`l2`, only called for `f32`), if its length is computed
+/// directly from it: in the normal range, where √(x² + y²) is as precise as the scaled
+/// computation and saves it two divisions. `None` sends the caller to the scaled one (fixed
+/// point, where squares overflow or flush to zero; zero, tiny, huge or non-finite vectors).
+#[inline]
+fn direct<S: Scalar>(l2: impl FnOnce() -> S) -> Option<S> {
+    if !S::DIRECT_LENGTH {
+        return None;
+    }
+    let l2 = l2();
+    (l2 > S::from_f32(1e-30) && l2 < S::from_f32(1e30)).then_some(l2)
+}
+
 impl<S: Scalar> Vec2<S> {
     /// `(x, y)`.
     #[inline]
@@ -66,9 +79,13 @@ impl<S: Scalar> Vec2<S> {
     pub fn length_sq(self) -> S {
         self.dot(self)
     }
-    /// Length. For `Fx` computed without squaring large components (no overflow below 32768).
+    /// Length: √(x² + y²) for `f32`; for `Fx` computed without squaring large components (no
+    /// overflow below 32768).
     #[inline]
     pub fn length(self) -> S {
+        if let Some(l2) = direct(|| self.dot(self)) {
+            return l2.sqrt();
+        }
         let m = self.x.abs().max(self.y.abs());
         if m == S::ZERO {
             return S::ZERO;
@@ -80,6 +97,10 @@ impl<S: Scalar> Vec2<S> {
     /// The unit vector along `self`, or `None` for a zero vector.
     #[inline]
     pub fn normalized(self) -> Option<Self> {
+        if let Some(l2) = direct(|| self.dot(self)) {
+            let l = l2.sqrt();
+            return Some(Vec2::new(self.x / l, self.y / l));
+        }
         // Scale by the largest component first: exact for fixed-point vectors of a few ulps,
         // whose length alone would be too coarse to divide by.
         let m = self.x.abs().max(self.y.abs());
@@ -168,9 +189,12 @@ impl<S: Scalar> Vec3<S> {
     pub fn length_sq(self) -> S {
         self.dot(self)
     }
-    /// Length, computed without squaring large components.
+    /// Length: √(x² + y² + z²) for `f32`; for `Fx` computed without squaring large components.
     #[inline]
     pub fn length(self) -> S {
+        if let Some(l2) = direct(|| self.dot(self)) {
+            return l2.sqrt();
+        }
         let m = self.x.abs().max(self.y.abs()).max(self.z.abs());
         if m == S::ZERO {
             return S::ZERO;
@@ -181,6 +205,10 @@ impl<S: Scalar> Vec3<S> {
     /// The unit vector along `self`, or `None` for a zero vector.
     #[inline]
     pub fn normalized(self) -> Option<Self> {
+        if let Some(l2) = direct(|| self.dot(self)) {
+            let l = l2.sqrt();
+            return Some(Vec3::new(self.x / l, self.y / l, self.z / l));
+        }
         // Scale by the largest component first (see `Vec2::normalized`).
         let m = self.x.abs().max(self.y.abs()).max(self.z.abs());
         if m == S::ZERO {

@@ -75,6 +75,7 @@ impl Scalar for f32 {
     const ZERO: f32 = 0.0;
     const ONE: f32 = 1.0;
     const EPS: f32 = f32::EPSILON;
+    const DIRECT_LENGTH: bool = true;
 
     #[inline]
     fn from_f32(v: f32) -> f32 {

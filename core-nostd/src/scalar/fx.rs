@@ -175,6 +175,7 @@ impl Scalar for Fx {
     const ZERO: Fx = Fx::from_bits(0);
     const ONE: Fx = Fx::from_bits(1 << 16);
     const EPS: Fx = Fx::from_bits(1);
+    const DIRECT_LENGTH: bool = false;
 
     #[inline]
     fn from_f32(v: f32) -> Fx {

@@ -80,6 +80,11 @@ pub trait Scalar:
     /// The smallest positive step between two values (`f32::EPSILON` for `f32`, 2^-16 for
     /// `Fx`): a scale for tolerances.
     const EPS: Self;
+    /// Whether the squares of coordinates (up to twice the coordinate limit) and their sums are
+    /// held to full relative precision, so lengths are computed directly as √(x² + y²): true for
+    /// `f32`. Fixed point scales a vector by its largest component first, which squaring would
+    /// otherwise overflow (large vectors) or flush to zero (small ones).
+    const DIRECT_LENGTH: bool;
 
     /// Converts a constant (NaN becomes 0, out-of-range values saturate for `Fx`).
     fn from_f32(v: f32) -> Self;
