@@ -217,6 +217,15 @@ impl Grid {
             });
     }
 
+    /// The indices of `items` (agent `i` at `pos(&items[i])`) sorted by cell, then by index: the
+    /// permutation the engines reorder their slots by, for memory locality (a counting sort on a
+    /// fresh grid of the same geometry; this one is left as it is).
+    pub fn order_of<T: Sync>(&self, items: &[T], pos: impl Fn(&T) -> [f32; 3] + Sync) -> Vec<u32> {
+        let mut sorted = Grid::new(self.min, self.max, self.cell);
+        sorted.rebuild(items, pos);
+        sorted.order
+    }
+
     /// Calls `f` with every agent whose cell overlaps the cube of half-edge `radius` around
     /// `p` (a superset of the agents within `radius`; the caller checks the distance).
     #[inline]
@@ -235,24 +244,6 @@ impl Grid {
             }
         }
     }
-}
-
-/// The slots of `items` (agent `ids`) sorted by the cell `cell` gives, then by id: the
-/// permutation the engines reorder their slots by, for memory locality. Ids are unique, so any
-/// sort gives this same order.
-pub fn order_by_cell<T: Sync>(
-    items: &[T],
-    ids: &[u32],
-    cell: impl Fn(&T) -> u32 + Sync,
-) -> Vec<u32> {
-    let mut keyed: Vec<(u64, u32)> = items
-        .par_iter()
-        .zip(ids.par_iter())
-        .enumerate()
-        .map(|(k, (t, &id))| ((u64::from(cell(t)) << 32) | u64::from(id), k as u32))
-        .collect();
-    keyed.par_sort_unstable();
-    keyed.into_iter().map(|(_, k)| k).collect()
 }
 
 /// `src` in the order `perm` gives (`perm[k]` is the slot that moves to `k`).

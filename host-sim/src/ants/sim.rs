@@ -7,7 +7,7 @@ use swarm_core::ant::{
     self, AntParams, AntPlan, AntState, Label, PlanFrame, ResolveFrame, StopReason,
 };
 use swarm_core::rand;
-use swarm_core::{Checked, Fx, Scalar, StepCtx};
+use swarm_core::{Checked, Fx, StepCtx};
 
 use super::sense::{
     Around, bounds, fill_plan_frame_noting, fill_resolve_frame, fill_resolve_frame_from,
@@ -15,7 +15,7 @@ use super::sense::{
 use super::world::{AntObjectKind, AntWorld};
 use crate::by_scalar;
 use crate::error::{Result, SimError};
-use crate::grid::{order_by_cell, permuted};
+use crate::grid::permuted;
 use crate::par::for_each_agent;
 use crate::scalar::{AgentGroup, ByScalar, SimScalar, a2};
 
@@ -177,10 +177,13 @@ impl<S: SimScalar> AntGroup<S> {
         events
     }
 
-    /// Sorts the group's slots by `key` (then id): a permutation of the slots that changes no
-    /// result, only memory locality. Rewrites the group's part of the sensed world.
-    fn reorder(&mut self, key: impl Fn(&AntState<S>) -> u32 + Sync, w: &mut AntWorld) {
-        let perm = order_by_cell(&self.states, &self.ids, key);
+    /// Sorts the group's slots by their cell in the world's grid (then by slot): a permutation
+    /// of the slots that changes no result, only memory locality. Rewrites the group's part of
+    /// the sensed world.
+    fn reorder(&mut self, w: &mut AntWorld) {
+        let perm = w
+            .grid
+            .order_of(&self.states, |s| [s.pos.x.to_f32(), s.pos.y.to_f32(), 0.0]);
         self.states = permuted(&self.states, &perm);
         self.ids = permuted(&self.ids, &perm);
         w.sensed.write(self.first, &self.ids, &self.states);
@@ -326,9 +329,8 @@ impl AntSim {
 
     /// Sorts every group's slots by grid cell (memory locality for the neighbour queries).
     pub fn reorder(&mut self) {
-        let grid = self.world.grid.clone_geometry();
         for g in &mut self.groups {
-            by_scalar!(g, g => g.reorder(|s| grid.cell_of([s.pos.x.to_f32(), s.pos.y.to_f32(), 0.0]), &mut self.world));
+            by_scalar!(g, g => g.reorder(&mut self.world));
         }
     }
 

@@ -12,7 +12,7 @@ use super::sense::{BlockCache, fill_frame};
 use super::world::BeeWorld;
 use crate::by_scalar;
 use crate::error::{Result, SimError};
-use crate::grid::{order_by_cell, permuted};
+use crate::grid::permuted;
 use crate::par::for_each_agent;
 use crate::scalar::{AgentGroup, ByScalar, SimScalar};
 
@@ -147,10 +147,13 @@ impl<S: SimScalar> BeeGroup<S> {
         Contacts { obstacle, bounds }
     }
 
-    /// Sorts the group's slots by `cell` (then id): a permutation of the slots that changes no
-    /// result, only memory locality. Rewrites the group's part of the sensed world.
-    fn reorder(&mut self, cell: impl Fn(&BeeState<S>) -> u32 + Sync, w: &mut BeeWorld) {
-        let perm = order_by_cell(&self.states, &self.ids, cell);
+    /// Sorts the group's slots by their cell in the world's grid (then by slot): a permutation
+    /// of the slots that changes no result, only memory locality. Rewrites the group's part of
+    /// the sensed world.
+    fn reorder(&mut self, w: &mut BeeWorld) {
+        let perm = w.grid.order_of(&self.states, |s| {
+            [s.pos.x.to_f32(), s.pos.y.to_f32(), s.pos.z.to_f32()]
+        });
         self.states = permuted(&self.states, &perm);
         self.decisions = permuted(&self.decisions, &perm);
         self.corrected = permuted(&self.corrected, &perm);
@@ -246,12 +249,8 @@ impl BeeSim {
 
     /// Sorts every group's slots by grid cell (memory locality for the neighbour queries).
     pub fn reorder(&mut self) {
-        let grid = self.world.grid.clone_geometry();
         for g in &mut self.groups {
-            by_scalar!(g, g => g.reorder(
-                |s| grid.cell_of([s.pos.x.to_f32(), s.pos.y.to_f32(), s.pos.z.to_f32()]),
-                &mut self.world,
-            ));
+            by_scalar!(g, g => g.reorder(&mut self.world));
         }
     }
 
