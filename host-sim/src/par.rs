@@ -6,6 +6,11 @@ use rayon::prelude::*;
 
 use crate::error::{Result, SimError};
 
+/// The most agents one rayon task takes at once: small enough that a worker whose CPU is
+/// taken away (a VM's vCPU, a busy core) holds up the others for well under a millisecond,
+/// since the rest of its work can be stolen; large enough that splitting costs nothing.
+const LEAF: usize = 1024;
+
 /// Runs `f(scratch, k, item)` on every `(k, item)` of `items` in parallel, each worker with its
 /// own `scratch` from `init`. Returns the error of the lowest `k` that failed, whatever the
 /// thread count.
@@ -21,14 +26,17 @@ where
     I: IndexedParallelIterator<Item = T>,
 {
     let first: Mutex<Option<(usize, SimError)>> = Mutex::new(None);
-    items.enumerate().for_each_init(init, |w, (k, item)| {
-        if let Err(e) = f(w, k, item) {
-            let mut slot = first.lock().unwrap_or_else(|p| p.into_inner());
-            if slot.as_ref().is_none_or(|(j, _)| k < *j) {
-                *slot = Some((k, e));
+    items
+        .enumerate()
+        .with_max_len(LEAF)
+        .for_each_init(init, |w, (k, item)| {
+            if let Err(e) = f(w, k, item) {
+                let mut slot = first.lock().unwrap_or_else(|p| p.into_inner());
+                if slot.as_ref().is_none_or(|(j, _)| k < *j) {
+                    *slot = Some((k, e));
+                }
             }
-        }
-    });
+        });
     match first.into_inner().unwrap_or_else(|p| p.into_inner()) {
         Some((_, e)) => Err(e),
         None => Ok(()),
