@@ -9,7 +9,7 @@ use swarm_sim::scenario::{self, Scenario};
 
 fn load(name: &str) -> (Scenario, AntSim) {
     let sc = scenario::builtin(name).expect("built-in scenario");
-    let sim = AntSim::from_scenario(&sc, sc.seed).expect("builds");
+    let sim = AntSim::from_scenario(&sc, swarm_tests::seed(sc.seed)).expect("builds");
     (sc, sim)
 }
 
@@ -115,9 +115,10 @@ fn fig7a_a_trail_forms_deliveries_grow_steadily_and_trips_are_direct() {
         "{} trips, median {median:.1} for a straight distance of {straight:.1}: directness {directness:.2}",
         trips.len()
     );
-    // Measured 0.36 with seed 7 (median laden trip 247 for 90 straight): ants wiggle ±30° per
-    // tick (θ = π/6) and re-aim only on contact. A regression guard, not a target.
-    assert!(directness > 0.3, "trail directness {directness:.2}");
+    // Measured 0.35 with seed 7 (median laden trip 257 for 90 straight), 0.28-0.38 over seeds
+    // 1-30 (median trips 239-318): ants wiggle ±30° per tick (θ = π/6) and re-aim only on
+    // contact. A regression guard, not a target.
+    assert!(directness > 0.25, "trail directness {directness:.2}");
 }
 
 #[test]
@@ -154,35 +155,82 @@ fn fig8a_an_ant_only_ever_delivers_to_its_own_nest() {
     assert!(delivered > 50, "{delivered} deliveries");
 }
 
+/// xiang2018 Fig. 12: the food source is moved at tick 2000. Every delivery is tagged with the
+/// place its food was collected (the nearer of the old and the new centre) and the test follows
+/// the two flows: the old trail's deliveries stop, the new source's start and reach the rate of
+/// the old trail.
+///
+/// Deliveries in total do not stop: 500 ants wandering a 200 × 120 arena are everywhere, and
+/// one of them is inside the moved food within 1-6 ticks of the move (seeds 1-12), while the
+/// ants already laden drain the old trail over the next 200-600 ticks (a few lost ones for
+/// longer). Over seeds 1-40, per 500 ticks: 184-257 old-trail deliveries before the move, 2-23
+/// from 800 ticks after it (at most 12 % of before; the test allows 20 %), and 221-309
+/// new-source deliveries at the end (at least 0.94 × the old trail's; the test asks 0.75 ×).
 #[test]
-fn fig12_deliveries_stop_after_the_food_moves_then_resume() {
+fn fig12_deliveries_from_the_old_place_stop_after_the_food_moves_then_resume_from_the_new() {
     let (sc, mut sim) = load("ants-fig12-moved-food");
-    let moved = sc
+    let (moved, to) = sc
         .events
         .iter()
-        .find(|e| e.action.verb() == "move")
-        .expect("a move")
-        .step;
-    let mut at = Vec::new();
+        .find_map(|e| match &e.action {
+            scenario::Action::Move { to, .. } => Some((e.step, [to[0], to[1]])),
+            _ => None,
+        })
+        .expect("a move");
+    let from = center(&sc, "food");
+    // An ant that stopped to collect before the move finishes collecting (§4.1).
+    let last_old_collect = moved + u32::from(sc.groups[0].ant_params().collect_ticks);
+    let near_old =
+        |p: [f32; 2]| (p[0] - from[0]).hypot(p[1] - from[1]) < (p[0] - to[0]).hypot(p[1] - to[1]);
+    // Where each laden ant collected its food (nearer the old centre), and every delivery as
+    // (tick, from the old place).
+    let mut laden: HashMap<u32, bool> = HashMap::new();
+    let mut delivered: Vec<(u32, bool)> = Vec::new();
     run_until(&sc, &mut sim, sc.steps, |sim, events| {
-        at.extend(
-            events
-                .iter()
-                .filter(|e| matches!(e, AntEvent::Delivered { .. }))
-                .map(|_| sim.step),
-        );
+        let mut at = None;
+        for e in events {
+            match *e {
+                AntEvent::Collected { agent, .. } => {
+                    let p = at.get_or_insert_with(|| positions(sim))[&agent];
+                    assert!(
+                        sim.step <= last_old_collect || !near_old(p),
+                        "ant {agent} collected at the old place {p:?} at tick {} (moved at {moved})",
+                        sim.step
+                    );
+                    laden.insert(agent, near_old(p));
+                }
+                AntEvent::Delivered { agent, .. } => {
+                    let old = laden
+                        .remove(&agent)
+                        .expect("a delivery without a collection");
+                    delivered.push((sim.step, old));
+                }
+            }
+        }
     });
-    let count = |a: u32, b: u32| at.iter().filter(|&&s| s >= a && s < b).count();
-    let before = count(moved - 500, moved);
-    let gap = count(moved + 300, moved + 600);
-    let after = count(sc.steps - 500, sc.steps);
-    println!("deliveries: {before} before the move, {gap} just after, {after} at the end");
-    assert!(before > 20);
-    assert!(
-        (gap as f32) < 0.5 * before as f32,
-        "deliveries drop once the food has moved"
+    let count = |from_old: bool, t: std::ops::Range<u32>| {
+        delivered
+            .iter()
+            .filter(|&&(s, o)| o == from_old && t.contains(&s))
+            .count()
+    };
+    let before = count(true, moved - 500..moved);
+    let drained = count(true, moved + 800..moved + 1300);
+    let early_new = count(false, 0..moved);
+    let resumed = count(false, sc.steps - 500..sc.steps + 1);
+    println!(
+        "deliveries per 500 ticks: old trail {before} before the move, {drained} from 800 ticks after it; new source {resumed} at the end"
     );
-    assert!(after > 10, "deliveries resume at the new source");
+    assert!(before > 100, "no trail before the move: {before}");
+    assert_eq!(early_new, 0);
+    assert!(
+        (drained as f32) < 0.2 * before as f32,
+        "the old trail still delivers: {before} → {drained}"
+    );
+    assert!(
+        resumed as f32 > 0.75 * before as f32,
+        "deliveries do not resume at the new source: {resumed} (old trail {before})"
+    );
 }
 
 #[test]
