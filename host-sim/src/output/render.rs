@@ -675,6 +675,8 @@ fn draw_legend(canvas: &mut Canvas, scene: &Scene, frame: &Frame, by: ColorBy, s
             let ring = matches!(k, ShapeKind::Disturbance | ShapeKind::Waypoint);
             let name = match k {
                 ShapeKind::Food => "food source".to_owned(),
+                // Ant rocks and polygons, bee boxes (the grassland's ground among them).
+                ShapeKind::Rock => "obstacle".to_owned(),
                 _ => serde_json::to_value(k)
                     .ok()
                     .and_then(|v| v.as_str().map(str::to_owned))
