@@ -88,28 +88,51 @@ pub fn bench_ant_world(n: usize, seed: u32) -> AntSim {
     )
 }
 
-/// Times `steps` ant ticks of `agents` ants on `threads` threads.
-pub fn bench_ants(agents: usize, steps: u32, threads: usize) -> Result<BenchReport> {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| crate::SimError::Invalid(format!("cannot start {threads} threads: {e}")))?;
+/// Times `steps` ant ticks of `agents` ants ([`bench_ant_world`]) on `threads` threads
+/// (`None`: one per core), after one untimed warm-up tick.
+pub fn bench_ants(agents: usize, steps: u32, threads: Option<usize>) -> Result<BenchReport> {
+    time_steps(
+        "ants",
+        agents,
+        steps,
+        threads,
+        || bench_ant_world(agents, 1),
+        |sim| sim.step().map(drop),
+    )
+}
+
+/// Times `steps` calls of `step` on the world `build` makes, inside a pool of `threads`
+/// workers, after one untimed warm-up step: the part every `swarm bench` model shares.
+pub(crate) fn time_steps<W>(
+    model: &str,
+    agents: usize,
+    steps: u32,
+    threads: Option<usize>,
+    build: impl FnOnce() -> W + Send,
+    mut step: impl FnMut(&mut W) -> Result<()> + Send,
+) -> Result<BenchReport> {
+    if agents == 0 || steps == 0 {
+        return Err(crate::SimError::Invalid(format!(
+            "bench: needs at least one agent and one step (got {agents} agents, {steps} steps)"
+        )));
+    }
+    let (pool, threads) = crate::par::pool(threads)?;
     pool.install(|| {
-        let mut sim = bench_ant_world(agents, 1);
-        sim.step()?;
+        let mut world = build();
+        step(&mut world)?;
         let t0 = Instant::now();
         for _ in 0..steps {
-            sim.step()?;
+            step(&mut world)?;
         }
         let seconds = t0.elapsed().as_secs_f64();
         Ok(BenchReport {
-            model: "ants".into(),
+            model: model.into(),
             backend: "cpu".into(),
             agents,
             steps,
             threads,
             seconds,
-            agent_steps_per_s: agents as f64 * steps as f64 / seconds.max(1e-9),
+            agent_steps_per_s: agents as f64 * f64::from(steps) / seconds.max(1e-9),
             peak_rss_bytes: peak_rss_bytes(),
             scalar: "f32".into(),
             machine: machine(),
@@ -142,4 +165,25 @@ pub fn machine() -> String {
         .unwrap_or_else(|| std::env::consts::ARCH.to_string());
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     format!("{model}, {cores} cores")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_bench_reports_what_ran_and_refuses_an_empty_one() {
+        let r = bench_ants(500, 2, Some(1)).unwrap();
+        assert_eq!(
+            (r.model.as_str(), r.agents, r.steps, r.threads),
+            ("ants", 500, 2, 1)
+        );
+        assert!(r.seconds > 0.0 && r.agent_steps_per_s > 0.0);
+        let r = crate::bees::bench_bees(200, 1, Some(2)).unwrap();
+        assert_eq!((r.model.as_str(), r.agents, r.threads), ("bees", 200, 2));
+        for (agents, steps, threads) in [(0, 5, Some(1)), (10, 0, Some(1)), (10, 5, Some(0))] {
+            let e = bench_ants(agents, steps, threads).unwrap_err().to_string();
+            assert!(e.contains("at least"), "{e}");
+        }
+    }
 }

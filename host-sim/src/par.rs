@@ -6,6 +6,22 @@ use rayon::prelude::*;
 
 use crate::error::{Result, SimError};
 
+/// A pool of `threads` workers (`None`: one per core), with the count it got. Zero threads
+/// is an error, not rayon's "pick for me": results are identical for any count, but a
+/// benchmark or a summary must say what ran.
+pub(crate) fn pool(threads: Option<usize>) -> Result<(rayon::ThreadPool, usize)> {
+    let threads =
+        threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    if threads == 0 {
+        return Err(SimError::Invalid("threads: must be at least 1".into()));
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| SimError::Invalid(format!("cannot start {threads} threads: {e}")))?;
+    Ok((pool, threads))
+}
+
 /// The most agents one rayon task takes at once: small enough that a worker whose CPU is
 /// taken away (a VM's vCPU, a busy core) holds up the others for well under a millisecond,
 /// since the rest of its work can be stolen; large enough that splitting costs nothing.

@@ -52,13 +52,7 @@ pub fn run(scenario: &Scenario, opts: &RunOptions) -> Result<RunReport> {
         sc.set_steps(steps);
     }
     let seed = opts.seed.unwrap_or(sc.seed);
-    let threads = opts
-        .threads
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| SimError::Invalid(format!("cannot start {threads} threads: {e}")))?;
+    let (pool, threads) = crate::par::pool(opts.threads)?;
     std::fs::create_dir_all(&opts.out).map_err(|e| {
         SimError::Output(output::OutputError::io("creating the folder", &opts.out, e))
     })?;

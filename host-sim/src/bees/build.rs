@@ -1,14 +1,12 @@
 //! Builds a [`BeeSim`] from a 3D [`Scenario`], applies its timed events, records frames, and
 //! builds the synthetic world of `swarm bench --model bees`.
 
-use std::time::Instant;
-
 use swarm_core::bee::{BeeParams, BeeState};
 use swarm_core::{Fx, Vec3};
 
 use super::sim::{AnyBeeGroup, BeeGroup, BeeSim};
 use super::world::{BeeObstacle, BeeTarget, BeeWorld, Shape3};
-use crate::bench::{BenchReport, machine, peak_rss_bytes};
+use crate::bench::BenchReport;
 use crate::by_scalar;
 use crate::output::{AgentSample, Frame};
 use crate::scalar::{AgentGroup, SimScalar};
@@ -261,32 +259,15 @@ pub fn bench_bee_world(n: usize, seed: u32) -> BeeSim {
     BeeSim::new(w, vec![group.into()], seed)
 }
 
-/// Times `steps` bee steps of `agents` bees ([`bench_bee_world`]) on `threads` threads, after
-/// one untimed warm-up step.
-pub fn bench_bees(agents: usize, steps: u32, threads: usize) -> Result<BenchReport> {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| SimError::Invalid(format!("cannot start {threads} threads: {e}")))?;
-    pool.install(|| {
-        let mut sim = bench_bee_world(agents, 1);
-        sim.step()?;
-        let t0 = Instant::now();
-        for _ in 0..steps {
-            sim.step()?;
-        }
-        let seconds = t0.elapsed().as_secs_f64();
-        Ok(BenchReport {
-            model: "bees".into(),
-            backend: "cpu".into(),
-            agents,
-            steps,
-            threads,
-            seconds,
-            agent_steps_per_s: agents as f64 * f64::from(steps) / seconds.max(1e-9),
-            peak_rss_bytes: peak_rss_bytes(),
-            scalar: "f32".into(),
-            machine: machine(),
-        })
-    })
+/// Times `steps` bee steps of `agents` bees ([`bench_bee_world`]) on `threads` threads
+/// (`None`: one per core), after one untimed warm-up step.
+pub fn bench_bees(agents: usize, steps: u32, threads: Option<usize>) -> Result<BenchReport> {
+    crate::bench::time_steps(
+        "bees",
+        agents,
+        steps,
+        threads,
+        || bench_bee_world(agents, 1),
+        |sim| sim.step().map(drop),
+    )
 }

@@ -141,8 +141,13 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             threads,
             json,
         } => {
-            let threads = threads
-                .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+            // Refuse an output path that cannot be written before a long run, not after.
+            if let Some(dir) = json.as_ref().and_then(|p| p.parent())
+                && !dir.as_os_str().is_empty()
+                && !dir.is_dir()
+            {
+                return Err(format!("--json: no folder {}", dir.display()).into());
+            }
             let report = match model {
                 Model::Ants => swarm_sim::bench::bench_ants(agents, steps, threads)?,
                 Model::Bees => swarm_sim::bees::bench_bees(agents, steps, threads)?,
@@ -150,8 +155,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             let text = serde_json::to_string_pretty(&report)?;
             println!("{text}");
             if let Some(path) = json {
-                std::fs::write(&path, text + "\n")
-                    .map_err(|e| format!("writing {}: {e}", path.display()))?;
+                swarm_sim::output::write_atomic_bytes(&path, (text + "\n").as_bytes())?;
             }
             Ok(())
         }
