@@ -2,6 +2,8 @@
 //! seeds, through the whole simulator (scenario → engine → controller). The numbers quoted in
 //! the comments were measured with these seeds.
 
+use std::collections::HashMap;
+
 use swarm_sim::bees::{AnyBeeGroup, BeeSim};
 use swarm_sim::scenario::{self, ObjectKind, Scenario};
 
@@ -15,21 +17,83 @@ fn norm(v: &[f64; 3]) -> f64 {
     (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
 }
 
-/// Roll set-points (rad) of the bees avoiding an obstacle at the last step.
-fn avoiding_rolls(sim: &BeeSim) -> Vec<f32> {
+/// Every bee's position by id (the group's scalar read as f64).
+fn positions_by_id(sim: &BeeSim) -> HashMap<u32, [f64; 3]> {
+    use swarm_core::Scalar;
+    let mut out = HashMap::new();
+    for g in &sim.groups {
+        match g {
+            AnyBeeGroup::F32(g) => out.extend(
+                g.by_id()
+                    .into_iter()
+                    .map(|(id, s, _)| (id, [s.pos.x, s.pos.y, s.pos.z].map(f64::from))),
+            ),
+            AnyBeeGroup::Fixed(g) => out.extend(g.by_id().into_iter().map(|(id, s, _)| {
+                (
+                    id,
+                    [s.pos.x, s.pos.y, s.pos.z].map(|c| f64::from(c.to_f32())),
+                )
+            })),
+        }
+    }
+    out
+}
+
+/// One avoiding bee-step seen from outside the controller (chen eq. 6-7): whether the shaft
+/// nearest to where the bee was lies on its left of the forward axis o the step chose, the
+/// roll set-point (rad), and eq. 6's magnitude at the distance to that shaft's surface.
+struct AvoidingRoll {
+    shaft_on_left: bool,
+    roll: f64,
+    eq6: f64,
+}
+
+/// The avoiding bee-steps of the last step; `before` holds the positions the step started from
+/// and `shafts` the vertical shafts as (x, z, radius).
+fn avoiding_rolls(
+    sim: &BeeSim,
+    before: &HashMap<u32, [f64; 3]>,
+    shafts: &[(f64, f64, f64)],
+    d0: f64,
+) -> Vec<AvoidingRoll> {
     use swarm_core::Scalar;
     let mut out = Vec::new();
     for g in &sim.groups {
-        match g {
-            AnyBeeGroup::F32(g) => {
-                out.extend(g.decisions.iter().filter(|d| d.avoiding).map(|d| d.roll))
+        let steps: Vec<(u32, [f64; 3], bool, f64)> = match g {
+            AnyBeeGroup::F32(g) => g
+                .by_id()
+                .into_iter()
+                .map(|(id, s, d)| {
+                    let o = [s.forward.x, s.forward.y, s.forward.z].map(f64::from);
+                    (id, o, d.avoiding, f64::from(d.roll))
+                })
+                .collect(),
+            AnyBeeGroup::Fixed(g) => g
+                .by_id()
+                .into_iter()
+                .map(|(id, s, d)| {
+                    let o = [s.forward.x, s.forward.y, s.forward.z].map(|c| f64::from(c.to_f32()));
+                    (id, o, d.avoiding, f64::from(d.roll.to_f32()))
+                })
+                .collect(),
+        };
+        for (id, o, avoiding, roll) in steps {
+            if !avoiding {
+                continue;
             }
-            AnyBeeGroup::Fixed(g) => out.extend(
-                g.decisions
-                    .iter()
-                    .filter(|d| d.avoiding)
-                    .map(|d| d.roll.to_f32()),
-            ),
+            let p = before[&id];
+            let (gap, x, z) = shafts
+                .iter()
+                .map(|&(x, z, r)| ((p[0] - x).hypot(p[2] - z) - r, x, z))
+                .min_by(|a, b| a.0.total_cmp(&b.0))
+                .expect("shafts");
+            // Eq. 7: y = [0, 1, 0] · (o × r_e), r_e horizontal toward the shaft's axis.
+            let side = o[2] * (x - p[0]) - o[0] * (z - p[2]);
+            out.push(AvoidingRoll {
+                shaft_on_left: side > 0.0,
+                roll,
+                eq6: (-(d0 - gap).powi(2) / 2.0).exp() * 45f64.to_radians(),
+            });
         }
     }
     out
@@ -45,8 +109,13 @@ fn avoiding_rolls(sim: &BeeSim) -> Vec<f32> {
 ///   back into the bounds (`contacts.bounds` ≤ 5; 0 over seeds 1-40 since the world reaches 20
 ///   units past the goal and 10 beyond the sides: with the far wall 8 units behind the goal,
 ///   bees overshooting it met the wall 1-7 times for seeds 1, 7 and 12, and one bee of seed 16
-///   drifted to a side wall). Bees roll both ways while avoiding (eq. 6-7: 140 bee-steps
-///   rolling right, 80 left), and the swarm gets past the shafts (x > 40: observed 100 of 100).
+///   drifted to a side wall). The swarm gets past the shafts (x > 40: observed 100 of 100).
+/// * (d) Roll-to-avoid, checked from outside the controller: for every avoiding bee-step, the
+///   shaft nearest to where the bee was is on its left or its right of the forward axis o
+///   (eq. 7); the bee rolls away from it, positive (sway right) for a shaft on its left and
+///   negative on its right, with eq. 6's magnitude e^{−(d0−d)²/2}·45° at the distance d to the
+///   shaft's surface (to 1e-4 rad). Observed: 140 bee-steps with the shaft on the left, 80 on
+///   the right, all 220 away and at eq. 6; over seeds 1-40, 46-172 on each side, all of them.
 /// * (a) The bees hover on average: the mean altitude stays within 2 units of its start
 ///   (observed 13.88 → 14.21, worst drift 0.70) and no bee is within a unit of the ceiling at
 ///   the end (was 73 of 100, with 25-60 ceiling clamps a step).
@@ -75,10 +144,13 @@ fn fig14_bees_avoid_the_shafts_by_themselves_hover_and_fly_below_the_speed_limit
     let altitude = |sim: &BeeSim| sim.world.sensed.pos.iter().map(|p| p[1]).sum::<f64>() / n;
     let start_altitude = altitude(&sim);
     let (mut speed_sum, mut at_limit, mut worst_drift) = (0.0, 0usize, 0.0f64);
-    let (mut left, mut right) = (0usize, 0usize);
+    let d0 = f64::from(sc.groups[0].bee_params().d0);
+    let mut rolls = Vec::new();
     let mut min_gap = f64::INFINITY;
     for _ in 0..2000 {
+        let before = positions_by_id(&sim);
         sim.step().expect("step");
+        rolls.extend(avoiding_rolls(&sim, &before, &shafts, d0));
         for p in &sim.world.sensed.pos {
             for &(x, z, r) in &shafts {
                 let gap = (p[0] - x).hypot(p[2] - z) - r;
@@ -95,10 +167,6 @@ fn fig14_bees_avoid_the_shafts_by_themselves_hover_and_fly_below_the_speed_limit
             speed_sum += s;
             at_limit += usize::from(s > 0.999 * max_speed);
         }
-        for roll in avoiding_rolls(&sim) {
-            left += usize::from(roll > 0.0);
-            right += usize::from(roll < 0.0);
-        }
         worst_drift = worst_drift.max((altitude(&sim) - start_altitude).abs());
     }
     let bee_steps = n * 2000.0;
@@ -112,9 +180,22 @@ fn fig14_bees_avoid_the_shafts_by_themselves_hover_and_fly_below_the_speed_limit
         .filter(|p| p[1] > ceiling - 1.0)
         .count();
     let past = sim.world.sensed.pos.iter().filter(|p| p[0] > 40.0).count();
+    // Eq. 6-7 from outside: shaft on the left → positive roll (sway right, away from it), on
+    // the right → negative, with eq. 6's magnitude at the distance to it.
+    let on_left = rolls.iter().filter(|r| r.shaft_on_left).count();
+    let on_right = rolls.len() - on_left;
+    let away = rolls
+        .iter()
+        .filter(|r| r.shaft_on_left == (r.roll > 0.0))
+        .count();
+    let eq6 = rolls
+        .iter()
+        .filter(|r| (r.roll.abs() - r.eq6).abs() < 1e-4)
+        .count();
     println!(
         "fig14, 2000 steps, {n} bees: world corrections {:?}; closest approach to a shaft \
-         {min_gap:.3}; avoiding bee-steps rolling right {left}, left {right}; {past} bees past \
+         {min_gap:.3}; avoiding bee-steps with the shaft on the left {on_left}, on the right \
+         {on_right}, rolling away {away}, eq. 6 magnitude {eq6}; {past} bees past \
          the shafts; mean altitude {start_altitude:.2} -> {:.2} (worst drift {worst_drift:.2}), \
          {near_ceiling} within 1 of the ceiling; mean speed {mean_speed:.2} (limit \
          {max_speed}), fraction of bee-steps at the limit {at_limit:.4}",
@@ -131,7 +212,12 @@ fn fig14_bees_avoid_the_shafts_by_themselves_hover_and_fly_below_the_speed_limit
         "the world had to put bees back into the bounds: {:?}",
         sim.contacts
     );
-    assert!(left > 0 && right > 0, "rolls: {left} right, {right} left");
+    assert!(
+        on_left >= 20 && on_right >= 20,
+        "shafts passed: {on_left} on the left, {on_right} on the right"
+    );
+    assert_eq!(away, rolls.len(), "bee-steps rolling toward the shaft");
+    assert_eq!(eq6, rolls.len(), "bee-steps off eq. 6's roll magnitude");
     assert!(past >= 90, "only {past} bees got past the shafts");
     assert!(worst_drift < 2.0, "mean altitude drifted by {worst_drift}");
     assert_eq!(near_ceiling, 0, "bees at the ceiling");
