@@ -17,26 +17,10 @@ fn norm(v: &[f64; 3]) -> f64 {
     (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
 }
 
-/// Every bee's position by id (the group's scalar read as f64).
+/// Every bee's position by id, from the sensed world.
 fn positions_by_id(sim: &BeeSim) -> HashMap<u32, [f64; 3]> {
-    use swarm_core::Scalar;
-    let mut out = HashMap::new();
-    for g in &sim.groups {
-        match g {
-            AnyBeeGroup::F32(g) => out.extend(
-                g.by_id()
-                    .into_iter()
-                    .map(|(id, s, _)| (id, [s.pos.x, s.pos.y, s.pos.z].map(f64::from))),
-            ),
-            AnyBeeGroup::Fixed(g) => out.extend(g.by_id().into_iter().map(|(id, s, _)| {
-                (
-                    id,
-                    [s.pos.x, s.pos.y, s.pos.z].map(|c| f64::from(c.to_f32())),
-                )
-            })),
-        }
-    }
-    out
+    let s = &sim.world.sensed;
+    s.id.iter().copied().zip(s.pos.iter().copied()).collect()
 }
 
 /// One avoiding bee-step seen from outside the controller (chen eq. 6-7): whether the shaft
