@@ -13,6 +13,8 @@ pub mod stream {
     pub const ANT_TURN: u32 = 2;
     /// Ant: direction after a degenerate geometry (e.g. exactly on a disturbance centre).
     pub const ANT_FALLBACK: u32 = 3;
+    /// Ant: its preferred way round an obstacle met head-on (drawn at step 0, once per ant).
+    pub const ANT_SIDE: u32 = 4;
 }
 
 /// Wellons' `lowbias32` finaliser: a bijective 32-bit mixer with low avalanche bias.

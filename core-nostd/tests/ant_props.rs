@@ -4,7 +4,7 @@
 use proptest::prelude::*;
 use swarm_core::ant::{
     self, AntNeighbor, AntObject, AntParams, AntState, Label, MotionState, PlanFrame, ResolveFrame,
-    StopReason, StopTimer,
+    StopReason, StopTimer, Surface,
 };
 use swarm_core::{Fx, Rect, Scalar, StepCtx, Vec2};
 
@@ -114,6 +114,8 @@ fn run<S: Scalar>(i: &Input) {
         label: i.label,
         nest: i.nest,
         origin: i.origin,
+        goal: None,
+        follow: None,
         motion: i.motion,
         stop: i.stop,
     };
@@ -132,7 +134,10 @@ fn run<S: Scalar>(i: &Input) {
     for &(kind, p, r, id) in &i.objects {
         let (center, radius) = (v(p), S::from_f32(r));
         let _ = frame.objects.push(match kind {
-            0 => AntObject::Obstacle { closest: center },
+            0 => match Surface::seen_from(state.pos, center) {
+                Some(surface) => AntObject::Obstacle(surface),
+                None => continue,
+            },
             1 => AntObject::Disturbance { center, radius },
             2 => AntObject::Food { id, center, radius },
             _ => AntObject::Nest { id, center, radius },

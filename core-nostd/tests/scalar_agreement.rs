@@ -18,16 +18,7 @@ use swarm_core::{Fx, Rect, Scalar, Vec2};
 use world::{N, O, World};
 
 fn cast_state(s: &AntState<f32>) -> AntState<Fx> {
-    AntState {
-        pos: s.pos.cast(),
-        heading: s.heading.cast(),
-        arrival: s.arrival.cast(),
-        label: s.label,
-        nest: s.nest,
-        origin: s.origin,
-        motion: s.motion,
-        stop: s.stop,
-    }
+    s.cast()
 }
 
 fn cast_frame(f: &PlanFrame<f32, N, O>) -> PlanFrame<Fx, N, O> {
@@ -49,9 +40,7 @@ fn cast_frame(f: &PlanFrame<f32, N, O>) -> PlanFrame<Fx, N, O> {
     for o in &f.objects {
         let c = |r: f32| Fx::from_f32(r);
         let _ = g.objects.push(match *o {
-            AntObject::Obstacle { closest } => AntObject::Obstacle {
-                closest: closest.cast(),
-            },
+            AntObject::Obstacle(surface) => AntObject::Obstacle(surface.cast()),
             AntObject::Disturbance { center, radius } => AntObject::Disturbance {
                 center: center.cast(),
                 radius: c(radius),

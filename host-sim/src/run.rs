@@ -139,8 +139,15 @@ impl Engine for Ants {
             summary.deliveries_over_time.push((step, self.delivered));
         }
     }
-    fn closing(&self, _summary: &mut Summary) -> String {
-        format!("{} deliveries", self.delivered)
+    fn closing(&self, summary: &mut Summary) -> String {
+        let moved = self.sim.moved_out;
+        summary
+            .extra
+            .insert("ants_moved_out_of_obstacles".into(), moved.into());
+        format!(
+            "{} deliveries, {moved} ants moved out of obstacles placed on them",
+            self.delivered
+        )
     }
 }
 

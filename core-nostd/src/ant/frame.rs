@@ -26,14 +26,26 @@ wire_type! {
         pub arrival: Vec2<S>,
     }
 
+    /// A point of an obstacle's surface near the ant and the surface's outward normal there:
+    /// what a range or bump sensor reports. The obstacle (or the convex piece of it this point
+    /// belongs to: an edge of a polygon, a disc) lies behind the line through `closest`
+    /// perpendicular to `normal`, so staying in front of that line keeps the ant out of it.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct Surface<S> {
+        /// The surface point closest to the ant.
+        pub closest: Vec2<S>,
+        /// Unit normal at `closest`, pointing out of the obstacle into free space. For an ant
+        /// outside a convex piece it is the direction from `closest` to the ant; for an ant
+        /// inside an obstacle it points from the ant through `closest`, the way out.
+        pub normal: Vec2<S>,
+    }
+
     /// An object of the environment in sensing range (§4.2.2, Fig. 4b).
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub enum AntObject<S> {
-        /// An obstacle, given by the closest point of its boundary to the ant.
-        Obstacle {
-            /// Closest boundary point.
-            closest: Vec2<S>,
-        },
+        /// An obstacle, given by the closest point of its boundary to the ant and the outward
+        /// normal there.
+        Obstacle(Surface<S>),
         /// An external disturbance: a dangerous circle.
         Disturbance {
             /// Centre of the attack.
@@ -75,7 +87,7 @@ wire_type! {
     }
 
     /// The sensor frame of `resolve`: the neighbours' broadcast plans (predicted positions
-    /// p_d*(t+1), eq. 1) and the arena.
+    /// p_d*(t+1), eq. 1), the obstacle surfaces within one step, and the arena.
     #[derive(Clone, Debug, PartialEq)]
     pub struct ResolveFrame<S, const N: usize> {
         /// The arena.
@@ -83,6 +95,49 @@ wire_type! {
         /// Predicted positions of nearby ants; those farther than `collision_range` from the
         /// ant's own prediction are ignored.
         pub neighbours: Vec<Vec2<S>, N>,
+        /// The obstacle surfaces the move of eq. 5 could reach: one [`Surface`] per convex
+        /// piece (a disc, a polygon edge) within `speed·dt` of the ant, nearest first. The move
+        /// never crosses one of them ([`constrain`](super::constrain)); a piece missing from
+        /// the frame is not avoided.
+        pub obstacles: Vec<Surface<S>, SURFACES>,
+    }
+}
+
+/// Capacity of [`ResolveFrame::obstacles`]: the obstacle pieces within one step of an ant (a
+/// corner is two, a narrow gap four).
+pub const SURFACES: usize = 6;
+
+impl<S: Scalar> Surface<S> {
+    /// The surface point `closest` as seen by an ant at `at` outside the obstacle: the normal
+    /// points from `closest` to the ant (`None` if they coincide).
+    pub fn seen_from(at: Vec2<S>, closest: Vec2<S>) -> Option<Self> {
+        let normal = (at - closest).normalized()?;
+        Some(Surface { closest, normal })
+    }
+
+    /// The same surface in another scalar type (through `f32`).
+    pub fn cast<T: Scalar>(&self) -> Surface<T> {
+        Surface {
+            closest: self.closest.cast(),
+            normal: self.normal.cast(),
+        }
+    }
+
+    /// Checks the point (finite, inside the coordinate limit) and that the normal is a unit
+    /// vector (±2 %).
+    pub fn validate(&self) -> Result<()> {
+        self.check("closest", "normal")
+    }
+
+    /// [`Surface::validate`] naming the fields as the frame knows them.
+    pub(crate) fn check(&self, closest: &'static str, normal: &'static str) -> Result<()> {
+        check_point(self.closest, closest)?;
+        let l2 = self.normal.length_sq();
+        if !(l2 > S::from_f32(0.96) && l2 < S::from_f32(1.04)) {
+            self.normal.check(normal)?;
+            return Err(Error::out_of_range(normal));
+        }
+        Ok(())
     }
 }
 
@@ -112,9 +167,7 @@ impl<S: Scalar, const N: usize, const O: usize> PlanFrame<S, N, O> {
         let big = S::from_f32(super::state::COORD_LIMIT);
         for (i, o) in self.objects.iter().enumerate() {
             let r = match *o {
-                AntObject::Obstacle { closest } => {
-                    check_point(closest, "objects.closest").map(|_| ())
-                }
+                AntObject::Obstacle(surface) => surface.check("objects.closest", "objects.normal"),
                 AntObject::Disturbance { center, radius }
                 | AntObject::Food { center, radius, .. }
                 | AntObject::Nest { center, radius, .. } => check_point(center, "objects.center")
@@ -133,6 +186,7 @@ impl<S: Scalar, const N: usize> ResolveFrame<S, N> {
         ResolveFrame {
             bounds,
             neighbours: Vec::new(),
+            obstacles: Vec::new(),
         }
     }
 
@@ -141,6 +195,10 @@ impl<S: Scalar, const N: usize> ResolveFrame<S, N> {
         check_bounds(self.bounds)?;
         for (i, p) in self.neighbours.iter().enumerate() {
             check_point(*p, "neighbours").map_err(|e| e.at(i))?;
+        }
+        for (i, s) in self.obstacles.iter().enumerate() {
+            s.check("obstacles.closest", "obstacles.normal")
+                .map_err(|e| e.at(i))?;
         }
         Ok(())
     }

@@ -2,8 +2,9 @@
 //! environment with priority obstacles > disturbance > food = nest (Fig. 4b).
 
 use super::frame::{AntNeighbor, AntObject};
+use super::obstacle::obstacle_heading;
 use super::params::AntParams;
-use super::state::{AntState, Label};
+use super::state::{AntState, Follow, Label};
 use crate::rand::{self, stream};
 use crate::{Scalar, StepCtx, Vec2};
 
@@ -55,8 +56,9 @@ pub fn informer<S: Scalar>(
 pub enum EnvAction<S> {
     /// Nothing in the environment concerns the ant.
     None,
-    /// Avoiding: turn to this heading, perpendicular to the ant-obstacle line (Fig. 5b).
-    Avoid(Vec2<S>),
+    /// Avoiding an obstacle: turn to this heading (Fig. 5b), and keep going round it toward the
+    /// goal with this [`Follow`] (ours, see [`obstacle_heading`]).
+    Avoid(Vec2<S>, Option<Follow<S>>),
     /// Escaping: run along this heading, away from the disturbance centre (Fig. 5c).
     Escape(Vec2<S>),
     /// Arrived unladen at food source `id`: stop and collect (§4.1 stop 2).
@@ -68,26 +70,24 @@ pub enum EnvAction<S> {
     AtNest,
 }
 
-/// The environment interaction of §4.2.2 for an ant at `s.pos` heading `s.heading`.
+/// The environment interaction of §4.2.2 for an ant at `s.pos` heading `s.heading`, by
+/// priority:
 ///
-/// * Obstacle: one whose closest point lies ahead (positive projection on the heading) within
-///   `avoid_range`; the nearest such. The new heading is perpendicular to the ant-obstacle line,
-///   on the side of the current heading (the smaller turn; a random side if exactly head-on).
+/// * Food / nest where the ant stops: it is inside the circle of a food source (unladen) or of
+///   its own nest (laden). Ours: before obstacles, of which the paper says they come first,
+///   because a stop never runs into anything, and an ant going round a rock next to its nest
+///   would otherwise never drop its food.
+/// * Obstacle: see [`obstacle_heading`].
 /// * Disturbance: the ant is inside the dangerous circle; runs away from the centre (nearest
 ///   centre if several; a random direction if exactly on the centre).
-/// * Food / nest: the ant is inside the circle of a food source (unladen) or of its own nest.
+/// * Its own nest, unladen: relabels as S_nest.
 pub fn environment<S: Scalar>(
     s: &AntState<S>,
     objects: &[AntObject<S>],
     params: &AntParams<S>,
     ctx: StepCtx,
 ) -> EnvAction<S> {
-    if let Some(h) = avoid_obstacle(s, objects, params, ctx) {
-        return EnvAction::Avoid(h);
-    }
-    if let Some(h) = escape_disturbance(s, objects, ctx) {
-        return EnvAction::Escape(h);
-    }
+    let mut at_nest = false;
     for o in objects {
         match *o {
             AntObject::Food { id, center, radius }
@@ -98,14 +98,22 @@ pub fn environment<S: Scalar>(
             AntObject::Nest { id, center, radius }
                 if id == s.nest && inside(s.pos, center, radius) =>
             {
-                return if s.label == Label::Food {
-                    EnvAction::Drop(id)
-                } else {
-                    EnvAction::AtNest
-                };
+                if s.label == Label::Food {
+                    return EnvAction::Drop(id);
+                }
+                at_nest = true;
             }
             _ => {}
         }
+    }
+    if let Some((h, follow)) = obstacle_heading(s, s.heading, objects, params, ctx) {
+        return EnvAction::Avoid(h, follow);
+    }
+    if let Some(h) = escape_disturbance(s, objects, ctx) {
+        return EnvAction::Escape(h);
+    }
+    if at_nest {
+        return EnvAction::AtNest;
     }
     EnvAction::None
 }
@@ -127,30 +135,6 @@ fn nearest<S: Scalar>(
         }
     }
     best.map(|(_, v)| v)
-}
-
-fn avoid_obstacle<S: Scalar>(
-    s: &AntState<S>,
-    objects: &[AntObject<S>],
-    params: &AntParams<S>,
-    ctx: StepCtx,
-) -> Option<Vec2<S>> {
-    let d = nearest(objects, |o| match *o {
-        AntObject::Obstacle { closest } => {
-            let d = closest - s.pos;
-            let dist = d.length();
-            (d.dot(s.heading) > S::ZERO && dist <= params.avoid_range).then_some((dist, d))
-        }
-        _ => None,
-    })?;
-    let perp = d.normalized()?.perp();
-    let side = perp.dot(s.heading);
-    let flip = if side == S::ZERO {
-        rand::rand(ctx.seed, ctx.agent, ctx.step, stream::ANT_FALLBACK) & 1 == 1
-    } else {
-        side < S::ZERO
-    };
-    Some(if flip { -perp } else { perp })
 }
 
 fn escape_disturbance<S: Scalar>(

@@ -14,6 +14,7 @@
 
 mod frame;
 mod interact;
+mod obstacle;
 mod params;
 mod plan;
 mod resolve;
@@ -21,9 +22,12 @@ mod state;
 #[cfg(test)]
 mod tests;
 
-pub use frame::{AntNeighbor, AntObject, PlanFrame, ResolveFrame};
+pub use frame::{AntNeighbor, AntObject, PlanFrame, ResolveFrame, SURFACES, Surface};
 pub use interact::{EnvAction, environment, informer, transfers};
+pub use obstacle::{SURFACE_MARGIN, constrain, nearest_obstacle, obstacle_heading, tangent};
 pub use params::AntParams;
 pub use plan::{AntPlan, plan, plan_checked, predict};
 pub use resolve::{W_MAX, repulsion, resolve, resolve_checked};
-pub use state::{AntState, COORD_LIMIT, Label, MotionState, StopReason, StopTimer};
+pub use state::{
+    AntState, COORD_LIMIT, Follow, Label, MotionState, StopReason, StopTimer, Turn, WINDING_LIMIT,
+};

@@ -73,22 +73,40 @@ pub fn plan_checked<S: Scalar, const N: usize, const O: usize>(
         return Ok(stop(s, StopReason::Casual, params.casual_stop_ticks, 0));
     }
 
-    // (2) Basic movement.
-    let turn = rand::angle(ctx, stream::ANT_TURN, params.theta);
-    s.heading = s.heading.rotated(turn).normalized().unwrap_or(s.heading);
+    // (3a) Information from neighbours (Table 1): the informer's latest arrival position
+    // becomes the ant's goal (§4.2.1, Fig. 6) ...
     s.motion = MotionState::BasicMovement;
-
-    // (3) Interactions with neighbours (Table 1) ...
-    if let Some(h) =
-        informer(&s, &frame.neighbours, params).and_then(|target| (target - s.pos).normalized())
-    {
-        s.heading = h;
+    if let Some(target) = informer(&s, &frame.neighbours, params) {
+        s.goal = Some(target);
         s.motion = MotionState::InteractNeighbors;
     }
-    // ... and with the environment, which the ant prefers (§4, Fig. 4a).
-    match environment(&s, &frame.objects, params, ctx) {
+    // ... which it forgets once there without having found its destination (ours).
+    let step = params.speed * params.dt;
+    if s.goal.is_some_and(|g| (g - s.pos).length() <= step) {
+        s.goal = None;
+    }
+
+    // (2) Basic movement: a random turn in (−θ, θ) (§4.1) from the current orientation, or,
+    // with a goal, from the direction to it (ours: the informed ant "moves closer to the
+    // destination", §4.2.1, on every tick rather than only at the contact).
+    let turn = rand::angle(ctx, stream::ANT_TURN, params.theta);
+    let reference = s
+        .goal
+        .and_then(|g| (g - s.pos).normalized())
+        .unwrap_or(s.heading);
+    s.heading = reference.rotated(turn).normalized().unwrap_or(reference);
+
+    // (3b) The environment, which the ant prefers to its neighbours (§4, Fig. 4a).
+    let follow = s.follow.take();
+    let sensing = AntState { follow, ..s };
+    match environment(&sensing, &frame.objects, params, ctx) {
         EnvAction::None => {}
-        EnvAction::Avoid(h) | EnvAction::Escape(h) => {
+        EnvAction::Avoid(h, follow) => {
+            s.heading = h;
+            s.follow = follow;
+            s.motion = MotionState::InteractEnvironment;
+        }
+        EnvAction::Escape(h) => {
             s.heading = h;
             s.motion = MotionState::InteractEnvironment;
         }
@@ -165,16 +183,22 @@ fn stop<S: Scalar>(mut s: AntState<S>, reason: StopReason, ticks: u16, place: u1
 }
 
 /// The end of a stop (§4.1): collecting makes S_c = S_food, dropping makes S_c = S_nest; the
-/// ant records where it arrived and heads back the way it came (ours: the paper only says it
-/// "starts to move toward the nest / back to the food").
+/// ant records where it arrived, turns back the way it came and takes as its goal the place it
+/// came from: the paper says it "starts to move toward the nest" after collecting and "back to
+/// the food" after dropping; ours: toward its latest arrival at the nest (if it has one) and
+/// at the food source, the one memory an ant has of each place.
 fn finish_stop<S: Scalar>(s: &mut AntState<S>, timer: StopTimer) {
-    let label = match timer.reason {
+    let (label, goal) = match timer.reason {
         StopReason::Casual => return,
-        StopReason::CollectingFood => Label::Food,
-        StopReason::DroppingFood => Label::Nest,
+        // Back to the nest it last left, if it has been at its nest.
+        StopReason::CollectingFood => (Label::Food, (s.label == Label::Nest).then_some(s.arrival)),
+        // Back to the food it collected (a laden ant's arrival is where it collected).
+        StopReason::DroppingFood => (Label::Nest, Some(s.arrival)),
     };
     s.label = label;
     s.origin = timer.place;
     s.arrival = s.pos;
+    s.goal = goal;
+    s.follow = None;
     s.heading = -s.heading;
 }

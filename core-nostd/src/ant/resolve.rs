@@ -1,6 +1,7 @@
 //! Phase 2 of a tick: collision avoidance (xiang2018 eq. 2-4) and the move (eq. 5).
 
 use super::frame::ResolveFrame;
+use super::obstacle::constrain;
 use super::params::AntParams;
 use super::plan::AntPlan;
 use super::state::{AntState, check_point};
@@ -43,7 +44,9 @@ pub const W_MAX: f32 = 1000.0;
 ///
 /// * eq. 2: O(t+1) = w0·O*(t+1) + (1 − w0)·R_d(t+1) (see [`repulsion`] for eq. 3-4), normalised
 ///   to a unit orientation (O* if the sum vanishes);
-/// * eq. 5: p(t+1) = p(t) + v·O(t+1)·Δt, kept inside the arena.
+/// * eq. 5: p(t+1) = p(t) + v·O(t+1)·Δt, kept inside the arena and out of every obstacle
+///   surface of the frame ([`constrain`]: the move slides along a surface it would cross, or
+///   the ant stays; ours), O(t+1) then being the direction of the move.
 ///
 /// A stopped ant does not move. Returns the ant's state for the next tick.
 pub fn resolve<S: Scalar, const N: usize>(
@@ -71,9 +74,10 @@ pub fn resolve_checked<S: Scalar, const N: usize>(
     }
     let r = repulsion(plan.predicted, &frame.neighbours, params);
     let o = s.heading * params.w0 + r * (S::ONE - params.w0);
-    s.heading = o.normalized().unwrap_or(s.heading);
-    s.pos = frame
-        .bounds
-        .clamp(s.pos + s.heading * (params.speed * params.dt));
+    let o = o.normalized().unwrap_or(s.heading);
+    let m = constrain(s.pos, o * (params.speed * params.dt), &frame.obstacles);
+    // The orientation is the way the ant actually moved (unchanged if it stayed).
+    s.heading = m.normalized().unwrap_or(o);
+    s.pos = frame.bounds.clamp(s.pos + m);
     Ok(s)
 }

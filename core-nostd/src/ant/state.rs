@@ -2,6 +2,9 @@
 
 use crate::{Error, Result, Scalar, Vec2};
 
+/// The largest winding of a [`Follow`] (rad): four turns round an obstacle.
+pub const WINDING_LIMIT: f32 = 8.0 * core::f32::consts::PI;
+
 /// Largest absolute coordinate accepted from outside: keeps every intermediate value inside the
 /// range of [`Fx`](crate::Fx) (±32768) so both scalar types compute the same thing.
 pub const COORD_LIMIT: f32 = 16_384.0;
@@ -55,6 +58,32 @@ wire_type! {
         pub place: u16,
     }
 
+    /// Which way round an obstacle a following ant goes (ours, see [`Follow`]).
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+    pub enum Turn {
+        /// Counter-clockwise round the obstacle: along `normal.perp()` = (−n.y, n.x), the
+        /// obstacle on the ant's left.
+        Ccw,
+        /// Clockwise round the obstacle: along `−normal.perp()` = (n.y, −n.x), the obstacle on
+        /// the ant's right.
+        Cw,
+    }
+
+    /// An ant going round an obstacle that blocks the way to its goal (ours: §4.2.2 gives the
+    /// avoiding turn of Fig. 5b and the priority of obstacles, not how an ant gets round a wall
+    /// or out of a dead end). The ant keeps to the side it chose when it met the obstacle until
+    /// the way toward its goal is free again: the goal lies in front of the surface and the
+    /// heading has not wound round the obstacle by more than a quarter turn (the counter of
+    /// Pledge's wall-following rule, which gets out of any cup).
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct Follow<S> {
+        /// The way round.
+        pub turn: Turn,
+        /// The total signed turn of the heading since the goal direction at the start (rad,
+        /// counter-clockwise positive), limited to ±[`WINDING_LIMIT`].
+        pub winding: S,
+    }
+
     /// Everything an ant carries from one tick to the next.
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct AntState<S> {
@@ -72,6 +101,13 @@ wire_type! {
         /// Where the ant last arrived at its label's place (food collected / nest reached): the
         /// "latest arrival position" a neighbour turns toward (§4.2.1, Fig. 6).
         pub arrival: Vec2<S>,
+        /// The place the ant is heading for, if it knows one: the latest arrival position a
+        /// neighbour told it (§4.2.1, Fig. 6), or after collecting (dropping) food the nest
+        /// (food source) it last came from (§4.1: "start to move toward the nest / back to the
+        /// food"). Forgotten on arrival, or when the ant reaches the point and finds nothing.
+        pub goal: Option<Vec2<S>>,
+        /// Going round an obstacle on the way to the goal.
+        pub follow: Option<Follow<S>>,
         /// What the ant did in the last tick.
         pub motion: MotionState,
         /// The running stop, if the ant is stopped (`motion == Stop` exactly when `Some`).
@@ -90,6 +126,8 @@ impl<S: Scalar> AntState<S> {
             nest,
             origin: nest,
             arrival: pos,
+            goal: None,
+            follow: None,
             motion: MotionState::BasicMovement,
             stop: None,
         }
@@ -100,6 +138,25 @@ impl<S: Scalar> AntState<S> {
         AntState {
             label: Label::Nothing,
             ..AntState::at_nest(nest, pos, heading)
+        }
+    }
+
+    /// The same state in another scalar type (through `f32`).
+    pub fn cast<T: Scalar>(&self) -> AntState<T> {
+        AntState {
+            pos: self.pos.cast(),
+            heading: self.heading.cast(),
+            label: self.label,
+            nest: self.nest,
+            origin: self.origin,
+            arrival: self.arrival.cast(),
+            goal: self.goal.map(Vec2::cast),
+            follow: self.follow.map(|f| Follow {
+                turn: f.turn,
+                winding: T::from_f32(f.winding.to_f32()),
+            }),
+            motion: self.motion,
+            stop: self.stop,
         }
     }
 
@@ -122,6 +179,16 @@ impl<S: Scalar> AntState<S> {
         }
         if self.label == Label::Nest && self.origin != self.nest {
             return Err(Error::inconsistent("state.origin"));
+        }
+        if let Some(goal) = self.goal {
+            check_point(goal, "state.goal")?;
+        }
+        if let Some(f) = self.follow {
+            if self.goal.is_none() {
+                return Err(Error::inconsistent("state.follow"));
+            }
+            let lim = S::from_f32(WINDING_LIMIT);
+            check_range(f.winding, -lim, lim, "state.follow.winding")?;
         }
         match (self.motion, self.stop) {
             (MotionState::Stop, Some(t)) if t.remaining == 0 => {

@@ -52,6 +52,13 @@ fn neighbour(id: u32, label: Label, nest: u16, at: Vec2<F>, arrival: Vec2<F>) ->
 fn plan_with(a: &AntState<F>, f: &Frame, p: &AntParams<F>) -> AntPlan<F> {
     plan(a, f, p, active_ctx(p)).unwrap()
 }
+/// An obstacle sensed by an ant at `at` (outside it), its closest point `closest`.
+fn rock(at: Vec2<F>, closest: Vec2<F>) -> AntObject<F> {
+    AntObject::Obstacle(Surface {
+        closest,
+        normal: (at - closest).normalized().unwrap(),
+    })
+}
 fn angle_between(a: Vec2<F>, b: Vec2<F>) -> f32 {
     a.cross(b).atan2(a.dot(b)).abs()
 }
@@ -224,7 +231,7 @@ fn obstacle_ahead_turns_perpendicular_to_the_ant_obstacle_line() {
     let a = ant(Label::Nest);
     for closest in [v(51.5, 50.2), v(51.0, 49.0), v(51.9, 50.0)] {
         let mut f = Frame::new(arena());
-        f.objects.push(AntObject::Obstacle { closest }).unwrap();
+        f.objects.push(rock(a.pos, closest)).unwrap();
         let out = plan_with(&a, &f, &p);
         assert_eq!(out.state.motion, MotionState::InteractEnvironment);
         let line = (closest - a.pos).normalized().unwrap();
@@ -233,7 +240,7 @@ fn obstacle_ahead_turns_perpendicular_to_the_ant_obstacle_line() {
     // Behind the ant, or too far: ignored.
     for closest in [v(48.5, 50.0), v(60.0, 50.0)] {
         let mut f = Frame::new(arena());
-        f.objects.push(AntObject::Obstacle { closest }).unwrap();
+        f.objects.push(rock(a.pos, closest)).unwrap();
         assert_ne!(
             plan_with(&a, &f, &p).state.motion,
             MotionState::InteractEnvironment
@@ -261,12 +268,10 @@ fn escape_increases_distance_to_the_disturbance() {
 }
 
 #[test]
-fn environment_priority_obstacle_over_disturbance_over_food() {
+fn environment_priority_food_stop_then_obstacle_then_disturbance() {
     let p = no_turn();
     let a = ant(Label::Nest);
-    let obstacle = AntObject::Obstacle {
-        closest: v(51.0, 50.0),
-    };
+    let obstacle = rock(a.pos, v(51.0, 50.0));
     let disturbance = AntObject::Disturbance {
         center: v(45.0, 45.0),
         radius: 20.0,
@@ -276,8 +281,13 @@ fn environment_priority_obstacle_over_disturbance_over_food() {
         center: v(50.0, 50.0),
         radius: 3.0,
     };
+    // Inside the food, the ant stops to collect whatever else is around (a stop runs into
+    // nothing).
     let mut f = Frame::new(arena());
     f.objects.extend([food, disturbance, obstacle]);
+    let out = plan_with(&a, &f, &p);
+    assert_eq!(out.state.stop.unwrap().reason, StopReason::CollectingFood);
+    f.objects.remove(0);
     let out = plan_with(&a, &f, &p);
     assert!(out.state.heading.x.abs() < 1e-5, "avoidance wins");
     f.objects.pop();
@@ -286,9 +296,6 @@ fn environment_priority_obstacle_over_disturbance_over_food() {
         angle_between(out.state.heading, v(1.0, 1.0)) < 1e-4,
         "escape wins"
     );
-    f.objects.pop();
-    let out = plan_with(&a, &f, &p);
-    assert_eq!(out.state.stop.unwrap().reason, StopReason::CollectingFood);
 }
 
 #[test]
@@ -468,11 +475,7 @@ fn bad_input_is_a_typed_error_naming_the_field() {
         "the ant itself among its neighbours"
     );
     let mut f = Frame::new(arena());
-    f.objects
-        .push(AntObject::Obstacle {
-            closest: v(1.0, 1.0),
-        })
-        .unwrap();
+    f.objects.push(rock(a.pos, v(1.0, 1.0))).unwrap();
     f.objects
         .push(AntObject::Food {
             id: 0,

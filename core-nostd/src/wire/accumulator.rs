@@ -392,29 +392,29 @@ mod tests {
 
     #[test]
     fn version_and_truncated() {
-        // 0x02 0x01: one raw byte; then a CRC-valid version-2 frame.
-        let mut v2 = vec![0u8; 16];
-        let mut raw = vec![2, 1, 0, 0];
+        // 0x02 0x01: one raw byte; then a CRC-valid frame of version 1 (the previous release).
+        let mut v1 = vec![0u8; 16];
+        let mut raw = vec![1, 1, 0, 0];
         raw.extend_from_slice(&crate::wire::CRC16.checksum(&raw).to_le_bytes());
-        let n = cobs::try_encode(&raw, &mut v2).unwrap();
-        v2.truncate(n);
-        v2.push(0);
+        let n = cobs::try_encode(&raw, &mut v1).unwrap();
+        v1.truncate(n);
+        v1.push(0);
         let mut acc = Accumulator::<32>::new();
-        let seen = run(&mut acc, &[&[2, 1, 0], &v2]);
+        let seen = run(&mut acc, &[&[2, 1, 0], &v1]);
         assert_eq!(
             seen,
             vec![
                 Err((Error::Truncated, 2)),
-                Err((Error::Version { got: 2 }, 7))
+                Err((Error::Version { got: 1 }, 7))
             ]
         );
         let s = acc.stats();
         assert_eq!((s.truncated, s.version_errors, s.bytes_dropped), (1, 1, 9));
-        // The version-2 frame's header is trustworthy (CRC good): its seq can be answered.
+        // The version-1 frame's header is trustworthy (CRC good): its seq can be answered.
         assert_eq!(
             acc.foreign_header(),
             Some(Header {
-                version: 2,
+                version: 1,
                 kind: 1,
                 seq: 0
             })
@@ -423,7 +423,7 @@ mod tests {
         let f = frame(1, 1, &());
         run(&mut acc, &[&f]);
         assert_eq!(acc.foreign_header(), None);
-        run(&mut acc, &[&v2]);
+        run(&mut acc, &[&v1]);
         assert!(acc.foreign_header().is_some());
         run(&mut acc, &[b"\x05\x00"]);
         assert_eq!(acc.foreign_header(), None);

@@ -344,7 +344,7 @@ impl<C: Controller, const RX: usize, const TX: usize> DeviceEndpoint<C, RX, TX> 
     /// ```compile_fail
     /// use swarm_core::ant::AntParams;
     /// use swarm_core::wire::DeviceEndpoint;
-    /// let d = DeviceEndpoint::<AntParams<f32>, 424, 16>::new(AntParams::default(), "x");
+    /// let d = DeviceEndpoint::<AntParams<f32>, 450, 16>::new(AntParams::default(), "x");
     /// ```
     ///
     /// # Errors

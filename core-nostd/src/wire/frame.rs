@@ -246,14 +246,14 @@ mod tests {
         assert_eq!(CRC16.checksum(b"123456789"), 0x29B1);
     }
 
-    // ---- pinned vectors (docs/protocol.md, section 7) ----
+    // ---- pinned vectors (docs/protocol.md, section 8) ----
 
     #[test]
     fn vector_1_ping() {
         // kind 0x81, seq 0, Ping { nonce: 0x12345678 }
-        // raw  = 01 81 00 00 | f8 ac d1 91 01 | crc 0xb863 -> 63 b8
+        // raw  = 02 81 00 00 | f8 ac d1 91 01 | crc 0x9527 -> 27 95
         let wire = enc(0x81, 0, &Ping { nonce: 0x1234_5678 });
-        assert_eq!(wire, hex("03 01 81 01 08 f8 ac d1 91 01 63 b8 00"));
+        assert_eq!(wire, hex("03 02 81 01 08 f8 ac d1 91 01 27 95 00"));
         let (h, p) = dec(&wire).unwrap();
         assert_eq!(h, Header::new(0x81, 0));
         assert_eq!(
@@ -266,7 +266,7 @@ mod tests {
     fn vector_2_tuple() {
         // kind 0x82, seq 0x1234, (7u8, -2i32, true): postcard 07 03 01
         let wire = enc(0x82, 0x1234, &(7u8, -2i32, true));
-        assert_eq!(wire, hex("0a 01 82 34 12 07 03 01 0a a5 00"));
+        assert_eq!(wire, hex("0a 02 82 34 12 07 03 01 88 7d 00"));
         let (h, p) = dec(&wire).unwrap();
         assert_eq!((h.kind, h.seq), (0x82, 0x1234));
         assert_eq!(
@@ -279,7 +279,7 @@ mod tests {
     fn vector_3_empty_payload() {
         // kind 0x83, seq 0xffff, () : the shortest frame, 8 bytes
         let wire = enc(0x83, 0xffff, &());
-        assert_eq!(wire, hex("07 01 83 ff ff 71 8d 00"));
+        assert_eq!(wire, hex("07 02 83 ff ff ad 16 00"));
         assert_eq!(wire.len(), 8);
         decode_payload::<()>(&dec(&wire).unwrap().1).unwrap();
     }
@@ -296,7 +296,7 @@ mod tests {
         // payload: 00 00 c0 3f | 01 ac 02 | 02 01 04 | 80 80 0c | 00
         assert_eq!(
             wire,
-            hex("04 01 84 01 01 01 0c c0 3f 01 ac 02 02 01 04 80 80 0c 03 5c ef 00")
+            hex("04 02 84 01 01 01 0c c0 3f 01 ac 02 02 01 04 80 80 0c 03 2e ef 00")
         );
         let (_, p) = dec(&wire).unwrap();
         assert_eq!(
@@ -314,16 +314,16 @@ mod tests {
         let mut v: heapless::Vec<u8, 250> = heapless::Vec::new();
         v.extend_from_slice(&[0x11; 250]).unwrap();
         let wire = enc(0x85, 0x0101, &v);
-        let mut expect = hex("ff 01 85 01 01 fa 01");
+        let mut expect = hex("ff 02 85 01 01 fa 01");
         expect.extend_from_slice(&[0x11; 248]);
         expect.extend_from_slice(&hex("05 11 11"));
         let crc = CRC16.checksum(&{
-            let mut raw = hex("01 85 01 01 fa 01");
+            let mut raw = hex("02 85 01 01 fa 01");
             raw.extend_from_slice(&[0x11; 250]);
             raw
         });
-        assert_eq!(crc, 0x51b2);
-        expect.extend_from_slice(&hex("b2 51 00"));
+        assert_eq!(crc, 0xe264);
+        expect.extend_from_slice(&hex("64 e2 00"));
         assert_eq!(wire, expect);
         assert_eq!(wire.len(), 252 + 4 + 2 + 2 + 1);
         let (_, p) = dec(&wire).unwrap();
@@ -394,23 +394,24 @@ mod tests {
         assert_eq!(
             dec(&wire),
             Err(Error::Crc {
-                got: 0xb863,
-                expected: 0xced7
+                got: 0x9527,
+                expected: 0xe393
             })
         );
     }
 
     #[test]
     fn version_mismatch() {
-        // A well-formed version-2 frame: header 02 01 00 00, empty payload.
-        let raw = hex("02 01 00 00");
+        // A well-formed frame of version 1 (the previous release): header 01 01 00 00, empty
+        // payload.
+        let raw = hex("01 01 00 00");
         let crc = CRC16.checksum(&raw).to_le_bytes();
         let mut wire = vec![0u8; 16];
         let mut full = raw.clone();
         full.extend_from_slice(&crc);
         let n = cobs::try_encode(&full, &mut wire).unwrap();
         wire.truncate(n);
-        assert_eq!(decode_frame(&mut wire), Err(Error::Version { got: 2 }));
+        assert_eq!(decode_frame(&mut wire), Err(Error::Version { got: 1 }));
     }
 
     impl crate::wire::Message for Ping {

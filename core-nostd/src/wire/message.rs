@@ -30,9 +30,9 @@ pub const WIRE_BEE_TARGETS: usize = 16;
 
 /// The largest payload of an ant message (or [`ErrorReply`]), for either scalar
 /// ([`AntPlanRequest<Fx>`](AntPlanRequest) with full lists; pinned by a test).
-pub const MAX_ANT_PAYLOAD: usize = 415;
+pub const MAX_ANT_PAYLOAD: usize = 441;
 /// The largest payload of an ant reply ([`AntPlanReply<Fx>`](AntPlanReply); pinned by a test).
-pub const MAX_ANT_REPLY_PAYLOAD: usize = 56;
+pub const MAX_ANT_REPLY_PAYLOAD: usize = 74;
 /// The longest frame of an ant message (or [`ErrorReply`]), delimiter included: buffer size
 /// for a node that only runs the ant controller.
 pub const MAX_ANT_FRAME: usize = max_frame_len(MAX_ANT_PAYLOAD);
@@ -339,7 +339,9 @@ message_kinds! {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ant::{AntNeighbor, AntObject, Label, MotionState, StopReason, StopTimer};
+    use crate::ant::{
+        AntNeighbor, AntObject, Follow, Label, MotionState, StopReason, StopTimer, Surface, Turn,
+    };
     use crate::bee::{BeeNeighbor, ObstacleSense};
     use crate::wire::{Accumulator, Event, Header, encode_frame, encode_message};
     use crate::{Fx, Rect, Vec2, Vec3};
@@ -411,9 +413,10 @@ mod tests {
             .unwrap();
         frame
             .objects
-            .push(AntObject::Obstacle {
+            .push(AntObject::Obstacle(Surface {
                 closest: v2(14.0, 9.0),
-            })
+                normal: v2(-0.8, 0.6),
+            }))
             .unwrap();
         frame
             .objects
@@ -441,6 +444,13 @@ mod tests {
         let mut frame = WireResolveFrame::new(req.frame.bounds);
         frame.neighbours.push(v2(10.5, 10.5)).unwrap();
         frame.neighbours.push(v2(9.0, 11.0)).unwrap();
+        frame
+            .obstacles
+            .push(Surface {
+                closest: v2(10.5, 9.0),
+                normal: v2(0.0, 1.0),
+            })
+            .unwrap();
         let req = AntResolveRequest {
             plan: reply.plan,
             frame,
@@ -558,7 +568,7 @@ mod tests {
         );
     }
 
-    // ---- pinned vectors (docs/protocol.md, section 7), computed with the Python reference ----
+    // ---- pinned vectors (docs/protocol.md, section 8), computed with the Python reference ----
 
     fn hex(s: &str) -> Vec<u8> {
         let s: String = s.split_whitespace().collect();
@@ -583,6 +593,11 @@ mod tests {
                 nest: 1,
                 origin: 1,
                 arrival: v2(5.5, -3.0),
+                goal: Some(v2(0.5, 2.0)),
+                follow: Some(Follow {
+                    turn: Turn::Cw,
+                    winding: S::from_f32(-1.5),
+                }),
                 motion: MotionState::Stop,
                 stop: Some(StopTimer {
                     reason: StopReason::CollectingFood,
@@ -601,25 +616,27 @@ mod tests {
                 code: ErrorReply::NON_FINITE,
             },
         );
-        assert_eq!(wire, hex("04 01 0f 07 04 01 02 fa 00"));
+        assert_eq!(wire, hex("04 02 0f 07 04 01 d0 14 00"));
     }
 
     #[test]
     fn vector_7_ant_resolve_reply_f32() {
         let msg = vector_state::<f32>();
-        let mut payload = [0u8; 64];
+        let mut payload = [0u8; 96];
         let n = postcard::to_slice(&msg, &mut payload).unwrap().len();
         assert_eq!(
             payload[..n],
             hex("00 00 20 41 00 00 a0 41 00 00 80 3f 00 00 00 00 02 01 01
-                 00 00 b0 40 00 00 40 c0 00 01 01 ac 02 02")
+                 00 00 b0 40 00 00 40 c0 01 00 00 00 3f 00 00 00 40 01 01 00 00 c0 bf
+                 00 01 01 ac 02 02")
         );
         let wire = wire_bytes(0x0100, &msg);
         assert_eq!(
             wire,
             hex(
-                "03 01 13 02 01 01 03 20 41 01 03 a0 41 01 03 80 3f 01 01 01 04 02 01 01
-                 01 03 b0 40 01 03 40 c0 08 01 01 ac 02 02 8e 4c 00"
+                "03 02 13 02 01 01 03 20 41 01 03 a0 41 01 03 80 3f 01 01 01 04 02 01 01
+                 01 03 b0 40 01 04 40 c0 01 01 01 02 3f 01 01 04 40 01 01 01 03 c0 bf
+                 08 01 01 ac 02 02 16 97 00"
             )
         );
         assert_eq!(through_the_wire(0x0100, &msg), msg);
@@ -628,21 +645,101 @@ mod tests {
     #[test]
     fn vector_8_ant_resolve_reply_fx() {
         let msg = vector_state::<Fx>();
-        let mut payload = [0u8; 64];
+        let mut payload = [0u8; 96];
         let n = postcard::to_slice(&msg, &mut payload).unwrap().len();
         assert_eq!(
             payload[..n],
-            hex("80 80 50 80 80 a0 01 80 80 08 00 02 01 01 80 80 2c ff ff 17 00 01 01 ac 02 02")
+            hex(
+                "80 80 50 80 80 a0 01 80 80 08 00 02 01 01 80 80 2c ff ff 17 01 80 80 04 80 80 10
+                 01 01 ff ff 0b 00 01 01 ac 02 02"
+            )
         );
         let wire = wire_bytes(0x0100, &msg);
         assert_eq!(
             wire,
             hex(
-                "03 01 13 0c 01 80 80 50 80 80 a0 01 80 80 08 0a 02 01 01 80 80 2c ff ff 17
-                 08 01 01 ac 02 02 e5 72 00"
+                "03 02 13 0c 01 80 80 50 80 80 a0 01 80 80 08 16 02 01 01 80 80 2c ff ff 17
+                 01 80 80 04 80 80 10 01 01 ff ff 0b 08 01 01 ac 02 02 2b 76 00"
             )
         );
         assert_eq!(through_the_wire(0x0100, &msg), msg);
+    }
+
+    /// Vector 9: a resolve request around vector 7's state, with one neighbour and one
+    /// obstacle surface.
+    fn vector_resolve_request<S: Scalar>() -> AntResolveRequest<S> {
+        let mut frame = WireResolveFrame::new(Rect::new(v2(0.0, 0.0), v2(100.0, 100.0)));
+        frame.neighbours.push(v2(12.0, 20.5)).unwrap();
+        frame
+            .obstacles
+            .push(Surface {
+                closest: v2(10.0, 21.5),
+                normal: v2(0.0, -1.0),
+            })
+            .unwrap();
+        AntResolveRequest {
+            plan: AntPlan {
+                state: vector_state::<S>().state,
+                predicted: v2(10.0, 20.0),
+            },
+            frame,
+        }
+    }
+
+    #[test]
+    fn vector_9_ant_resolve_request_f32() {
+        let msg = vector_resolve_request::<f32>();
+        let mut payload = [0u8; 128];
+        let n = postcard::to_slice(&msg, &mut payload).unwrap().len();
+        assert_eq!(
+            payload[..n],
+            hex("00 00 20 41 00 00 a0 41 00 00 80 3f 00 00 00 00 02 01 01
+                 00 00 b0 40 00 00 40 c0 01 00 00 00 3f 00 00 00 40 01 01 00 00 c0 bf
+                 00 01 01 ac 02 02
+                 00 00 20 41 00 00 a0 41
+                 00 00 00 00 00 00 00 00 00 00 c8 42 00 00 c8 42
+                 01 00 00 40 41 00 00 a4 41
+                 01 00 00 20 41 00 00 ac 41 00 00 00 00 00 00 80 bf")
+        );
+        let wire = wire_bytes(0x0102, &msg);
+        assert_eq!(
+            wire,
+            hex(
+                "05 02 12 02 01 01 03 20 41 01 03 a0 41 01 03 80 3f 01 01 01 04 02 01 01
+                 01 03 b0 40 01 04 40 c0 01 01 01 02 3f 01 01 04 40 01 01 01 03 c0 bf
+                 06 01 01 ac 02 02 01 03 20 41 01 03 a0 41 01 01 01 01 01 01 01 01 01 03
+                 c8 42 01 04 c8 42 01 01 03 40 41 01 04 a4 41 01 01 03 20 41 01 03 ac 41
+                 01 01 01 01 01 05 80 bf fd 64 00"
+            )
+        );
+        assert_eq!(through_the_wire(0x0102, &msg), msg);
+    }
+
+    #[test]
+    fn vector_9_ant_resolve_request_fx() {
+        let msg = vector_resolve_request::<Fx>();
+        let mut payload = [0u8; 128];
+        let n = postcard::to_slice(&msg, &mut payload).unwrap().len();
+        assert_eq!(
+            payload[..n],
+            hex("80 80 50 80 80 a0 01 80 80 08 00 02 01 01 80 80 2c ff ff 17
+                 01 80 80 04 80 80 10 01 01 ff ff 0b 00 01 01 ac 02 02
+                 80 80 50 80 80 a0 01
+                 00 00 80 80 a0 06 80 80 a0 06
+                 01 80 80 60 80 80 a4 01
+                 01 80 80 50 80 80 ac 01 00 ff ff 07")
+        );
+        let wire = wire_bytes(0x0102, &msg);
+        assert_eq!(
+            wire,
+            hex(
+                "0f 02 12 02 01 80 80 50 80 80 a0 01 80 80 08 16 02 01 01 80 80 2c ff ff 17
+                 01 80 80 04 80 80 10 01 01 ff ff 0b 0d 01 01 ac 02 02 80 80 50 80 80 a0 01
+                 01 19 80 80 a0 06 80 80 a0 06 01 80 80 60 80 80 a4 01 01 80 80 50 80 80 ac
+                 01 06 ff ff 07 0c d1 00"
+            )
+        );
+        assert_eq!(through_the_wire(0x0102, &msg), msg);
     }
 
     // ---- sizes ----
@@ -676,6 +773,11 @@ mod tests {
             nest: u16::MAX,
             origin: u16::MAX,
             arrival: w2(),
+            goal: Some(w2()),
+            follow: Some(Follow {
+                turn: Turn::Cw,
+                winding: S::widest(),
+            }),
             motion: MotionState::InteractEnvironment,
             stop: Some(StopTimer {
                 reason: StopReason::DroppingFood,
@@ -699,7 +801,7 @@ mod tests {
 
     /// Payload lengths of the widest instance of every message.
     fn widest_payloads<S: Widest>() -> [usize; 6] {
-        let mut pf = WirePlanFrame::new(Rect::new(w2(), w2()));
+        let mut pf = WirePlanFrame::<S>::new(Rect::new(w2(), w2()));
         while pf
             .neighbours
             .push(AntNeighbor {
@@ -712,13 +814,13 @@ mod tests {
             })
             .is_ok()
         {}
+        // An obstacle (four scalars) is the widest object.
         while pf
             .objects
-            .push(AntObject::Nest {
-                id: u16::MAX,
-                center: w2(),
-                radius: S::widest(),
-            })
+            .push(AntObject::Obstacle(Surface {
+                closest: w2(),
+                normal: w2(),
+            }))
             .is_ok()
         {}
         let ctx = StepCtx {
@@ -732,6 +834,14 @@ mod tests {
         };
         let mut rf = WireResolveFrame::new(Rect::new(w2(), w2()));
         while rf.neighbours.push(w2()).is_ok() {}
+        while rf
+            .obstacles
+            .push(Surface {
+                closest: w2(),
+                normal: w2(),
+            })
+            .is_ok()
+        {}
         let mut bf = WireBeeFrame::new(S::widest());
         while bf
             .neighbours
@@ -783,8 +893,8 @@ mod tests {
         // [plan req, plan reply, resolve req, resolve reply, bee req, bee reply]
         let f = widest_payloads::<f32>();
         let x = widest_payloads::<Fx>();
-        assert_eq!(f, [361, 48, 129, 40, 745, 98]);
-        assert_eq!(x, [415, 56, 157, 46, 930, 122]);
+        assert_eq!(f, [380, 63, 241, 55, 745, 98]);
+        assert_eq!(x, [441, 74, 296, 64, 930, 122]);
         assert_eq!(f[..4].iter().chain(&x[..4]).max(), Some(&MAX_ANT_PAYLOAD));
         assert_eq!(f[4..].iter().chain(&x[4..]).max(), Some(&MAX_BEE_PAYLOAD));
         assert_eq!(f.iter().chain(&x).max(), Some(&MAX_PAYLOAD));
@@ -794,7 +904,7 @@ mod tests {
         );
         assert_eq!(f[5].max(x[5]), MAX_BEE_REPLY_PAYLOAD);
         assert_eq!(MAX_FRAME, MAX_PAYLOAD + 6 + 4 + 1);
-        assert_eq!((MAX_ANT_FRAME, MAX_BEE_FRAME, MAX_FRAME), (424, 941, 941));
+        assert_eq!((MAX_ANT_FRAME, MAX_BEE_FRAME, MAX_FRAME), (450, 941, 941));
         assert_eq!(payload_len(&ErrorReply { code: u8::MAX }), 1);
         // And such a frame really fits a MAX_FRAME buffer (no zero byte: worst COBS case).
         let mut out = [0u8; MAX_FRAME];

@@ -486,7 +486,7 @@ impl Identity {
     /// use swarm_core::ant::AntParams;
     /// use swarm_core::wire::{Identity, MAX_ANT_FRAME};
     ///
-    /// let device = Identity::of(&AntParams::<f32>::default(), 425, "ant-1").unwrap();
+    /// let device = Identity::of(&AntParams::<f32>::default(), 451, "ant-1").unwrap();
     /// let mut other = AntParams::<f32>::default();
     /// other.speed = 2.0;
     /// let host = Identity::of(&other, MAX_ANT_FRAME, "").unwrap();
@@ -543,7 +543,7 @@ mod tests {
     }
 
     fn ant_identity() -> Identity {
-        Identity::of(&AntParams::<f32>::default(), 425, "ant-node").unwrap()
+        Identity::of(&AntParams::<f32>::default(), 451, "ant-node").unwrap()
     }
 
     #[test]
@@ -726,9 +726,9 @@ mod tests {
         type Case = (fn(&mut Identity), Difference, &'static str);
         let cases: [Case; 9] = [
             (
-                |d| d.protocol = 2,
+                |d| d.protocol = 1,
                 Difference::Protocol,
-                "protocol version 2 ≠ 1",
+                "protocol version 1 ≠ 2",
             ),
             (
                 |d| d.controller = ControllerKind::Bee,
@@ -763,7 +763,7 @@ mod tests {
             (
                 |d| d.max_frame = 100,
                 Difference::MaxFrame,
-                "max frame 100 < 424 bytes",
+                "max frame 100 < 450 bytes",
             ),
             (
                 |d| d.params_hash = 0x0123_4567_89ab_cdef,
@@ -781,7 +781,7 @@ mod tests {
             assert!(msg.starts_with("device \"ant-node\" refused (device ≠ host): "));
         }
         // A device with other parameters.
-        let device = Identity::of(&other, 425, "x").unwrap();
+        let device = Identity::of(&other, 451, "x").unwrap();
         let err = device.check(&host).unwrap_err();
         assert_eq!(
             err.differences().collect::<Vec<_>>(),

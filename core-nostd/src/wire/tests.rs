@@ -9,7 +9,7 @@ use serde::de::DeserializeOwned;
 use super::*;
 use crate::ant::{
     self, AntNeighbor, AntObject, AntParams, AntPlan, AntState, Label, MotionState, StopReason,
-    StopTimer,
+    StopTimer, Surface,
 };
 use crate::bee::{self, BeeNeighbor, BeeParams, BeeState, ObstacleSense};
 use crate::rand::rand;
@@ -192,7 +192,10 @@ fn ant_plan_request<S: Scalar>(g: &mut Gen) -> AntPlanRequest<S> {
         let center = pos + g.v2(-3.0, 3.0);
         let radius = S::from_f32(g.range(0.5, 3.0));
         let o = match g.below(4) {
-            0 => AntObject::Obstacle { closest: center },
+            0 => match Surface::seen_from(pos, center) {
+                Some(surface) => AntObject::Obstacle(surface),
+                None => continue,
+            },
             1 => AntObject::Disturbance { center, radius },
             2 => AntObject::Food {
                 id: g.below(4) as u16,
@@ -223,6 +226,17 @@ fn ant_resolve_request<S: Scalar>(g: &mut Gen, plan: AntPlan<S>) -> AntResolveRe
     ));
     for _ in 0..g.below(WIRE_ANT_NEIGHBOURS as u32 + 1) {
         let _ = frame.neighbours.push(plan.predicted + g.v2(-2.0, 2.0));
+    }
+    // Obstacle surfaces near the ant, seen from its position; now and then one whose normal
+    // is not a unit vector (refused: OutOfRange).
+    for _ in 0..g.below(ant::SURFACES as u32 + 1) {
+        let closest = plan.state.pos + g.v2(-1.5, 1.5);
+        if let Some(mut surface) = Surface::seen_from(plan.state.pos, closest) {
+            if g.chance(0.02) {
+                surface.normal = surface.normal * S::from_f32(1.5);
+            }
+            let _ = frame.obstacles.push(surface);
+        }
     }
     AntResolveRequest { plan, frame }
 }
@@ -273,38 +287,38 @@ fn transcript() -> Vec<(Vec<u8>, Vec<u8>)> {
     vec![
         // 1. A lone 0x00, then Configure (seq 1) before Hello: NoSession (14).
         (
-            hex("00 04 01 03 01 0b 2a c3 8b a1 c0 ec f6 b8 9a 7e 03 cb 39 00"),
-            hex("04 01 0f 01 04 0e 4d b9 00"),
+            hex("00 04 02 03 01 0b 2a c3 8b a1 c0 ec f6 b8 9a 7e 03 ee da 00"),
+            hex("04 02 0f 01 04 0e 9f 57 00"),
         ),
         // 2. Hello (seq 2) -> Identity.
         (
-            hex("04 01 01 02 03 26 a3 00"),
+            hex("04 02 01 02 03 fa 38 00"),
             hex(
-                "04 01 02 02 02 01 01 01 03 08 04 17 a9 03 c3 8b a1 c0 ec f6 b8 9a 7e 08
-                 61 6e 74 2d 6e 6f 64 65 e4 40 00",
+                "04 02 02 02 02 02 01 01 03 08 04 15 c3 03 c3 8b a1 c0 ec f6 b8 9a 7e 08
+                 61 6e 74 2d 6e 6f 64 65 02 40 00",
             ),
         ),
         // 3. Configure (seq 3, session 42, the device's hash, no reset) -> Configured.
         (
-            hex("04 01 03 03 0b 2a c3 8b a1 c0 ec f6 b8 9a 7e 03 0d b3 00"),
-            hex("04 01 04 03 04 2a d4 ad 00"),
+            hex("04 02 03 03 0b 2a c3 8b a1 c0 ec f6 b8 9a 7e 03 28 50 00"),
+            hex("04 02 04 03 04 2a 06 43 00"),
         ),
         // 4. Garbage, then a Ping with a corrupted CRC: both dropped, no reply.
-        (hex("de ad 00 04 01 05 04 07 84 86 88 08 e0 84 00"), vec![]),
+        (hex("de ad 00 04 02 05 04 07 84 86 88 08 95 4c 00"), vec![]),
         // 5. Ping (seq 4, nonce 0xdeadbeef) -> Pong.
         (
-            hex("04 01 05 04 08 ef fd b6 f5 0d d1 f3 00"),
-            hex("04 01 06 04 08 ef fd b6 f5 0d a4 3b 00"),
+            hex("04 02 05 04 08 ef fd b6 f5 0d 95 de 00"),
+            hex("04 02 06 04 08 ef fd b6 f5 0d e0 16 00"),
         ),
         // 6. StatsRequest (seq 5) -> DeviceStats.
         (
-            hex("04 01 07 05 03 11 88 00"),
-            hex("04 01 08 05 04 05 01 01 01 01 06 01 0d 05 03 01 01 05 01 2a 7f d2 00"),
+            hex("04 02 07 05 03 cd 13 00"),
+            hex("04 02 08 05 04 05 01 01 01 01 06 01 0d 05 03 01 01 05 01 2a 7f a0 00"),
         ),
         // 7. Configure (seq 6) with another hash: ParamsMismatch (15), session closed.
         (
-            hex("04 01 03 06 0b 2b c2 8b a1 c0 ec f6 b8 9a 7e 03 cf 44 00"),
-            hex("04 01 0f 06 04 0f fc 2c 00"),
+            hex("04 02 03 06 0b 2b c2 8b a1 c0 ec f6 b8 9a 7e 03 ea a7 00"),
+            hex("04 02 0f 06 04 0f 2e c2 00"),
         ),
     ]
 }
@@ -325,7 +339,7 @@ fn pinned_transcript_messages() {
     let params = AntParams::<f32>::default();
     let hash = params_hash(&params).unwrap();
     assert_eq!(hash, 0x7e34_e3b6_c808_45c3);
-    assert_eq!(frame_of(2, &Hello), hex("04 01 01 02 03 26 a3 00"));
+    assert_eq!(frame_of(2, &Hello), hex("04 02 01 02 03 fa 38 00"));
     let id = Identity::of(&params, MAX_ANT_FRAME + 1, "ant-node").unwrap();
     assert_eq!(
         id,
@@ -452,8 +466,8 @@ fn identity_says_what_the_device_runs() {
     );
     assert_eq!(usize::from(ant.max_frame), MAX_ANT_FRAME + 1);
     // The buffer sizes of docs/protocol.md, section 10.7.
-    assert_eq!((MAX_ANT_FRAME, MAX_BEE_FRAME), (424, 941));
-    assert_eq!((MAX_ANT_REPLY_FRAME, MAX_BEE_REPLY_FRAME), (79, 130));
+    assert_eq!((MAX_ANT_FRAME, MAX_BEE_FRAME), (450, 941));
+    assert_eq!((MAX_ANT_REPLY_FRAME, MAX_BEE_REPLY_FRAME), (82, 130));
     assert_eq!(usize::from(bee_device::<Fx>().identity().max_frame), 942);
     assert_eq!(ant.name, "ant-test");
     let bee = bee_device::<f32>().identity();
@@ -606,9 +620,10 @@ fn payloads_that_do_not_decode_get_payload_errors() {
 #[test]
 fn a_frame_of_another_version_is_answered_with_version() {
     let mut dev = ant_device::<f32>();
-    // A CRC-valid version-2 Ping, seq 0x1234, and a version-2 ErrorReply (not answered).
-    let v2 = |kind: u8, seq: u16, payload: &[u8]| {
-        let mut raw = vec![2, kind];
+    // A CRC-valid Ping of version 1 (the previous release), seq 0x1234, and a version-1
+    // ErrorReply (not answered).
+    let v1 = |kind: u8, seq: u16, payload: &[u8]| {
+        let mut raw = vec![1, kind];
         raw.extend_from_slice(&seq.to_le_bytes());
         raw.extend_from_slice(payload);
         raw.extend_from_slice(&CRC16.checksum(&raw).to_le_bytes());
@@ -618,11 +633,14 @@ fn a_frame_of_another_version_is_answered_with_version() {
         out.push(0);
         out
     };
-    let mut line = v2(kind::PING, 0x1234, &[5]);
-    line.extend(v2(kind::ERROR_REPLY, 0x1235, &[1]));
+    let mut line = v1(kind::PING, 0x1234, &[5]);
+    // docs/protocol.md, section 10.4 (computed with the Python reference, appendix A).
+    assert_eq!(line, hex("08 01 05 34 12 05 c9 2b 00"));
+    line.extend(v1(kind::ERROR_REPLY, 0x1235, &[1]));
     let r = replies(&mut dev, &line);
     assert_eq!(r.len(), 1);
     assert_eq!(r[0][1], PROTOCOL_VERSION); // answered in our version
+    assert_eq!(r[0], hex("08 02 0f 34 12 0a 5f 5c 00"));
     assert_eq!(error_code(&r[0]), (0x1234, ErrorReply::VERSION));
     let s = dev.stats();
     assert_eq!((s.link.version_errors, s.errors, s.requests), (2, 1, 0));

@@ -6,7 +6,7 @@
 
 use swarm_core::ant::{
     self, AntNeighbor, AntObject, AntParams, AntPlan, AntState, Label, PlanFrame, ResolveFrame,
-    StopReason,
+    StopReason, Surface,
 };
 use swarm_core::rand::rand;
 use swarm_core::{Rect, Scalar, StepCtx, Vec2};
@@ -104,8 +104,10 @@ impl<S: Scalar> World<S> {
             let d = me.pos - r.center;
             if let Some(u) = d.normalized() {
                 let closest = r.center + u * r.radius;
-                if (closest - me.pos).length() <= sense {
-                    let _ = f.objects.push(AntObject::Obstacle { closest });
+                if (closest - me.pos).length() <= sense
+                    && let Some(surface) = Surface::seen_from(me.pos, closest)
+                {
+                    let _ = f.objects.push(AntObject::Obstacle(surface));
                 }
             }
         }

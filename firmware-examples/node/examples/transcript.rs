@@ -22,7 +22,7 @@
 
 use std::io::Write as _;
 
-use fw_node::swarm_core::ant::{AntNeighbor, AntObject, AntPlan, AntState, PlanFrame};
+use fw_node::swarm_core::ant::{AntNeighbor, AntObject, AntPlan, AntState, PlanFrame, Surface};
 use fw_node::swarm_core::bee::{BeeNeighbor, BeeState, ObstacleSense};
 use fw_node::swarm_core::wire::{
     self, AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, BeeStepReply,
@@ -171,8 +171,10 @@ where
             }
             if let Some(u) = (me - rock.0).normalized() {
                 let closest = rock.0 + u * s(rock.1);
-                if (closest - me).length() <= sense {
-                    let _ = frame.objects.push(AntObject::Obstacle { closest });
+                if (closest - me).length() <= sense
+                    && let Some(surface) = Surface::seen_from(me, closest)
+                {
+                    let _ = frame.objects.push(AntObject::Obstacle(surface));
                 }
             }
             if near(danger.0, danger.1) {

@@ -115,10 +115,10 @@ fn hello(seq: u16) -> Vec<u8> {
 fn ant_node_f32_answers_hello_with_the_identity_of_protocol_md_section_11() {
     // docs/protocol.md §11 step 2, byte for byte (a lone 00 first, as a host sends it).
     let mut line = vec![0u8];
-    line.extend(hex("04 01 01 02 03 26 a3 00"));
+    line.extend(hex("04 02 01 02 03 fa 38 00"));
     let want = hex(
-        "04 01 02 02 02 01 01 01 03 08 04 17 a9 03 c3 8b a1 c0 ec f6 b8 9a 7e 08 \
-         61 6e 74 2d 6e 6f 64 65 e4 40 00",
+        "04 02 02 02 02 02 01 01 03 08 04 15 c3 03 c3 8b a1 c0 ec f6 b8 9a 7e 08 \
+         61 6e 74 2d 6e 6f 64 65 02 40 00",
     );
     for chunk in [1, 3, READ_CHUNK] {
         let mut device = ant_device::<f32>("ant-node").unwrap();

@@ -22,6 +22,7 @@
 use crate::{Meter, Sink, Stats, Word, uniform};
 use swarm_core::ant::{
     self, AntNeighbor, AntObject, AntParams, AntPlan, AntState, Label, PlanFrame, ResolveFrame,
+    Surface,
 };
 use swarm_core::{Checked, Rect, Scalar, StepCtx, Vec2};
 
@@ -45,6 +46,8 @@ const SENSE: f32 = 8.0;
 /// Neighbours are reported within this distance (beyond the controller's contact range, so
 /// its own range filter runs too).
 const HEAR: f32 = 3.0;
+/// Obstacle surfaces are heard in the resolve phase within this distance (a step, and some).
+const STEP_REACH: f32 = 1.1;
 
 /// The static world, in scalar `S`.
 struct World<S> {
@@ -102,11 +105,10 @@ impl<S: Scalar> World<S> {
                 radius: self.food.1,
             });
         }
-        if let Some(u) = (me - self.rock.0).normalized() {
-            let closest = self.rock.0 + u * self.rock.1;
-            if (closest - me).length() <= sense {
-                let _ = f.objects.push(AntObject::Obstacle { closest });
-            }
+        if let Some(surface) = self.rock_seen_from(me)
+            && (surface.closest - me).length() <= sense
+        {
+            let _ = f.objects.push(AntObject::Obstacle(surface));
         }
         if near(self.danger.0, self.danger.1) {
             let _ = f.objects.push(AntObject::Disturbance {
@@ -117,11 +119,23 @@ impl<S: Scalar> World<S> {
         f
     }
 
+    /// The rock's surface as an ant at `me` (outside it) senses it.
+    fn rock_seen_from(&self, me: Vec2<S>) -> Option<Surface<S>> {
+        let u = (me - self.rock.0).normalized()?;
+        Surface::seen_from(me, self.rock.0 + u * self.rock.1)
+    }
+
     /// What ant `i` hears in the resolve phase: the predictions of the others within [`HEAR`]
-    /// of its own prediction, in id order.
+    /// of its own prediction, in id order; and the rock's surface if it is within a step.
     fn resolve_frame(&self, plans: &[Option<AntPlan<S>>], i: usize) -> ResolveFrame<S, N> {
         let mut f = ResolveFrame::new(self.bounds);
         let Some(me) = plans[i] else { return f };
+        let pos = me.state.pos;
+        if let Some(surface) = self.rock_seen_from(pos)
+            && (surface.closest - pos).length() <= S::from_f32(STEP_REACH)
+        {
+            let _ = f.obstacles.push(surface);
+        }
         let hear = S::from_f32(HEAR);
         for (j, p) in plans.iter().enumerate() {
             if let Some(p) = p

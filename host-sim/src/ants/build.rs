@@ -63,6 +63,10 @@ impl AntSim {
                 }
             }
         }
+        // An obstacle put on top of ants pushes them out (counted in `moved_out`).
+        if o.kind == AntObjectKind::Obstacle && o.active {
+            self.move_out_of_obstacles();
+        }
     }
 }
 
@@ -153,7 +157,14 @@ fn spawn<S: SimScalar>(
                 Vec2::from_f32(heading[0], heading[1]),
             );
             if at_nest {
-                AntState::at_nest(nest, p, h)
+                // Spawned around its nest, it has just left it: its latest arrival at the nest
+                // (where it heads when laden) is the nest's centre, inside the nest even when
+                // the spawn area is wider than the nest.
+                let c: [f32; 2] = around_center(scenario, g.nest.as_deref().unwrap_or_default());
+                AntState {
+                    arrival: Vec2::from_f32(c[0], c[1]),
+                    ..AntState::at_nest(nest, p, h)
+                }
             } else {
                 AntState::exploring(nest, p, h)
             }

@@ -3,7 +3,7 @@
 //! objects in sensing range, the arena; then, for the second phase, the neighbours' broadcast
 //! plans. The HIL harness feeds devices with these same functions.
 
-use swarm_core::ant::{AntNeighbor, AntObject, PlanFrame, ResolveFrame};
+use swarm_core::ant::{AntNeighbor, AntObject, PlanFrame, ResolveFrame, SURFACES, Surface};
 use swarm_core::wire::{WIRE_ANT_NEIGHBOURS, WIRE_ANT_OBJECTS};
 use swarm_core::{Rect, Vec2};
 
@@ -206,9 +206,13 @@ pub(crate) fn fill_plan_frame_noting<S: SimScalar>(
         let o = &w.objects[k];
         let c = |p: [f32; 2]| Vec2::new(S::from_f32(p[0]), S::from_f32(p[1]));
         let sensed = match (&o.kind, o.circle()) {
-            (AntObjectKind::Obstacle, _) => AntObject::Obstacle {
-                closest: c(o.closest(p2).0),
-            },
+            (AntObjectKind::Obstacle, _) => {
+                let (closest, normal, _) = o.surface(p2);
+                AntObject::Obstacle(Surface {
+                    closest: c(closest),
+                    normal: c(normal),
+                })
+            }
             (AntObjectKind::Waypoint { .. }, Some((center, radius))) if o.id == home => {
                 AntObject::Nest {
                     id: o.id,
@@ -259,6 +263,7 @@ pub(crate) fn fill_resolve_frame_from<S: SimScalar>(
     let Some(slots) = around.slots() else {
         return fill_resolve_frame(w, i, frame);
     };
+    fill_obstacles(w, i, frame);
     frame.neighbours.clear();
     let me = w.predicted[i];
     let r2 = w.collision_range * w.collision_range;
@@ -282,6 +287,7 @@ pub(crate) fn fill_resolve_frame<S: SimScalar>(
     i: usize,
     frame: &mut AntResolveFrame<S>,
 ) {
+    fill_obstacles(w, i, frame);
     frame.neighbours.clear();
     let me = w.predicted[i];
     let r2 = w.collision_range * w.collision_range;
@@ -300,6 +306,50 @@ pub(crate) fn fill_resolve_frame<S: SimScalar>(
     });
     for j in near.slots() {
         let _ = frame.neighbours.push(v2(w.predicted[j]));
+    }
+}
+
+/// The obstacle surfaces of ant `i`'s resolve frame: every convex piece of an active obstacle
+/// within [`AntWorld::step_reach`] of its position (a disc, a polygon edge; from inside an
+/// obstacle, the way out), nearest first (ties: object, then edge order), each point once.
+fn fill_obstacles<S: SimScalar>(w: &AntWorld, i: usize, frame: &mut AntResolveFrame<S>) {
+    frame.obstacles.clear();
+    let me = w.sensed.pos[i];
+    let p = [me[0] as f32, me[1] as f32];
+    let reach = w.step_reach;
+    // Pieces offered (more than this many within one step are not sensed).
+    let mut found = [([0.0f32; 2], [0.0f32; 2]); 4 * SURFACES];
+    let mut len = 0usize;
+    let mut near = Nearest::<SURFACES>::new();
+    let mut visit = |o: &AntObjectDef| {
+        if !o.active || o.kind != AntObjectKind::Obstacle || !o.may_be_within(p, reach) {
+            return;
+        }
+        o.pieces_within(p, reach, |q, n, d| {
+            if len < found.len() && !found[..len].iter().any(|f| f.0 == q) {
+                found[len] = (q, n);
+                near.offer(d, len as u32, len as u32);
+                len += 1;
+            }
+        });
+    };
+    match w.objects_near(p).filter(|_| reach <= w.sense_range) {
+        Some(mut mask) => {
+            while mask != 0 {
+                let k = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                visit(&w.objects[k]);
+            }
+        }
+        None => w.objects.iter().for_each(&mut visit),
+    }
+    let c = |p: [f32; 2]| Vec2::new(S::from_f32(p[0]), S::from_f32(p[1]));
+    for k in near.slots() {
+        let (q, n) = found[k];
+        let _ = frame.obstacles.push(Surface {
+            closest: c(q),
+            normal: c(n),
+        });
     }
 }
 

@@ -7,12 +7,12 @@ use swarm_core::ant::{
     self, AntParams, AntPlan, AntState, Label, PlanFrame, ResolveFrame, StopReason,
 };
 use swarm_core::rand;
-use swarm_core::{Checked, Fx, StepCtx};
+use swarm_core::{Checked, Fx, StepCtx, Vec2};
 
 use super::sense::{
     Around, bounds, fill_plan_frame_noting, fill_resolve_frame, fill_resolve_frame_from,
 };
-use super::world::{AntObjectKind, AntWorld};
+use super::world::{AntObjectDef, AntObjectKind, AntWorld};
 use crate::by_scalar;
 use crate::error::{Result, SimError};
 use crate::grid::permuted;
@@ -189,6 +189,37 @@ impl<S: SimScalar> AntGroup<S> {
         w.sensed.write(self.first, &self.ids, &self.states);
     }
 
+    /// Moves the group's ants that are inside an active obstacle of `objects` out (see
+    /// [`AntSim::move_out_of_obstacles`]); returns how many.
+    fn move_out(&mut self, objects: &[AntObjectDef], min: [f32; 2], max: [f32; 2]) -> usize {
+        let beyond = 2.0 * ant::SURFACE_MARGIN;
+        let mut moved = 0;
+        for s in &mut self.states {
+            let mut p = [s.pos.x.to_f32(), s.pos.y.to_f32()];
+            let mut inside = false;
+            // Out of one obstacle may be into another that overlaps it: a few rounds.
+            for _ in 0..4 {
+                let hit = objects
+                    .iter()
+                    .filter(|o| o.active && o.kind == AntObjectKind::Obstacle)
+                    .map(|o| o.surface(p))
+                    .find(|&(_, _, inside)| inside);
+                let Some((q, n, _)) = hit else { break };
+                inside = true;
+                p = [
+                    (q[0] + n[0] * beyond).clamp(min[0], max[0]),
+                    (q[1] + n[1] * beyond).clamp(min[1], max[1]),
+                ];
+            }
+            if inside {
+                s.pos = Vec2::new(S::from_f32(p[0]), S::from_f32(p[1]));
+                s.follow = None;
+                moved += 1;
+            }
+        }
+        moved
+    }
+
     /// The states in id order.
     pub fn states_by_id(&self) -> Vec<(u32, AntState<S>)> {
         let mut v: Vec<(u32, AntState<S>)> = self
@@ -300,6 +331,8 @@ pub struct AntSim {
     pub step: u32,
     /// Re-sort the slots by grid cell every this many ticks (0: never). Changes no result.
     pub reorder_every: u32,
+    /// Ants moved out of obstacles so far ([`AntSim::move_out_of_obstacles`]).
+    pub moved_out: u64,
     /// Whether this tick's predictions stayed within the step bound the plan queries assumed
     /// (then the resolve frames come from the noted ants).
     noted: bool,
@@ -312,6 +345,11 @@ impl AntSim {
         world.sensed.resize(n);
         world.size_grids(n);
         world.predicted.resize(n, [0.0; 2]);
+        world.step_reach = groups
+            .iter()
+            .map(|g| by_scalar!(g, g => g.step_bound()))
+            .fold(0.0, f32::max)
+            + world.rounding_margin();
         for g in &groups {
             by_scalar!(g, g => world.sensed.write(g.first, &g.ids, &g.states));
         }
@@ -321,10 +359,31 @@ impl AntSim {
             seed,
             step: 0,
             reorder_every: 16,
+            moved_out: 0,
             noted: false,
         };
+        sim.move_out_of_obstacles();
         sim.reorder();
         sim
+    }
+
+    /// Moves every ant that is inside an active obstacle (it spawned there, or an event put
+    /// the obstacle on top of it) out, just beyond the nearest point of the obstacle's
+    /// boundary, and counts it in [`AntSim::moved_out`]. Returns how many moved.
+    pub fn move_out_of_obstacles(&mut self) -> usize {
+        let w = &mut self.world;
+        let mut moved = 0;
+        for g in &mut self.groups {
+            by_scalar!(g, g => {
+                let n = g.move_out(&w.objects, w.min, w.max);
+                if n > 0 {
+                    w.sensed.write(g.first, &g.ids, &g.states);
+                }
+                moved += n;
+            });
+        }
+        self.moved_out += moved as u64;
+        moved
     }
 
     /// Sorts every group's slots by grid cell (memory locality for the neighbour queries).

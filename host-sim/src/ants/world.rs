@@ -77,6 +77,69 @@ impl AntObjectDef {
         }
     }
 
+    /// The object's surface as an ant at `p` senses it: the closest boundary point, the unit
+    /// outward normal there (pointing into free space; for `p` inside, from `p` through the
+    /// closest point, the way out), and whether `p` is inside.
+    pub fn surface(&self, p: [f32; 2]) -> ([f32; 2], [f32; 2], bool) {
+        match &self.shape {
+            Shape2::Circle { center, .. } => {
+                let (q, inside) = self.closest(p);
+                let n = unit([q[0] - center[0], q[1] - center[1]]).unwrap_or([1.0, 0.0]);
+                (q, n, inside)
+            }
+            Shape2::Polygon { points } => {
+                let (q, inside, edge) = closest_on_polygon_edge(points, p);
+                let d = if inside {
+                    [q[0] - p[0], q[1] - p[1]]
+                } else {
+                    [p[0] - q[0], p[1] - q[1]]
+                };
+                let n = unit(d).unwrap_or_else(|| edge_normal(points, edge));
+                (q, n, inside)
+            }
+        }
+    }
+
+    /// The convex pieces of the obstacle within `reach` of `p`, as sensed surfaces
+    /// `(closest, outward normal, distance)`: a disc is one piece, a polygon one per edge (so
+    /// that staying in front of each keeps an ant out of a concave polygon too; edges meeting
+    /// at the closest vertex give the same point, reported once). From inside, the one way
+    /// out: the closest boundary point.
+    pub fn pieces_within(
+        &self,
+        p: [f32; 2],
+        reach: f32,
+        mut f: impl FnMut([f32; 2], [f32; 2], f32),
+    ) {
+        let points = match &self.shape {
+            Shape2::Polygon { points } if !self.surface(p).2 => points,
+            _ => {
+                let (q, n, inside) = self.surface(p);
+                let d = if inside {
+                    0.0
+                } else {
+                    (p[0] - q[0]).hypot(p[1] - q[1])
+                };
+                if d <= reach {
+                    f(q, n, d);
+                }
+                return;
+            }
+        };
+        let k = points.len();
+        let mut last: Option<[f32; 2]> = None;
+        for e in 0..k {
+            let q = closest_on_segment(points[e], points[(e + 1) % k], p);
+            let d = (p[0] - q[0]).hypot(p[1] - q[1]);
+            if d > reach || last == Some(q) {
+                continue;
+            }
+            let n = unit([p[0] - q[0], p[1] - q[1]]).unwrap_or_else(|| edge_normal(points, e));
+            last = Some(q);
+            f(q, n, d);
+        }
+    }
+
     /// A cheap test: false only if `p` is certainly farther than `range` from the object.
     pub fn may_be_within(&self, p: [f32; 2], range: f32) -> bool {
         match &self.shape {
@@ -118,29 +181,69 @@ impl AntObjectDef {
 
 /// Closest boundary point of a polygon and whether `p` is inside (even-odd rule).
 fn closest_on_polygon(points: &[[f32; 2]], p: [f32; 2]) -> ([f32; 2], bool) {
-    let mut best = (f32::INFINITY, p);
+    let (q, inside, _) = closest_on_polygon_edge(points, p);
+    (q, inside)
+}
+
+/// [`closest_on_polygon`], and the edge (from vertex `k` to `k + 1`) the point is on.
+fn closest_on_polygon_edge(points: &[[f32; 2]], p: [f32; 2]) -> ([f32; 2], bool, usize) {
+    let mut best = (f32::INFINITY, p, 0);
     let mut inside = false;
     let n = points.len();
     for k in 0..n {
         let (a, b) = (points[k], points[(k + 1) % n]);
-        let ab = [b[0] - a[0], b[1] - a[1]];
-        let ap = [p[0] - a[0], p[1] - a[1]];
-        let len2 = ab[0] * ab[0] + ab[1] * ab[1];
-        let t = if len2 > 0.0 {
-            ((ap[0] * ab[0] + ap[1] * ab[1]) / len2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let q = [a[0] + ab[0] * t, a[1] + ab[1] * t];
+        let q = closest_on_segment(a, b, p);
         let d = (p[0] - q[0]).hypot(p[1] - q[1]);
         if d < best.0 {
-            best = (d, q);
+            best = (d, q, k);
         }
-        if (a[1] > p[1]) != (b[1] > p[1]) && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * ab[0] {
+        if (a[1] > p[1]) != (b[1] > p[1])
+            && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0])
+        {
             inside = !inside;
         }
     }
-    (best.1, inside)
+    (best.1, inside, best.2)
+}
+
+/// The point of segment `a`-`b` closest to `p`.
+fn closest_on_segment(a: [f32; 2], b: [f32; 2], p: [f32; 2]) -> [f32; 2] {
+    let ab = [b[0] - a[0], b[1] - a[1]];
+    let ap = [p[0] - a[0], p[1] - a[1]];
+    let len2 = ab[0] * ab[0] + ab[1] * ab[1];
+    let t = if len2 > 0.0 {
+        ((ap[0] * ab[0] + ap[1] * ab[1]) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    [a[0] + ab[0] * t, a[1] + ab[1] * t]
+}
+
+/// `v` scaled to unit length (`None` for a zero vector).
+fn unit(v: [f32; 2]) -> Option<[f32; 2]> {
+    let l = v[0].hypot(v[1]);
+    (l > 1e-12).then(|| [v[0] / l, v[1] / l])
+}
+
+/// The outward unit normal of edge `k` of a polygon (for a point exactly on it).
+fn edge_normal(points: &[[f32; 2]], k: usize) -> [f32; 2] {
+    let n = points.len();
+    let (a, b) = (points[k], points[(k + 1) % n]);
+    // Twice the signed area: positive for counter-clockwise vertices, whose outside is on the
+    // right of each edge.
+    let area: f32 = (0..n)
+        .map(|i| {
+            let (p, q) = (points[i], points[(i + 1) % n]);
+            p[0] * q[1] - q[0] * p[1]
+        })
+        .sum();
+    let right = [b[1] - a[1], a[0] - b[0]];
+    let out = if area >= 0.0 {
+        right
+    } else {
+        [-right[0], -right[1]]
+    };
+    unit(out).unwrap_or([1.0, 0.0])
 }
 
 /// The arena, its objects and the sensed ants.
@@ -158,6 +261,9 @@ pub struct AntWorld {
     pub contact_range: f32,
     /// Largest collision range of any group (query radius of the resolve frame).
     pub collision_range: f32,
+    /// The longest move of any group's ant in one tick, and some for the rounding: the
+    /// resolve frame senses the obstacle pieces within this distance.
+    pub step_reach: f32,
     /// The way points in visiting order (object ids; empty: no route). See [`AntWorld::target_of`].
     pub route: Vec<u16>,
     /// Sensed state of every ant at the previous step.
@@ -241,6 +347,7 @@ impl AntWorld {
             sense_range: 2.0 * contact_range.max(collision_range),
             contact_range,
             collision_range,
+            step_reach: 1.1,
             route: Vec::new(),
             sensed: Sensed::default(),
             predicted: Vec::new(),
