@@ -96,7 +96,13 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             out,
             quiet,
         } => {
-            let sc = swarm_sim::scenario::resolve(&scenario)?;
+            if let Some(steps) = steps {
+                swarm_sim::scenario::check_steps(steps, "--steps")?;
+            }
+            let (sc, warnings) = swarm_sim::scenario::resolve_with_warnings(&scenario)?;
+            for w in &warnings {
+                eprintln!("{w}");
+            }
             let out = out.unwrap_or_else(|| PathBuf::from("out").join(&sc.name));
             let opts = swarm_sim::run::RunOptions {
                 out: out.clone(),
@@ -104,6 +110,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 seed,
                 threads,
                 progress: !quiet && std::io::IsTerminal::is_terminal(&std::io::stderr()),
+                warnings,
             };
             let report = swarm_sim::run::run(&sc, &opts)?;
             let s = &report.summary;
@@ -141,6 +148,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             threads,
             json,
         } => {
+            swarm_sim::scenario::check_steps(steps, "--steps")?;
             // Refuse an output path that cannot be written before a long run, not after.
             if let Some(dir) = json.as_ref().and_then(|p| p.parent())
                 && !dir.as_os_str().is_empty()
