@@ -24,7 +24,8 @@ pub const ANT_COLLISION_DISTANCE: f32 = 0.5;
 /// How to run a scenario.
 #[derive(Clone, Debug)]
 pub struct RunOptions {
-    /// Output folder (created).
+    /// Output folder: created, or replaced whole, when the run completes (an existing one must
+    /// hold only run files).
     pub out: PathBuf,
     /// Override the scenario's steps.
     pub steps: Option<u32>,

@@ -37,7 +37,8 @@ enum Command {
         /// Worker threads (default: all cores; results are identical for any count).
         #[arg(long)]
         threads: Option<usize>,
-        /// Output folder (default: `out/<scenario name>`).
+        /// Output folder (default: `out/<scenario name>`); a finished run replaces it whole, a
+        /// killed or failed one leaves it as it was.
         #[arg(long)]
         out: Option<PathBuf>,
         /// No progress bar.
