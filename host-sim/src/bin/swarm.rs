@@ -100,7 +100,13 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             if let Some(steps) = steps {
                 swarm_sim::scenario::check_steps(steps, "--steps")?;
             }
-            let (sc, warnings) = swarm_sim::scenario::resolve_with_warnings(&scenario)?;
+            let (sc, mut warnings) = swarm_sim::scenario::resolve_with_warnings(&scenario)?;
+            if let Some(steps) = steps {
+                // Not those of the events `--steps` drops.
+                let mut shortened = sc.clone();
+                shortened.set_steps(steps);
+                warnings.retain(|w| w.applies_to(&shortened));
+            }
             for w in &warnings {
                 eprintln!("{w}");
             }
@@ -164,6 +170,8 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             let text = serde_json::to_string_pretty(&report)?;
             println!("{text}");
             if let Some(path) = json {
+                // What a killed earlier bench left beside the report.
+                swarm_sim::output::remove_stale_temps(&path);
                 swarm_sim::output::write_atomic_bytes(&path, (text + "\n").as_bytes())?;
             }
             Ok(())

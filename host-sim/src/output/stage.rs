@@ -38,7 +38,9 @@ use super::{
     POSITIONS_NPY, RUN_GIF, RUN_LOG, SCENE_JSON, SNAPSHOT_PNG, SUMMARY_JSON, TRAJECTORIES_CSV,
 };
 
-/// Every file a run writes into its folder.
+/// Every file a run writes into its folder. A new output file must be listed here: a run
+/// refuses to replace a folder holding a file not listed (the tests that identify whole run
+/// folders, `host-sim/tests/common`, fail when a run writes an unlisted file).
 pub const RUN_FILES: &[&str] = &[
     SCENE_JSON,
     TRAJECTORIES_CSV,
