@@ -29,6 +29,21 @@ pub enum SimError {
     /// An output could not be written or read (the path in the message).
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
+    /// A run failed after it started writing: its output folder was left as it was, and the
+    /// run's log (ending with the error) kept beside it, when it could be.
+    #[error(
+        "{error}\n{} was left untouched{}",
+        target.display(),
+        log.as_ref().map_or_else(String::new, |l| format!("; the failed run's log is {}", l.display()))
+    )]
+    RunFailed {
+        /// The output folder the run was to replace.
+        target: std::path::PathBuf,
+        /// The failed run's log, if it could be kept.
+        log: Option<std::path::PathBuf>,
+        /// What went wrong.
+        error: Box<SimError>,
+    },
 }
 
 impl SimError {

@@ -15,7 +15,7 @@ use crate::output::{
     summary::{GroupSummary, pair_stats, state_counts_of},
 };
 use crate::scalar::SimScalar;
-use crate::scenario::{Action, Model, ObjectKind, Scenario, World};
+use crate::scenario::{Action, Model, ObjectKind, Scenario, ScenarioWarning, World};
 use crate::{Result, SimError};
 
 /// Ants closer than this (body lengths) count as a collision in the summary.
@@ -24,7 +24,8 @@ pub const ANT_COLLISION_DISTANCE: f32 = 0.5;
 /// How to run a scenario.
 #[derive(Clone, Debug)]
 pub struct RunOptions {
-    /// Output folder (created).
+    /// Output folder: created, or replaced whole, when the run completes (an existing one must
+    /// hold only run files).
     pub out: PathBuf,
     /// Override the scenario's steps.
     pub steps: Option<u32>,
@@ -34,6 +35,11 @@ pub struct RunOptions {
     pub threads: Option<usize>,
     /// Show a progress bar.
     pub progress: bool,
+    /// The scenario's warnings (from [`scenario::resolve_with_warnings`]), recorded in the run
+    /// log; those of events that `steps` drops are left out.
+    ///
+    /// [`scenario::resolve_with_warnings`]: crate::scenario::resolve_with_warnings
+    pub warnings: Vec<ScenarioWarning>,
 }
 
 /// What a run produced.
@@ -46,26 +52,66 @@ pub struct RunReport {
 }
 
 /// Runs `scenario` as `opts` say and writes its outputs.
+///
+/// The outputs appear together or not at all: the run writes into a staging folder beside
+/// `opts.out` and swaps it in at the end ([`output::Staging`]), so `opts.out` holds exactly one
+/// run at every instant. A scenario that cannot run (`--steps 0`, ...) is refused before any
+/// folder is touched; a run that fails leaves `opts.out` as it was and reports where its log
+/// went ([`SimError::RunFailed`]).
 pub fn run(scenario: &Scenario, opts: &RunOptions) -> Result<RunReport> {
     let mut sc = scenario.clone();
     if let Some(steps) = opts.steps {
         sc.set_steps(steps);
     }
+    // The overrides go through the scenario's own rules (`--steps 0` like `steps = 0`).
+    sc.validate()?;
     let seed = opts.seed.unwrap_or(sc.seed);
     let (pool, threads) = crate::par::pool(opts.threads)?;
-    std::fs::create_dir_all(&opts.out).map_err(|e| {
-        SimError::Output(output::OutputError::io("creating the folder", &opts.out, e))
-    })?;
-    let mut log = RunLog::create(opts.out.join(output::RUN_LOG))?;
-    log.line(format_args!(
-        "scenario {} ({} agents, {} steps, seed {seed}, {threads} threads)",
-        sc.name,
-        sc.agent_count(),
-        sc.steps
-    ))?;
-    match sc.world.model() {
-        Model::Ant => pool.install(|| run_ants(&sc, seed, threads, opts, &mut log)),
-        Model::Bee => pool.install(|| run_bees(&sc, seed, threads, opts, &mut log)),
+    let stage = output::Staging::begin(&opts.out)?;
+    let mut log = match RunLog::create(stage.path().join(output::RUN_LOG)) {
+        Ok(log) => log,
+        Err(e) => return Err(failed(opts, None, e.into())),
+    };
+    let result = log
+        .line(format_args!(
+            "scenario {} ({} agents, {} steps, seed {seed}, {threads} threads)",
+            sc.name,
+            sc.agent_count(),
+            sc.steps
+        ))
+        .map_err(SimError::from)
+        .and_then(|()| {
+            for w in opts.warnings.iter().filter(|w| w.applies_to(&sc)) {
+                log.line(w)?;
+            }
+            let dir = stage.path();
+            match sc.world.model() {
+                Model::Ant => pool.install(|| run_ants(&sc, seed, threads, opts, dir, &mut log)),
+                Model::Bee => pool.install(|| run_bees(&sc, seed, threads, opts, dir, &mut log)),
+            }
+        });
+    let (stage, error) = match result {
+        Ok(report) => match stage.commit() {
+            Ok(()) => return Ok(report),
+            Err(failure) => {
+                let (stage, e) = *failure;
+                (stage, SimError::from(e))
+            }
+        },
+        Err(e) => (stage, e),
+    };
+    // Best effort: the disk may be full, or the log itself the file that failed.
+    let _ = log.line(format_args!("error: {error}"));
+    drop(log);
+    Err(failed(opts, stage.abandon(), error))
+}
+
+/// The error of a run that failed after it began: `opts.out` was left untouched.
+fn failed(opts: &RunOptions, log: Option<PathBuf>, error: SimError) -> SimError {
+    SimError::RunFailed {
+        target: opts.out.clone(),
+        log,
+        error: Box::new(error),
     }
 }
 
@@ -184,6 +230,7 @@ fn run_ants(
     seed: u32,
     threads: usize,
     opts: &RunOptions,
+    dir: &Path,
     log: &mut RunLog,
 ) -> Result<RunReport> {
     let sim = AntSim::from_scenario(sc, seed)?;
@@ -201,7 +248,7 @@ fn run_ants(
         nest_names,
         delivered: 0,
     };
-    run_loop(sc, engine, summary, opts, log)
+    run_loop(sc, engine, summary, opts, dir, log)
 }
 
 fn run_bees(
@@ -209,6 +256,7 @@ fn run_bees(
     seed: u32,
     threads: usize,
     opts: &RunOptions,
+    dir: &Path,
     log: &mut RunLog,
 ) -> Result<RunReport> {
     let sim = BeeSim::from_scenario(sc, seed)?;
@@ -219,21 +267,23 @@ fn run_bees(
         .map(|g| g.bee_params().radius)
         .fold(0.0, f32::max);
     let summary = summary_for(sc, seed, threads, sim.agents(), 2.0 * radius);
-    run_loop(sc, sim, summary, opts, log)
+    run_loop(sc, sim, summary, opts, dir, log)
 }
 
 /// The run loop every model shares: events before each tick, the tick, recording every
 /// `outputs.every` ticks (and the last), a progress bar, then the outputs. Trajectories stream
-/// to their files as they are recorded; only the frames the pictures need stay in memory.
+/// to their files (in `dir`, the staging folder) as they are recorded; only the frames the
+/// pictures need stay in memory.
 fn run_loop(
     sc: &Scenario,
     mut engine: impl Engine,
     mut summary: Summary,
     opts: &RunOptions,
+    dir: &Path,
     log: &mut RunLog,
 ) -> Result<RunReport> {
     let every = sc.outputs.every.max(1);
-    let mut rec = Recorder::new(sc, &opts.out, engine.agents())?;
+    let mut rec = Recorder::new(sc, dir, engine.agents())?;
     let first = engine.frame();
     record(&mut summary, &first, 0);
     rec.push(first)?;
@@ -267,7 +317,12 @@ fn run_loop(
         "done: {} ticks in {:.2} s ({:.3e} agent-steps/s), {closing}",
         sc.steps, summary.wall_seconds, summary.agent_steps_per_s
     ))?;
-    let files = rec.finish(sc, &opts.out, &summary, log)?;
+    let names = rec.finish(sc, dir, &summary)?;
+    // The paths the files will have once the staging folder is swapped in.
+    let files: Vec<PathBuf> = names.iter().map(|n| opts.out.join(n)).collect();
+    for f in &files {
+        log.line(format_args!("wrote {}", f.display()))?;
+    }
     Ok(RunReport { summary, files })
 }
 
@@ -332,41 +387,32 @@ impl Recorder {
         Ok(())
     }
 
-    /// Writes the scene, commits the trajectory files, writes the summary and the pictures;
-    /// returns the files written, in that order.
-    fn finish(
-        mut self,
-        sc: &Scenario,
-        out: &Path,
-        summary: &Summary,
-        log: &mut RunLog,
-    ) -> Result<Vec<PathBuf>> {
+    /// Writes the scene, commits the trajectory files, writes the summary and the pictures
+    /// into `out`; returns the names of the files written, in that order.
+    fn finish(mut self, sc: &Scenario, out: &Path, summary: &Summary) -> Result<Vec<&'static str>> {
         let scene = scene_of(sc);
         let mut files = Vec::new();
         scene.write(out.join(output::SCENE_JSON))?;
-        files.push(out.join(output::SCENE_JSON));
+        files.push(output::SCENE_JSON);
         if let Some(w) = self.csv {
             w.finish()?;
-            files.push(out.join(output::TRAJECTORIES_CSV));
+            files.push(output::TRAJECTORIES_CSV);
         }
         if let Some(w) = self.npy {
             w.finish()?;
-            files.push(out.join(output::POSITIONS_NPY));
+            files.push(output::POSITIONS_NPY);
         }
         summary.write(out.join(output::SUMMARY_JSON))?;
-        files.push(out.join(output::SUMMARY_JSON));
+        files.push(output::SUMMARY_JSON);
         self.kept.extend(self.last.take());
         let opts = RenderOptions::default();
         if sc.outputs.render {
             output::render_png(&scene, &self.kept, out.join(output::SNAPSHOT_PNG), &opts)?;
-            files.push(out.join(output::SNAPSHOT_PNG));
+            files.push(output::SNAPSHOT_PNG);
         }
         if sc.outputs.gif {
             output::render_gif(&scene, &self.kept, out.join(output::RUN_GIF), &opts)?;
-            files.push(out.join(output::RUN_GIF));
-        }
-        for f in &files {
-            log.line(format_args!("wrote {}", f.display()))?;
+            files.push(output::RUN_GIF);
         }
         Ok(files)
     }

@@ -14,6 +14,7 @@ fn run_fig7a(out: &Path, threads: usize) -> swarm_sim::output::Summary {
         seed: None,
         threads: Some(threads),
         progress: false,
+        warnings: Vec::new(),
     };
     run(&sc, &opts).expect("run").summary
 }

@@ -37,7 +37,8 @@ enum Command {
         /// Worker threads (default: all cores; results are identical for any count).
         #[arg(long)]
         threads: Option<usize>,
-        /// Output folder (default: `out/<scenario name>`).
+        /// Output folder (default: `out/<scenario name>`); a finished run replaces it whole, a
+        /// killed or failed one leaves it as it was.
         #[arg(long)]
         out: Option<PathBuf>,
         /// No progress bar.
@@ -96,7 +97,19 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             out,
             quiet,
         } => {
-            let sc = swarm_sim::scenario::resolve(&scenario)?;
+            if let Some(steps) = steps {
+                swarm_sim::scenario::check_steps(steps, "--steps")?;
+            }
+            let (sc, mut warnings) = swarm_sim::scenario::resolve_with_warnings(&scenario)?;
+            if let Some(steps) = steps {
+                // Not those of the events `--steps` drops.
+                let mut shortened = sc.clone();
+                shortened.set_steps(steps);
+                warnings.retain(|w| w.applies_to(&shortened));
+            }
+            for w in &warnings {
+                eprintln!("{w}");
+            }
             let out = out.unwrap_or_else(|| PathBuf::from("out").join(&sc.name));
             let opts = swarm_sim::run::RunOptions {
                 out: out.clone(),
@@ -104,6 +117,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 seed,
                 threads,
                 progress: !quiet && std::io::IsTerminal::is_terminal(&std::io::stderr()),
+                warnings,
             };
             let report = swarm_sim::run::run(&sc, &opts)?;
             let s = &report.summary;
@@ -141,6 +155,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             threads,
             json,
         } => {
+            swarm_sim::scenario::check_steps(steps, "--steps")?;
             // Refuse an output path that cannot be written before a long run, not after.
             if let Some(dir) = json.as_ref().and_then(|p| p.parent())
                 && !dir.as_os_str().is_empty()
@@ -155,6 +170,8 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             let text = serde_json::to_string_pretty(&report)?;
             println!("{text}");
             if let Some(path) = json {
+                // What a killed earlier bench left beside the report.
+                swarm_sim::output::remove_stale_temps(&path);
                 swarm_sim::output::write_atomic_bytes(&path, (text + "\n").as_bytes())?;
             }
             Ok(())

@@ -104,6 +104,36 @@ impl AtomicFile {
     }
 }
 
+/// Removes the temporary files that writers of `path` killed earlier left beside it
+/// (`.<file name>.<random>.tmp`); returns how many. A writer of `path` running at the same time
+/// would lose its temporary file and fail, leaving `path` as it was. Best effort.
+pub fn remove_stale_temps(path: impl AsRef<Path>) -> usize {
+    let path = path.as_ref();
+    let (Some(dir), Some(name)) = (path.parent(), path.file_name().and_then(|n| n.to_str())) else {
+        return 0;
+    };
+    let dir = if dir.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        dir
+    };
+    let prefix = format!(".{name}.");
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return 0;
+    };
+    entries
+        .flatten()
+        .filter(|e| {
+            e.file_name().to_str().is_some_and(|n| {
+                n.strip_prefix(&prefix)
+                    .and_then(|r| r.strip_suffix(".tmp"))
+                    .is_some_and(|random| !random.is_empty() && !random.contains('.'))
+            }) && e.file_type().is_ok_and(|t| t.is_file())
+        })
+        .filter(|e| std::fs::remove_file(e.path()).is_ok())
+        .count()
+}
+
 /// Syncs the folder holding `path` so the rename itself is durable (best effort: not every
 /// platform or file system allows syncing a folder).
 fn sync_parent(path: &Path) {
@@ -207,6 +237,26 @@ mod tests {
             f.writer().write_all(b"partial").unwrap();
         }
         assert!(entries(dir.path()).is_empty());
+    }
+
+    #[test]
+    fn stale_temporary_files_of_one_name_are_removed() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("run.gif");
+        for n in [
+            ".run.gif.aB3xYz.tmp",
+            ".run.gif.q.tmp",
+            ".run.gif.a.b.tmp",
+            ".snapshot.png.x.tmp",
+            "keep.tmp",
+        ] {
+            std::fs::write(dir.path().join(n), b"x").unwrap();
+        }
+        assert_eq!(remove_stale_temps(&p), 2);
+        assert_eq!(
+            entries(dir.path()),
+            vec![".run.gif.a.b.tmp", ".snapshot.png.x.tmp", "keep.tmp"]
+        );
     }
 
     #[test]

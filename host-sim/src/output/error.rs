@@ -51,6 +51,19 @@ pub enum OutputError {
         /// What is wrong.
         msg: String,
     },
+    /// An existing output folder holds something no run writes (a run replaces its folder
+    /// whole, so it refuses to delete what may be a user's file).
+    #[error(
+        "{} holds `{entry}`, which no run writes; a run replaces its output folder whole, so \
+         choose another output folder (`--out`) or move `{entry}` away",
+        dir.display()
+    )]
+    NotARunFolder {
+        /// The folder.
+        dir: PathBuf,
+        /// The first entry that is not a run file.
+        entry: String,
+    },
     /// The data handed to a writer is inconsistent (frames of different agents, a bad scene...).
     #[error("cannot write {}: {msg}", path.display())]
     Invalid {

@@ -11,7 +11,10 @@
 //! | `run.log`          | [`RunLog`]                         | timestamped lines, flushed as they come    |
 //!
 //! Every file but the log is written whole or not at all ([`write_atomic`], [`AtomicFile`]): it
-//! appears complete under its final name, or not at all.
+//! appears complete under its final name, or not at all. A whole run goes further
+//! ([`Staging`]): `swarm run` writes every file into a staging folder beside the output folder
+//! and swaps it in when the run is complete, so an output folder always holds exactly one run,
+//! never files of two, and a run killed at any moment leaves the previous run as it was.
 
 pub mod atomic;
 pub mod csv;
@@ -21,11 +24,12 @@ pub mod npy;
 pub mod read;
 pub mod render;
 pub mod scene;
+pub mod stage;
 pub mod summary;
 
 use std::path::Path;
 
-pub use atomic::{AtomicFile, write_atomic, write_atomic_bytes};
+pub use atomic::{AtomicFile, remove_stale_temps, write_atomic, write_atomic_bytes};
 pub use csv::{CSV_HEADER, CsvWriter, read_csv, write_csv};
 pub use error::{OutputError, Result};
 pub use frames::{AgentSample, Frame, check_frames, label_name, motion_name};
@@ -33,6 +37,7 @@ pub use npy::{NpyWriter, Positions, npy_header, read_npy, write_npy};
 pub use read::{RenderedFiles, RunDir, render_dir, render_dir_with};
 pub use render::{ColorBy, RenderOptions, render_gif, render_png};
 pub use scene::{Geometry, Scene, Shape, ShapeKind};
+pub use stage::{RUN_FILES, Staging, clean_stale, is_run_file_name};
 pub use summary::{
     GroupSummary, PairStats, RunLog, StateCounts, Summary, pair_stats, state_counts_of,
 };

@@ -2,6 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
+use super::atomic::remove_stale_temps;
 use super::csv::read_csv;
 use super::error::{OutputError, Result};
 use super::frames::Frame;
@@ -88,12 +89,15 @@ impl RunDir {
         })
     }
 
-    /// Writes `snapshot.png` and `run.gif` into the folder.
+    /// Writes `snapshot.png` and `run.gif` into the folder, each whole or not at all (the
+    /// temporary files an earlier, killed render left are removed first).
     pub fn render(&self, opts: &RenderOptions) -> Result<RenderedFiles> {
         let files = RenderedFiles {
             png: self.dir.join(SNAPSHOT_PNG),
             gif: self.dir.join(RUN_GIF),
         };
+        remove_stale_temps(&files.png);
+        remove_stale_temps(&files.gif);
         render_png(&self.scene, &self.frames, &files.png, opts)?;
         render_gif(&self.scene, &self.frames, &files.gif, opts)?;
         Ok(files)

@@ -6,6 +6,7 @@ use std::path::Path;
 use super::error::{Result, ScenarioError};
 use super::load::load;
 use super::types::Scenario;
+use super::warning::ScenarioWarning;
 
 /// A built-in scenario file.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -53,12 +54,12 @@ pub fn builtin_names() -> &'static [&'static str] {
 
 /// The built-in scenario `name`, loaded and checked; `None` if there is no such built-in.
 pub fn builtin(name: &str) -> Option<Scenario> {
-    load_builtin(name).and_then(|r| r.ok())
+    load_builtin(name).and_then(|r| r.ok()).map(|(s, _)| s)
 }
 
 /// The built-in `name` with its load result (a built-in that fails to load is a bug that the
 /// tests catch; this keeps the message instead of hiding it).
-fn load_builtin(name: &str) -> Option<Result<Scenario>> {
+fn load_builtin(name: &str) -> Option<Result<(Scenario, Vec<ScenarioWarning>)>> {
     BUILTINS
         .iter()
         .find(|b| b.name == name)
@@ -67,12 +68,17 @@ fn load_builtin(name: &str) -> Option<Result<Scenario>> {
 
 /// A built-in scenario by name, else the scenario file at that path.
 pub fn resolve(name_or_path: &str) -> Result<Scenario> {
+    resolve_with_warnings(name_or_path).map(|(s, _)| s)
+}
+
+/// [`resolve`], with the scenario's warnings (file, line, field and message of each).
+pub fn resolve_with_warnings(name_or_path: &str) -> Result<(Scenario, Vec<ScenarioWarning>)> {
     if let Some(result) = load_builtin(name_or_path) {
         return result;
     }
     let path = Path::new(name_or_path);
     if path.exists() {
-        return Scenario::from_path(path);
+        return Scenario::from_path_with_warnings(path);
     }
     Err(ScenarioError::NotFound {
         name: name_or_path.to_owned(),

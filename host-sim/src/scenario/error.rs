@@ -56,6 +56,9 @@ pub enum DiagnosticKind {
     Shape,
     /// Well-formed, but breaks a rule of the scenario (ranges, names, kinds, parameters).
     Rule,
+    /// Not an error: the scenario runs, but probably not as meant (a
+    /// [`ScenarioWarning`](super::ScenarioWarning)).
+    Warning,
 }
 
 /// Where a scenario is wrong and why.
@@ -92,6 +95,7 @@ impl fmt::Display for Diagnostic {
         match self.kind {
             DiagnosticKind::Syntax => write!(f, "TOML syntax error")?,
             DiagnosticKind::Shape | DiagnosticKind::Rule => write!(f, "invalid scenario")?,
+            DiagnosticKind::Warning => write!(f, "warning")?,
         }
         if !self.field.is_empty() {
             write!(f, " in `{}`", self.field)?;

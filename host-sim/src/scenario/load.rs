@@ -22,49 +22,110 @@ use toml::de::{DeTable, DeValue};
 
 use super::error::{Diagnostic, DiagnosticKind, Result, ScenarioError};
 use super::raw::{Problem, RawScenario};
+use super::sanity::{self, Finding};
 use super::types::{
     Action, Group, MAX_AGENTS, MAX_COORD, MAX_TARGET_PARTICLES, Model, Object, ObjectKind,
     ScalarType, Scenario, SpawnRegion, World,
 };
+use super::warning::ScenarioWarning;
 
 impl Scenario {
     /// Reads and checks the scenario file at `path`. The scenario's `name` defaults to the
-    /// file stem, and `source` is set to `path`.
+    /// file stem, and `source` is set to `path`. Its warnings: [`Scenario::warnings`], or
+    /// [`Scenario::from_path_with_warnings`] for their lines.
     pub fn from_path(path: &Path) -> Result<Scenario> {
+        Self::from_path_with_warnings(path).map(|(s, _)| s)
+    }
+
+    /// [`Scenario::from_path`], with the scenario's warnings (file, line, field, message).
+    pub fn from_path_with_warnings(path: &Path) -> Result<(Scenario, Vec<ScenarioWarning>)> {
         let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Read {
             path: path.to_owned(),
             source,
         })?;
-        let mut scenario = load(&text, &path.display().to_string(), &stem(path))?;
+        let (mut scenario, warnings) = load(&text, &path.display().to_string(), &stem(path))?;
         scenario.source = Some(path.to_owned());
-        Ok(scenario)
+        Ok((scenario, warnings))
     }
 
     /// Parses and checks scenario text. `origin` names the text in error messages (a file name
     /// such as `scenarios/x.toml`); the scenario's `name` defaults to its stem.
     pub fn from_str(text: &str, origin: &str) -> Result<Scenario> {
+        Self::from_str_with_warnings(text, origin).map(|(s, _)| s)
+    }
+
+    /// [`Scenario::from_str`], with the scenario's warnings (file, line, field, message).
+    pub fn from_str_with_warnings(
+        text: &str,
+        origin: &str,
+    ) -> Result<(Scenario, Vec<ScenarioWarning>)> {
         load(text, origin, &stem(Path::new(origin)))
     }
 
     /// Checks a scenario built or changed in code by the same rules as a loaded file (the
     /// diagnostic has no line: there is no file).
     pub fn validate(&self) -> Result<()> {
-        validate(self).map_err(|p| {
-            let file = self
-                .source
-                .as_ref()
-                .map_or_else(|| self.name.clone(), |s| s.display().to_string());
-            ScenarioError::Invalid(Box::new(Diagnostic {
-                kind: DiagnosticKind::Rule,
-                file,
-                line: None,
-                column: None,
-                field: p.path,
-                message: p.message,
-                source_line: None,
-            }))
-        })
+        validate(self)
+            .map(drop)
+            .map_err(|p| ScenarioError::Invalid(Box::new(self.unlocated(DiagnosticKind::Rule, p))))
     }
+
+    /// The warnings of a valid scenario (none if it is invalid), without lines: they name the
+    /// file (or the scenario) and the field. A loaded file's warnings with their lines come
+    /// from [`Scenario::from_path_with_warnings`] and [`resolve_with_warnings`].
+    ///
+    /// [`resolve_with_warnings`]: super::resolve_with_warnings
+    pub fn warnings(&self) -> Vec<ScenarioWarning> {
+        validate(self)
+            .unwrap_or_default()
+            .into_iter()
+            .map(|f| ScenarioWarning {
+                kind: f.kind,
+                diagnostic: self.unlocated(DiagnosticKind::Warning, f.problem),
+            })
+            .collect()
+    }
+
+    /// A diagnostic without a line, naming the file (or the scenario).
+    fn unlocated(&self, kind: DiagnosticKind, p: Problem) -> Diagnostic {
+        let file = self
+            .source
+            .as_ref()
+            .map_or_else(|| self.name.clone(), |s| s.display().to_string());
+        Diagnostic {
+            kind,
+            file,
+            line: None,
+            column: None,
+            field: p.path,
+            message: p.message,
+            source_line: None,
+        }
+    }
+}
+
+/// Refuses a step count given on the command line (`--steps`) by the rule of a file's
+/// `steps`, with the same message; `field` names the option.
+pub fn check_steps(steps: u32, field: &str) -> Result<()> {
+    steps_rule(steps, field).map_err(|p| {
+        ScenarioError::Invalid(Box::new(Diagnostic {
+            kind: DiagnosticKind::Rule,
+            file: "command line".to_owned(),
+            line: None,
+            column: None,
+            field: p.path,
+            message: p.message,
+            source_line: None,
+        }))
+    })
+}
+
+/// A run has at least one step.
+fn steps_rule(steps: u32, field: &str) -> std::result::Result<(), Problem> {
+    if steps == 0 {
+        return Err(Problem::new(field, "expected at least 1 step, found 0"));
+    }
+    Ok(())
 }
 
 fn stem(path: &Path) -> String {
@@ -74,8 +135,12 @@ fn stem(path: &Path) -> String {
     )
 }
 
-/// Parses, converts and validates `text`; errors name `origin`.
-pub(crate) fn load(text: &str, origin: &str, default_name: &str) -> Result<Scenario> {
+/// Parses, converts and validates `text`; errors and warnings name `origin`.
+pub(crate) fn load(
+    text: &str,
+    origin: &str,
+    default_name: &str,
+) -> Result<(Scenario, Vec<ScenarioWarning>)> {
     let at = |kind, span: Option<Range<usize>>, field: String, message: String| {
         ScenarioError::Invalid(Box::new(diagnostic(
             text, origin, kind, span, field, message,
@@ -119,8 +184,22 @@ pub(crate) fn load(text: &str, origin: &str, default_name: &str) -> Result<Scena
     let scenario = raw
         .convert(default_name)
         .map_err(|p| rule(DiagnosticKind::Shape, p))?;
-    validate(&scenario).map_err(|p| rule(DiagnosticKind::Rule, p))?;
-    Ok(scenario)
+    let findings = validate(&scenario).map_err(|p| rule(DiagnosticKind::Rule, p))?;
+    let warnings = findings
+        .into_iter()
+        .map(|f| ScenarioWarning {
+            kind: f.kind,
+            diagnostic: diagnostic(
+                text,
+                origin,
+                DiagnosticKind::Warning,
+                span_of(&tree, &f.problem.path),
+                f.problem.path,
+                f.problem.message,
+            ),
+        })
+        .collect();
+    Ok((scenario, warnings))
 }
 
 /// `x` of serde's "missing field `x`".
@@ -347,11 +426,10 @@ fn positive(v: f32, path: &str) -> std::result::Result<(), Problem> {
     }
 }
 
-/// Every rule of a scenario; the problem's path is the field's path in the file.
-pub(crate) fn validate(s: &Scenario) -> std::result::Result<(), Problem> {
-    if s.steps == 0 {
-        return Err(Problem::new("steps", "expected at least 1 step, found 0"));
-    }
+/// Every rule of a scenario, then its sanity checks ([`sanity::check`]): the first problem,
+/// or the warnings; a problem's path is the field's path in the file.
+pub(crate) fn validate(s: &Scenario) -> std::result::Result<Vec<Finding>, Problem> {
+    steps_rule(s.steps, "steps")?;
     validate_world(&s.world)?;
     if s.outputs.every == 0 {
         return Err(Problem::new(
@@ -361,7 +439,8 @@ pub(crate) fn validate(s: &Scenario) -> std::result::Result<(), Problem> {
     }
     let objects = validate_objects(s)?;
     validate_groups(s, &objects)?;
-    validate_events(s, &objects)
+    validate_events(s, &objects)?;
+    sanity::check(s)
 }
 
 fn validate_world(world: &World) -> std::result::Result<(), Problem> {

@@ -3,7 +3,11 @@
 //! A scenario is loaded with [`Scenario::from_path`], [`Scenario::from_str`], [`builtin`] or
 //! [`resolve`] (a built-in name first, then a file). Loading checks everything before anything
 //! runs; an error names the file, the line and column, the field path (`groups[1].spawn.radius`)
-//! and what was expected.
+//! and what was expected. A layout that cannot work is refused too (a food source, way point or
+//! target wholly inside an obstacle); one that probably is a mistake loads with warnings of the
+//! same form ([`ScenarioWarning`]: a nest in an obstacle, a spawn region partly inside
+//! obstacles, a nest covering a food source, ...), which the `*_with_warnings` loaders return
+//! and `swarm run` prints and records in `run.log`.
 //!
 //! ```toml
 //! name = "ants-fig7a-single-colony"   # optional, defaults to the file stem
@@ -39,15 +43,19 @@ mod builtin;
 mod error;
 mod load;
 mod raw;
+mod sanity;
 mod types;
+mod warning;
 
 #[cfg(test)]
 mod tests;
 
-pub use builtin::{BUILTINS, Builtin, builtin, builtin_names, resolve};
+pub use builtin::{BUILTINS, Builtin, builtin, builtin_names, resolve, resolve_with_warnings};
 pub use error::{Diagnostic, DiagnosticKind, Result, ScenarioError};
+pub use load::check_steps;
 pub use types::{
     Action, AntParamsOverride, BeeParamsOverride, BeePreset, Event, Group, MAX_AGENTS, MAX_COORD,
     MAX_TARGET_PARTICLES, Model, Object, ObjectKind, Outputs, ScalarType, Scenario, Spawn,
     SpawnRegion, World,
 };
+pub use warning::{ScenarioWarning, WarningKind};
