@@ -268,3 +268,23 @@ fn a_device_reset_mid_run_is_re_handshaken_and_reported() {
     assert_eq!(r.mismatches, 0, "{}", r.human());
     assert_eq!(r.resets, 1, "{}", r.human());
 }
+
+#[test]
+fn steps_zero_on_the_command_line_is_refused_like_steps_zero_in_a_file() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_swarm-hil"))
+        .args([
+            "loopback",
+            "--scenario",
+            "ants-fig7a-single-colony",
+            "--steps",
+            "0",
+        ])
+        .output()
+        .expect("runs swarm-hil");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "accepted --steps 0: {err}");
+    assert!(
+        err.contains("--steps") && err.contains("expected at least 1 step, found 0"),
+        "{err}"
+    );
+}

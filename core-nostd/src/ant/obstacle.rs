@@ -6,7 +6,6 @@ use super::frame::{AntObject, Surface};
 use super::params::AntParams;
 use super::state::{AntState, Follow, Turn, WINDING_LIMIT};
 use crate::rand::{self, stream};
-use crate::scalar::pi;
 use crate::{Scalar, StepCtx, Vec2};
 
 /// How far in front of an obstacle surface a move ends at the least (units): room for the
@@ -83,8 +82,8 @@ pub fn tangent<S: Scalar>(n: Vec2<S>, turn: Turn) -> Vec2<S> {
 ///   Fig. 5c) keeps to that side, along
 ///   the surface, at about half the avoiding range (closer when farther, away when nearer),
 ///   until the way toward the goal is free: the goal lies in front of the surface and the
-///   heading's total turn since the goal direction at the start (`winding`, Pledge's counter)
-///   is at most a quarter turn. The counter takes the ant out of a cup whose mouth faces away
+///   angle from the goal direction to the way along the surface, followed continuously since
+///   the start (`winding`, Pledge's counter, in quarter turns), is at most a quarter turn. The counter takes the ant out of a cup whose mouth faces away
 ///   from the goal: inside, its heading has turned half a turn, so it follows the wall out over
 ///   the lip and round the outside. The ant lets go of a surface more than twice the avoiding
 ///   range away (the obstacle was removed, or the ant was pushed off).
@@ -113,8 +112,8 @@ pub fn obstacle_heading<S: Scalar>(
         && dist <= params.avoid_range + near + near
     {
         let winding = unwrap(turn_angle(g, tangent(n, f.turn)), f.winding);
-        let quarter = pi::<S>() / S::from_i32(2) + S::from_f32(0.05);
-        let free = g.dot(n) > S::ZERO && winding.abs() <= quarter;
+        // A quarter turn, and a little for the rounding.
+        let free = g.dot(n) > S::ZERO && winding.abs() <= S::from_f32(1.03);
         if !free {
             let h = follow_heading(n, dist, f.turn, near, near + near);
             return Some((h, Some(Follow { winding, ..f })));
@@ -188,18 +187,33 @@ fn follow_heading<S: Scalar>(n: Vec2<S>, dist: S, turn: Turn, near: S, far: S) -
         .unwrap_or(t)
 }
 
-/// The signed angle from `a` to `b` (counter-clockwise positive), in (−π, π].
+/// The signed turn from `a` to `b` (counter-clockwise positive) as a *diamond angle* in quarter
+/// turns, in (−2, 2]: monotonic in the angle, exact at every multiple of a quarter turn, and
+/// free of trigonometry (one division: a few hundred bytes less on a microcontroller).
 fn turn_angle<S: Scalar>(a: Vec2<S>, b: Vec2<S>) -> S {
-    a.cross(b).atan2(a.dot(b))
+    let (x, y) = (a.dot(b), a.cross(b));
+    let d = x.abs() + y.abs();
+    if d == S::ZERO {
+        return S::ZERO;
+    }
+    let t = y / d;
+    let two = S::from_i32(2);
+    if x >= S::ZERO {
+        t
+    } else if y >= S::ZERO {
+        two - t
+    } else {
+        -two - t
+    }
 }
 
-/// The angle equal to `angle` modulo 2π nearest to `previous` (a winding followed through its
-/// full turns), limited to ±[`WINDING_LIMIT`].
+/// The turn equal to `angle` modulo a full turn (4 quarter turns) nearest to `previous` (a
+/// winding followed through its full turns), limited to ±[`WINDING_LIMIT`].
 fn unwrap<S: Scalar>(angle: S, previous: S) -> S {
-    let tau = pi::<S>() + pi::<S>();
-    let turns = ((previous - angle) / tau + S::from_f32(0.5)).floor_i32();
+    let full = S::from_i32(4);
+    let turns = ((previous - angle) / full + S::from_f32(0.5)).floor_i32();
     let lim = S::from_f32(WINDING_LIMIT);
-    (angle + tau * S::from_i32(turns)).clamp_to(-lim, lim)
+    (angle + full * S::from_i32(turns)).clamp_to(-lim, lim)
 }
 
 /// The hard constraint on the move of eq. 5 (ours: the paper avoids obstacles by the heading

@@ -2,8 +2,8 @@
 
 use crate::{Error, Result, Scalar, Vec2};
 
-/// The largest winding of a [`Follow`] (rad): four turns round an obstacle.
-pub const WINDING_LIMIT: f32 = 8.0 * core::f32::consts::PI;
+/// The largest winding of a [`Follow`] (quarter turns): four turns round an obstacle.
+pub const WINDING_LIMIT: f32 = 16.0;
 
 /// Largest absolute coordinate accepted from outside: keeps every intermediate value inside the
 /// range of [`Fx`](crate::Fx) (±32768) so both scalar types compute the same thing.
@@ -79,8 +79,10 @@ wire_type! {
     pub struct Follow<S> {
         /// The way round.
         pub turn: Turn,
-        /// The total signed turn of the heading since the goal direction at the start (rad,
-        /// counter-clockwise positive), limited to ±[`WINDING_LIMIT`].
+        /// The angle from the goal direction to the way along the surface, followed
+        /// continuously since the start, in quarter turns (a *diamond angle*: monotonic in the
+        /// angle, exact at every quarter turn; counter-clockwise positive), limited to
+        /// ±[`WINDING_LIMIT`].
         pub winding: S,
     }
 

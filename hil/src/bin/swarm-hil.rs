@@ -187,7 +187,7 @@ fn run(cli: Cli) -> Result<bool, AnyError> {
             fault_seed,
             run,
         } => {
-            let sc = scenario(&run.scenario)?;
+            let sc = run_scenario(&run)?;
             let faults: FaultSpec = inject.parse()?;
             let link = match transport {
                 Link::Memory => LinkKind::Memory,
@@ -215,7 +215,7 @@ fn run(cli: Cli) -> Result<bool, AnyError> {
                 (None, Some(a)) => Box::new(TcpTransport::connect(&a, Duration::from_secs(5))?),
                 (None, None) => return Err("give --port or --tcp".into()),
             };
-            let sc = with_scalar(&scenario(&run.scenario)?, run.scalar.into());
+            let sc = with_scalar(&run_scenario(&run)?, run.scalar.into());
             let mut client = Client::new(link, client_options(&run));
             let report = mirror(&sc, &mut client, &run, &mut |_| Ok(()))?;
             finish(&report, run.json.as_deref())
@@ -242,7 +242,7 @@ fn run(cli: Cli) -> Result<bool, AnyError> {
                 garbage,
                 reset_at: reset_at_step,
             };
-            let sc = with_scalar(&scenario(&run.scenario)?, run.scalar.into());
+            let sc = with_scalar(&run_scenario(&run)?, run.scalar.into());
             let report = mirror_in_qemu(&qrun, client_options(&run), |client, hook| {
                 mirror(&sc, client, &run, hook)
             })?;
@@ -307,6 +307,12 @@ fn mirror<T: Transport>(
 
 fn scenario(name: &str) -> Result<Scenario, AnyError> {
     Ok(swarm_sim::scenario::resolve(name)?)
+}
+
+/// The scenario of a mirror run; `--steps 0` is refused like `steps = 0` in a file.
+fn run_scenario(run: &Run) -> Result<Scenario, AnyError> {
+    swarm_sim::scenario::check_steps(run.steps, "--steps")?;
+    scenario(&run.scenario)
 }
 
 fn client_options(run: &Run) -> ClientOptions {
