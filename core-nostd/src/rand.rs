@@ -13,6 +13,12 @@ pub mod stream {
     pub const ANT_TURN: u32 = 2;
     /// Ant: direction after a degenerate geometry (e.g. exactly on a disturbance centre).
     pub const ANT_FALLBACK: u32 = 3;
+    /// Bee: the bee's own clock offset, drawn once (step 0) per bee: which period of eq. 4
+    /// within the wrap (hence its phase of eq. 3), see `bee::oscillation::clock_offset`.
+    pub const BEE_PHASE: u32 = 0x20;
+    /// Bee: the swarm's base roll phase, drawn once per seed (agent 0, step 0), see
+    /// `bee::oscillation::clock_offset`.
+    pub const BEE_PHASE_BASE: u32 = 0x21;
 }
 
 /// Wellons' `lowbias32` finaliser: a bijective 32-bit mixer with low avalanche bias.

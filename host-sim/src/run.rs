@@ -273,6 +273,8 @@ const MAX_PICTURE_FRAMES: u32 = 1000;
 struct Recorder {
     csv: Option<output::CsvWriter>,
     npy: Option<output::NpyWriter>,
+    /// `attitude.npy` (3D worlds: bees; ants are level and have none).
+    attitude: Option<output::NpyWriter>,
     /// Keep every `stride`-th frame for the pictures (0: keep none).
     stride: u32,
     /// Frames recorded so far.
@@ -295,6 +297,15 @@ impl Recorder {
                 .npy
                 .then(|| output::NpyWriter::create(out.join(output::POSITIONS_NPY), agents))
                 .transpose()?,
+            attitude: (o.npy && matches!(sc.world, crate::scenario::World::Bees3D { .. }))
+                .then(|| {
+                    output::NpyWriter::create_of(
+                        out.join(output::ATTITUDE_NPY),
+                        agents,
+                        output::NpyField::Attitude,
+                    )
+                })
+                .transpose()?,
             stride: if o.render || o.gif {
                 frames.div_ceil(MAX_PICTURE_FRAMES)
             } else {
@@ -311,6 +322,9 @@ impl Recorder {
             w.push(&frame)?;
         }
         if let Some(w) = &mut self.npy {
+            w.push(&frame)?;
+        }
+        if let Some(w) = &mut self.attitude {
             w.push(&frame)?;
         }
         if self.stride > 0 {
@@ -345,6 +359,10 @@ impl Recorder {
         if let Some(w) = self.npy {
             w.finish()?;
             files.push(out.join(output::POSITIONS_NPY));
+        }
+        if let Some(w) = self.attitude {
+            w.finish()?;
+            files.push(out.join(output::ATTITUDE_NPY));
         }
         summary.write(out.join(output::SUMMARY_JSON))?;
         files.push(out.join(output::SUMMARY_JSON));
@@ -397,6 +415,8 @@ pub fn ant_frame(sim: &AntSim) -> Frame {
             group,
             label: s.label as u8,
             motion: s.motion as u8,
+            roll: 0.0,
+            pitch: 0.0,
         }));
     }
     let mut agents = Vec::with_capacity(sim.agents());
