@@ -415,7 +415,7 @@ mod tests {
         write_npy_of(&p, &frames, NpyField::Attitude).unwrap();
         let b = std::fs::read(&p).unwrap();
         assert!(
-            std::str::from_utf8(&b[10..64])
+            std::str::from_utf8(&b[10..128])
                 .unwrap()
                 .contains("'shape': (2, 2, 2)")
         );
