@@ -1,8 +1,14 @@
 //! Bee swarm audit (issue 12): per seed, the lateral drift with no obstacle, the share of bees
 //! through the Fig. 14 shaft field, body overlap (< 2r) per bee-step, and the grassland's
-//! wall share. Parameter overrides from the environment: BEE_K (stiffness), BEE_RHO0,
-//! BEE_H, BEE_DT. `cargo run --release -p swarm-tests --example bee_audit -- <scene> <seed-from> <seed-to> [steps]`
-//! with scene one of drift, fig14, fig15, grass.
+//! wall share (the issue-12 figures of `docs/models.md`). Parameter overrides from the
+//! environment: BEE_K (stiffness), BEE_RHO0, BEE_H, BEE_KAPPA2, BEE_DT.
+//!
+//! ```sh
+//! cargo run --release -p swarm-tests --example bee_audit -- <scene> <seed-from> <seed-to> [steps]
+//! ```
+//!
+//! with `<scene>` one of `drift` (Fig. 14 without its shafts), `fig14`, `fig15`, `grass`, or
+//! `curl` (samples the largest curl-noise force of two Table I columns).
 
 use swarm_sim::bees::BeeSim;
 use swarm_sim::scenario::{self, ObjectKind, Scenario};
@@ -176,13 +182,6 @@ fn main() {
             }
         }
         let thr = through.iter().filter(|&&t| t).count();
-        eprintln!(
-            "DBG sum {:?}",
-            sim.positions_by_id()
-                .iter()
-                .map(|p| p[0] + p[2])
-                .sum::<f64>()
-        );
         println!(
             "{scene} seed {seed}: n {n} steps {steps} overlap {:.4} lateral {:.4} through {:.2} \
              near-wall mean {:.3} worst {:.3} contacts {:?} ({:.0} s)",

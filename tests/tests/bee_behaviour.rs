@@ -571,7 +571,7 @@ fn with_no_obstacle_the_swarm_does_not_drift_sideways() {
 fn fig11_the_grassland_swarm_gathers_off_the_walls_without_overlapping() {
     let (sc, mut sim) = load("bees-fig11-grassland");
     let bound = |v: &[f32]| [0, 1, 2].map(|k| f64::from(v[k]));
-    let (min, max) = (bound(&sc.world.min()), bound(&sc.world.max()));
+    let (min, max) = (bound(sc.world.min()), bound(sc.world.max()));
     let two_r = 2.0 * f64::from(sc.groups[0].bee_params().radius);
     let n = sim.agents() as f64;
     let mut worst_off = 1.0f64;

@@ -259,6 +259,50 @@ mod tests {
         }
     }
 
+    /// Every bee's clock offset lies in [0, TIME_WRAP); the roll phases of any run of
+    /// consecutive ids are evenly spread (the mean sway of eq. 4 over them is near zero, for
+    /// small and large swarms); the pitch phases differ; the offset is a pure function of
+    /// (seed, id); and a bee's frame time stays below the input limit for any step.
+    #[test]
+    fn bee_clocks_are_spread_in_range_and_pure() {
+        use core::f64::consts::TAU;
+        for seed in [0u32, 1, 14, 0xdead_beef] {
+            for (first, n) in [(0u32, 10u32), (0, 100), (500, 37), (u32::MAX - 20, 20)] {
+                let (mut roll, mut pitch) = (0.0f64, 0.0f64);
+                for id in first..first + n {
+                    let o = clock_offset(seed, id);
+                    assert!((0.0..TIME_WRAP).contains(&o), "{o}");
+                    assert_eq!(o.to_bits(), clock_offset(seed, id).to_bits());
+                    roll += (TAU * o / ROLL_PERIOD).sin();
+                    pitch += (TAU * o / 71.944).cos();
+                }
+                let (roll, pitch) = (roll / f64::from(n), pitch / f64::from(n));
+                assert!(roll.abs() < 0.1, "seed {seed}, {n} bees: mean sway {roll}");
+                assert!(
+                    pitch.abs() < 0.9,
+                    "seed {seed}: pitch phases in step {pitch}"
+                );
+            }
+            assert_ne!(clock_offset(seed, 3), clock_offset(seed.wrapping_add(1), 3));
+        }
+        for step in [0u32, 1, 33_000, 320_000, 1_000_000, u32::MAX] {
+            for id in 0..20 {
+                let t = bee_time(7, id, step, 0.05);
+                assert!(
+                    (0.0..f64::from(super::super::params::LIMIT)).contains(&t),
+                    "{t}"
+                );
+            }
+        }
+        // The sway about its mean averages to zero over a period of eq. 4.
+        let n = 10_000;
+        let mean: f64 = (0..n)
+            .map(|i| f64::from(sway_deg(roll_deg(183.55 * i as f32 / n as f32))))
+            .sum::<f64>()
+            / f64::from(n);
+        assert!(mean.abs() < 1e-3, "{mean}");
+    }
+
     #[test]
     fn lift_polynomial_of_fig4() {
         let l = |a: f64| -0.00095953 * a * a + 0.090635 * a - 0.34182;
