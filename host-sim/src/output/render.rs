@@ -737,7 +737,7 @@ fn side_canvas(
     canvas.text(
         view.ox as i64,
         2 * scale,
-        "side view (x right, y up): line = heading, bar = wings (roll)",
+        "side view - x right / y up - line: heading - bar: wings at the roll",
         scale,
         I_INK,
     );
