@@ -111,6 +111,16 @@ fn main() {
         if scene == "drift" {
             sc.objects
                 .retain(|o| !matches!(o.kind, ObjectKind::Shaft { .. }));
+            if let Some(n) = env("BEE_COUNT") {
+                sc.groups[0].count = n as u32;
+            }
+            if let Some(z) = env("BEE_GOAL_Z") {
+                for o in &mut sc.objects {
+                    if let ObjectKind::Target { center, .. } = &mut o.kind {
+                        *center = [8.0, 14.0, z];
+                    }
+                }
+            }
         }
         tune(&mut sc);
         let p = sc.groups[0].bee_params();
