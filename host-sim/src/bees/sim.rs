@@ -215,7 +215,8 @@ pub struct BeeSim {
     /// The run's seed: the spawn draws and every bee's clock offset ([`bee_frame_time`]; the
     /// bee controller itself draws no random numbers).
     pub seed: u32,
-    /// The next step to run; frame time is `step · dt`.
+    /// The next step to run; a bee's frame time is its own clock, `step · dt` plus its offset
+    /// ([`bee_frame_time`]).
     pub step: u32,
     /// Re-sort the slots by grid cell every this many steps (0: never). Changes no result.
     pub reorder_every: u32,
