@@ -15,6 +15,12 @@ pub mod stream {
     pub const ANT_FALLBACK: u32 = 3;
     /// Ant: its preferred way round an obstacle met head-on (drawn at step 0, once per ant).
     pub const ANT_SIDE: u32 = 4;
+    /// Bee: the bee's own clock offset, drawn once (step 0) per bee: which period of eq. 4
+    /// within the wrap (hence its phase of eq. 3), see `bee::oscillation::clock_offset`.
+    pub const BEE_PHASE: u32 = 0x20;
+    /// Bee: the swarm's base roll phase, drawn once per seed (agent 0, step 0), see
+    /// `bee::oscillation::clock_offset`.
+    pub const BEE_PHASE_BASE: u32 = 0x21;
 }
 
 /// Wellons' `lowbias32` finaliser: a bijective 32-bit mixer with low avalanche bias.

@@ -17,7 +17,7 @@ use swarm_core::wire::{
 };
 use swarm_core::{Checked, StepCtx};
 use swarm_sim::ants::{AntSim, plan_frame, resolve_frame};
-use swarm_sim::bees::{BeeSim, bee_frame, frame_time};
+use swarm_sim::bees::{BeeSim, bee_frame, bee_frame_time};
 use swarm_sim::scalar::{ByScalar, SimScalar};
 use swarm_sim::scenario::{Scenario, World};
 
@@ -587,13 +587,15 @@ where
             // The frames of this step, from the world as the step will see it.
             sim.world.index_positions();
             let slots = slots_by_id(&sim.world.sensed.id);
-            let t = S::from_f64(frame_time(step, params.dt.to_f64()));
+            let dt = params.dt.to_f64();
             let mut requests = Vec::with_capacity(chosen.len());
             let mut host = Vec::with_capacity(chosen.len());
             for &id in chosen {
                 let slot = slots[id as usize];
                 let (state, goal) = sim.bee_of(slot)?;
                 let goal = goal.and_then(|g| sim.world.target_center(g));
+                // The bee's own clock, as the engine gives it.
+                let t = S::from_f64(bee_frame_time(sim.seed, id, step, dt));
                 let frame = bee_frame::<S>(&sim.world, slot, goal, t);
                 host.push(
                     bee::step_checked(&state, &frame, &params)

@@ -335,6 +335,8 @@ const MAX_PICTURE_FRAMES: u32 = 1000;
 struct Recorder {
     csv: Option<output::CsvWriter>,
     npy: Option<output::NpyWriter>,
+    /// `attitude.npy` (3D worlds: bees; ants are level and have none).
+    attitude: Option<output::NpyWriter>,
     /// Keep every `stride`-th frame for the pictures (0: keep none).
     stride: u32,
     /// Frames recorded so far.
@@ -357,6 +359,15 @@ impl Recorder {
                 .npy
                 .then(|| output::NpyWriter::create(out.join(output::POSITIONS_NPY), agents))
                 .transpose()?,
+            attitude: (o.npy && matches!(sc.world, crate::scenario::World::Bees3D { .. }))
+                .then(|| {
+                    output::NpyWriter::create_of(
+                        out.join(output::ATTITUDE_NPY),
+                        agents,
+                        output::NpyField::Attitude,
+                    )
+                })
+                .transpose()?,
             stride: if o.render || o.gif {
                 frames.div_ceil(MAX_PICTURE_FRAMES)
             } else {
@@ -373,6 +384,9 @@ impl Recorder {
             w.push(&frame)?;
         }
         if let Some(w) = &mut self.npy {
+            w.push(&frame)?;
+        }
+        if let Some(w) = &mut self.attitude {
             w.push(&frame)?;
         }
         if self.stride > 0 {
@@ -401,6 +415,10 @@ impl Recorder {
         if let Some(w) = self.npy {
             w.finish()?;
             files.push(output::POSITIONS_NPY);
+        }
+        if let Some(w) = self.attitude {
+            w.finish()?;
+            files.push(output::ATTITUDE_NPY);
         }
         summary.write(out.join(output::SUMMARY_JSON))?;
         files.push(output::SUMMARY_JSON);
@@ -450,6 +468,8 @@ pub fn ant_frame(sim: &AntSim) -> Frame {
             group,
             label: s.label as u8,
             motion: s.motion as u8,
+            roll: 0.0,
+            pitch: 0.0,
         }));
     }
     let mut agents = Vec::with_capacity(sim.agents());

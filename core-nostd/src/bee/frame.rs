@@ -54,7 +54,10 @@ wire_type! {
     /// One step's sensor input: `N` neighbours at most, `P` target particles at most.
     #[derive(Clone, Debug, PartialEq)]
     pub struct BeeFrame<S, const N: usize, const P: usize> {
-        /// Time t in seconds (eq. 3-4), ≥ 0.
+        /// Time t in seconds (eq. 3-4), ≥ 0: the bee's own clock. Each bee runs the
+        /// maneuvering functions in its own phase; the host passes
+        /// [`bee_time`](super::oscillation::bee_time) (the step's time plus the bee's clock
+        /// offset from the seed and its id, wrapped below the input limit).
         pub t: S,
         /// Neighbouring bees (eq. 10-11).
         pub neighbours: heapless::Vec<BeeNeighbor<S>, N>,

@@ -29,6 +29,64 @@ fn sin_pi_over<S: Scalar>(x: S, t_half: f32) -> S {
     (frac * S::from_f32(core::f32::consts::TAU)).sin()
 }
 
+/// The period mean of eq. 4, in degrees: the constant term −0.765°.
+///
+/// The sway of eq. 2 uses the roll's deviation from this mean (see [`sway_deg`]).
+pub const MEAN_ROLL_DEG: f32 = -0.765;
+
+/// The roll angle (degrees) that drives the sway of eq. 2 when the roll comes from eq. 4: the
+/// roll's deviation from its period mean, θ_roll − θ̄_roll, θ̄_roll = [`MEAN_ROLL_DEG`].
+///
+/// §IV-A describes the oscillation as a shift "around its mean position" (the same reading we
+/// give the lift, see [`oscillation_force`]); taken literally, eq. 4's constant −0.765° would
+/// push every bee to its left for ever, a steady sideways drift of
+/// κ1·m·g·0.765°/(m·c) ≈ 0.12 units/s in the default column. The roll set-point itself
+/// (the decision) stays eq. 4's θ_roll; eq. 6's avoidance roll drives the sway in full.
+pub fn sway_deg<S: Scalar>(roll_deg: S) -> S {
+    roll_deg - S::from_f32(MEAN_ROLL_DEG)
+}
+
+/// The period of eq. 4, 2 × 91.775 s.
+pub const ROLL_PERIOD: f64 = 183.55;
+
+/// A bee's own clock offset (seconds, in [0, [`TIME_WRAP`])): its phase of the maneuvering
+/// functions of eq. 3-4, a pure function of the seed and the agent id computed with the
+/// counter-based random numbers ([`rand`](crate::rand::rand)).
+///
+/// Eq. 3-4 are functions of the time alone, so with one shared clock every bee of a swarm
+/// would pitch and roll in step and the whole swarm would sway as one. Real bees are not
+/// synchronised: each bee runs the maneuvering functions on its own clock,
+/// t_bee = t + offset (see [`bee_time`]), with
+///
+/// offset = (k + x)·[`ROLL_PERIOD`], x = frac(b + id·φ⁻¹), k ∈ {0, …, 77}:
+///
+/// * x, the bee's phase of eq. 4 (the sway), is a golden-ratio (Weyl) sequence over the ids
+///   from a base b drawn once per seed (`stream::BEE_PHASE_BASE`), in 32-bit integer arithmetic:
+///   the roll phases of any run of consecutive ids are spread evenly over the period, so the
+///   sways of a swarm cancel whatever its size (independent draws leave a common sway of
+///   order 1/√N: 0.1 units/s for 100 bees);
+/// * k, which of the 78 periods of eq. 4 in [`TIME_WRAP`] the offset falls in, is drawn per bee
+///   (`stream::BEE_PHASE`), which makes its phase of eq. 3 (the pitch, hence the thrust)
+///   random: 183.55 s is 2.55 periods of eq. 3.
+///
+/// A device computes the same bits (integer hashing, then `f64`) and, as before, receives its
+/// clock as the frame time t: no input is added.
+pub fn clock_offset(seed: u32, agent: u32) -> f64 {
+    use crate::rand::{rand, stream};
+    let base = rand(seed, 0, 0, stream::BEE_PHASE_BASE);
+    // 2^32/φ, odd: consecutive ids step the phase by 0.618 of a period.
+    let x = base.wrapping_add(agent.wrapping_mul(0x9e37_79b9));
+    let k = rand(seed, agent, 0, stream::BEE_PHASE) % 78;
+    (f64::from(k) + (f64::from(x) + 0.5) / 4_294_967_296.0) * ROLL_PERIOD
+}
+
+/// The frame time t (seconds) of bee `agent` at step `step`: its own clock
+/// `step·dt + clock_offset(seed, agent)`, wrapped below the input limit by [`wrap_time`]
+/// (which keeps the phases of eq. 3-4).
+pub fn bee_time(seed: u32, agent: u32, step: u32, dt: f64) -> f64 {
+    wrap_time(f64::from(step) * dt + clock_offset(seed, agent))
+}
+
 /// Lift coefficient of Fig. 4: l(α) = −0.00095953 α² + 0.090635 α − 0.34182, α in degrees (the
 /// body attack angle, α = θ_pitch, §IV-A).
 ///
@@ -102,7 +160,8 @@ pub fn side_axis<S: Scalar>(forward: Vec3<S>) -> Vec3<S> {
 ///   [`side_axis`]: the roll is about the longitudinal axis),
 ///
 /// with the angles in radians in f_t and f_s and θ_pitch in degrees in l (Fig. 4). `pitch_deg`
-/// comes from eq. 3; `roll_deg` from eq. 4, or from eq. 6 while avoiding an obstacle.
+/// comes from eq. 3; `roll_deg` is the sway angle: eq. 4's roll as its deviation from the
+/// period mean ([`sway_deg`]), or eq. 6's roll while avoiding an obstacle.
 ///
 /// Lift and weight: eq. 1 has no gravity, and the printed lift is always positive
 /// (l ∈ [0.65, 1.09] over the pitch range of eq. 3), so taken literally every bee climbs
@@ -198,6 +257,50 @@ mod tests {
             assert!((12.9..=19.93).contains(&pitch_deg(t)));
             assert!((-19.68..=18.15).contains(&roll_deg(t)));
         }
+    }
+
+    /// Every bee's clock offset lies in [0, TIME_WRAP); the roll phases of any run of
+    /// consecutive ids are evenly spread (the mean sway of eq. 4 over them is near zero, for
+    /// small and large swarms); the pitch phases differ; the offset is a pure function of
+    /// (seed, id); and a bee's frame time stays below the input limit for any step.
+    #[test]
+    fn bee_clocks_are_spread_in_range_and_pure() {
+        use core::f64::consts::TAU;
+        for seed in [0u32, 1, 14, 0xdead_beef] {
+            for (first, n) in [(0u32, 10u32), (0, 100), (500, 37), (u32::MAX - 20, 20)] {
+                let (mut roll, mut pitch) = (0.0f64, 0.0f64);
+                for id in first..first + n {
+                    let o = clock_offset(seed, id);
+                    assert!((0.0..TIME_WRAP).contains(&o), "{o}");
+                    assert_eq!(o.to_bits(), clock_offset(seed, id).to_bits());
+                    roll += (TAU * o / ROLL_PERIOD).sin();
+                    pitch += (TAU * o / 71.944).cos();
+                }
+                let (roll, pitch) = (roll / f64::from(n), pitch / f64::from(n));
+                assert!(roll.abs() < 0.1, "seed {seed}, {n} bees: mean sway {roll}");
+                assert!(
+                    pitch.abs() < 0.9,
+                    "seed {seed}: pitch phases in step {pitch}"
+                );
+            }
+            assert_ne!(clock_offset(seed, 3), clock_offset(seed.wrapping_add(1), 3));
+        }
+        for step in [0u32, 1, 33_000, 320_000, 1_000_000, u32::MAX] {
+            for id in 0..20 {
+                let t = bee_time(7, id, step, 0.05);
+                assert!(
+                    (0.0..f64::from(super::super::params::LIMIT)).contains(&t),
+                    "{t}"
+                );
+            }
+        }
+        // The sway about its mean averages to zero over a period of eq. 4.
+        let n = 10_000;
+        let mean: f64 = (0..n)
+            .map(|i| f64::from(sway_deg(roll_deg(183.55 * i as f32 / n as f32))))
+            .sum::<f64>()
+            / f64::from(n);
+        assert!(mean.abs() < 1e-3, "{mean}");
     }
 
     #[test]

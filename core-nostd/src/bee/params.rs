@@ -50,7 +50,14 @@ wire_type! {
         pub d0: S,
         /// Δt: time step (§III). Ours: 0.05 s.
         pub dt: S,
-        /// k: pressure stiffness, p = k·max(ρ − ρ0, 0) (§V-B). Ours: 1.
+        /// k: pressure stiffness, p = k·max(ρ − ρ0, 0) (§V-B). Ours, per Table I column:
+        /// the smallest round value at which two bees in contact (gap 0) repel each other at
+        /// least as hard as the largest sum of the other forces can push one of them,
+        /// κ3·m·k·|∇W_spiky(0, h)| ≥ κ1·m·g·(θ_pitch,max + |θ_roll − θ̄_roll|max) + κ2·max|F_curl|
+        /// (eq. 2-4 with the sway about its mean; max|∇×ψ| ≈ 4.8·ε/L for our Perlin noise, sampled):
+        /// 80 for the optimized values (bound 76.6), 200 over grassland (199.8), 60 around the
+        /// nest (58.4). With k = 1 the contact force was 1/15 of the thrust alone and 13-53 % of the bees
+        /// had a neighbour closer than 2r; see [`stiffness_for_contact`].
         pub stiffness: S,
         /// ρ0: rest density of the pressure (§V-B). Ours: 0 (any overlap repels).
         pub rest_density: S,
@@ -68,23 +75,23 @@ wire_type! {
 impl<S: Scalar> Default for BeeParams<S> {
     /// Table I, "Optimized values": h 3, L 2.7, κ 1.4/2.3/1.2, ε 1.7 (and ours for the rest).
     fn default() -> Self {
-        Self::table_i(3.0, 2.7, [1.4, 2.3, 1.2], 1.7)
+        Self::table_i(3.0, 2.7, [1.4, 2.3, 1.2], 1.7, 80.0)
     }
 }
 
 impl<S: Scalar> BeeParams<S> {
     /// Table I, "Over grassland": h 3, L 2.2, κ 1.5/5/0.9, ε 2.
     pub fn grassland() -> Self {
-        Self::table_i(3.0, 2.2, [1.5, 5.0, 0.9], 2.0)
+        Self::table_i(3.0, 2.2, [1.5, 5.0, 0.9], 2.0, 200.0)
     }
 
     /// Table I, "Around nest": h 3, L 2.2, κ 1/2.5/1.7, ε 2.
     pub fn around_nest() -> Self {
-        Self::table_i(3.0, 2.2, [1.0, 2.5, 1.7], 2.0)
+        Self::table_i(3.0, 2.2, [1.0, 2.5, 1.7], 2.0, 60.0)
     }
 
-    /// One column of Table I plus our constants.
-    fn table_i(h: f32, grid_edge: f32, kappa: [f32; 3], epsilon: f32) -> Self {
+    /// One column of Table I plus our constants (and our stiffness for it).
+    fn table_i(h: f32, grid_edge: f32, kappa: [f32; 3], epsilon: f32, stiffness: f32) -> Self {
         let c = S::from_f32;
         BeeParams {
             h: c(h),
@@ -100,7 +107,7 @@ impl<S: Scalar> BeeParams<S> {
             radius: c(0.25),
             d0: c(2.0),
             dt: c(0.05),
-            stiffness: S::ONE,
+            stiffness: c(stiffness),
             rest_density: S::ZERO,
             max_speed: c(4.0),
             damping: c(1.5),
@@ -176,6 +183,17 @@ impl<S: Scalar> BeeParams<S> {
     }
 }
 
+/// The stiffness bound behind [`BeeParams::stiffness`]'s defaults, in `f32`: the k at which
+/// the SPH pair force at contact, κ3·m·k·45/(π h⁴) (the symmetric eq. 11 with
+/// (p_i + p_j)/(2ρ_j) ≥ k, kernel at gap 0), equals the largest sum of the driving forces,
+/// κ1·m·g·(θ_pitch,max + the sway amplitude) + κ2·4.8·ε/L (eq. 2-4, 8-9).
+pub fn stiffness_for_contact(p: &BeeParams<f32>) -> f32 {
+    let angles = (19.929_f32 + 18.914).to_radians();
+    let drive = p.kappa1 * p.mass * p.gravity * angles + p.kappa2 * 4.8 * p.epsilon / p.grid_edge;
+    let contact = p.kappa3 * p.mass * 45.0 / (core::f32::consts::PI * p.h * p.h * p.h * p.h);
+    drive / contact
+}
+
 /// `Err(BadParam)` unless `lo ≤ v ≤ LIMIT` (NaN fails every comparison).
 fn in_range<S: Scalar>(v: S, lo: f32, field: &'static str) -> Result<()> {
     if v.is_finite() && v >= S::from_f32(lo) && v <= S::from_f32(LIMIT) {
@@ -207,6 +225,19 @@ mod tests {
             assert_eq!(p.cast::<Fx>().validate(), Ok(()));
         }
         assert_eq!(BeeParams::<Fx>::default().h, Fx::from_f32(3.0));
+    }
+
+    #[test]
+    fn default_stiffness_lets_the_contact_force_match_the_driving_forces() {
+        for (p, lo) in [
+            (BeeParams::<f32>::default(), 70.0),
+            (BeeParams::grassland(), 190.0),
+            (BeeParams::around_nest(), 55.0),
+        ] {
+            let k = stiffness_for_contact(&p);
+            assert!(k > lo && p.stiffness >= k, "{k} vs {}", p.stiffness);
+            assert!(p.stiffness < 1.1 * k, "{k} vs {}", p.stiffness);
+        }
     }
 
     #[test]

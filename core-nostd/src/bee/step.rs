@@ -2,7 +2,7 @@
 
 use super::frame::{BeeDecision, BeeFrame, BeeState};
 use super::oscillation::{
-    forward_axis, goal_heading, horizontal, oscillation_force, pitch_deg, roll_deg,
+    forward_axis, goal_heading, horizontal, oscillation_force, pitch_deg, roll_deg, sway_deg,
 };
 use super::params::{BeeParams, LIMIT};
 use super::sph::Kernels;
@@ -21,7 +21,8 @@ use crate::{Checked, Error, Result, Scalar, Vec3};
 ///    ([`in_view`]).
 /// 3. Angles: θ_pitch from eq. 3; θ_roll from eq. 6 when avoiding, else eq. 4.
 /// 4. Forces: F_o (eq. 2: thrust toward the goal, or along o while avoiding or without a goal;
-///    lift as its deviation from the period mean; sway with the roll of step 3), F_curl
+///    lift as its deviation from the period mean; sway with the roll of step 3, eq. 4's as
+///    its deviation from its period mean, [`sway_deg`]), F_curl
 ///    (eq. 8-9), ρ_i (eq. 10) and F_repul (eq. 11, symmetric form, see [`sph::repulsion`]).
 /// 5. Eq. 1 plus our linear drag: F = κ1 F_o + κ2 F_curl + κ3 F_repul − m·c·u_p, a = F/m,
 ///    u = u_p + aΔt (§III).
@@ -111,9 +112,13 @@ fn run<S: Scalar, const N: usize, const P: usize>(
     // Thrust toward the goal; without one, or while avoiding (§IV-B: the bee "temporarily
     // disregards other rules"), level along the body axis.
     let level = horizontal(o).unwrap_or(Vec3::zero());
-    let (roll, thrust_dir) = match &sight {
-        Some(s) => (avoidance_roll_deg(o, s.r_e, s.d, params.d0), level),
-        None => (consts.roll, heading.unwrap_or(level)),
+    // The roll set-point, the angle that drives the sway, and the thrust direction.
+    let (roll, sway, thrust_dir) = match &sight {
+        Some(s) => {
+            let roll = avoidance_roll_deg(o, s.r_e, s.d, params.d0);
+            (roll, roll, level)
+        }
+        None => (consts.roll, sway_deg(consts.roll), heading.unwrap_or(level)),
     };
 
     let (rho, repulsion) = sph::interact_with(
@@ -124,7 +129,7 @@ fn run<S: Scalar, const N: usize, const P: usize>(
         &consts.kernels,
     );
     let speed = state.vel.length();
-    let force = oscillation_force(params, o, thrust_dir, speed, pitch, roll) * params.kappa1
+    let force = oscillation_force(params, o, thrust_dir, speed, pitch, sway) * params.kappa1
         + curl::curl_force(state.pos, params.grid_edge, params.epsilon) * params.kappa2
         + repulsion * params.kappa3
         - state.vel * (params.mass * params.damping);

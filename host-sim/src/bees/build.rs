@@ -163,7 +163,7 @@ fn spawn<S: SimScalar>(
 
 /// Every bee of the simulation, in id order, as recorded samples: the heading is the unit
 /// velocity (for a bee at rest, its body's forward axis), `label` 0, `motion` 1 while it avoids
-/// an obstacle (else 0).
+/// an obstacle (else 0), `roll` and `pitch` the last decision's set-points in degrees.
 pub fn bee_frame_samples(sim: &BeeSim) -> Frame {
     fn push<S: SimScalar>(out: &mut [AgentSample], group: u16, g: &BeeGroup<S>) {
         for (k, (s, d)) in g.states.iter().zip(&g.decisions).enumerate() {
@@ -183,6 +183,8 @@ pub fn bee_frame_samples(sim: &BeeSim) -> Frame {
                 group,
                 label: 0,
                 motion: u8::from(d.avoiding),
+                roll: d.roll.to_f32().to_degrees(),
+                pitch: d.pitch.to_f32().to_degrees(),
             };
         }
     }

@@ -18,7 +18,7 @@ mod tests;
 
 pub use build::{FIG11_DENSITY, bee_frame_samples, bench_bee_world, bench_bees};
 pub use sense::{BeeSimFrame, N, P, bee_frame, neighbour_slots};
-pub use sim::{AnyBeeGroup, BeeGroup, BeeSim, Contacts, frame_time};
+pub use sim::{AnyBeeGroup, BeeGroup, BeeSim, Contacts, bee_frame_time, frame_time};
 pub use world::{
     BeeObstacle, BeeTarget, BeeWorld, SURFACE_OFFSET, Sensed, Shape3, Surface, box_surface,
     box_surface_open, shaft_surface, shaft_surface_open, sphere_surface,

@@ -4,7 +4,7 @@
 //! bee inside an obstacle or outside the bounds) and counts every correction it had to make.
 
 use rayon::prelude::*;
-use swarm_core::bee::oscillation::wrap_time;
+use swarm_core::bee::oscillation::{bee_time, wrap_time};
 use swarm_core::bee::{self, BeeDecision, BeeFrame, BeeParams, BeeState};
 use swarm_core::{Checked, Fx, Scalar, Vec3};
 
@@ -40,13 +40,20 @@ impl std::ops::AddAssign for Contacts {
     }
 }
 
-/// The frame time of step `step`: `step·dt` seconds, wrapped below the controller's input
+/// The shared clock at step `step`: `step·dt` seconds, wrapped below the controller's input
 /// limit by [`wrap_time`] (the same bits as `step·dt` for the first 16000 s; after that the
 /// maneuvering functions of eq. 3-4 keep their phase, see [`TIME_WRAP`]).
 ///
 /// [`TIME_WRAP`]: swarm_core::bee::oscillation::TIME_WRAP
 pub fn frame_time(step: u32, dt: f64) -> f64 {
     wrap_time(f64::from(step) * dt)
+}
+
+/// The frame time of bee `id` at step `step` in a run with seed `seed`: the bee's own clock
+/// ([`bee_time`]: `step·dt` plus its clock offset, drawn once from `(seed, id)`, wrapped), so
+/// that every bee runs the maneuvering functions of eq. 3-4 in its own phase.
+pub fn bee_frame_time(seed: u32, id: u32, step: u32, dt: f64) -> f64 {
+    bee_time(seed, id, step, dt)
 }
 
 /// A decision before the first step: nothing decided yet.
@@ -110,21 +117,22 @@ impl<S: SimScalar> BeeGroup<S> {
     }
 
     /// Runs every bee's controller on its frame and keeps the result physical.
-    fn decide(&mut self, w: &BeeWorld, step: u32) -> Result<()> {
+    fn decide(&mut self, w: &BeeWorld, seed: u32, step: u32) -> Result<()> {
         let (first, params) = (self.first, &self.params);
         let goal = self.goal.and_then(|g| w.target_center(g));
-        let t = S::from_f64(frame_time(step, params.dt.to_f64()));
-        // The kernels and maneuvering functions, once for the group at this time.
-        let consts = bee::StepConsts::new(params, t);
+        let dt = params.dt.to_f64();
         for_each_agent(
             self.next
                 .par_iter_mut()
                 .zip(self.decisions.par_iter_mut())
                 .zip(self.corrected.par_iter_mut())
                 .zip(self.states.par_iter().zip(self.ids.par_iter())),
-            || (BlockCache::default(), BeeFrame::new(t)),
+            || (BlockCache::default(), BeeFrame::new(S::ZERO)),
             |(cache, frame), k, (((out, dec), fix), (s, &id))| {
+                // Each bee's own clock (its phase of eq. 3-4), hence its own constants.
+                let t = S::from_f64(bee_frame_time(seed, id, step, dt));
                 fill_frame::<S>(w, first + k, goal, t, cache, frame);
+                let consts = bee::StepConsts::new(params, t);
                 let (d, mut next) = bee::step_with(s, frame, params, &consts)
                     .map_err(|e| SimError::controller("bee step", step, id, e))?;
                 *fix = w.confine(&mut next);
@@ -204,9 +212,11 @@ pub struct BeeSim {
     pub world: BeeWorld,
     /// The groups, in agent-index order.
     pub groups: Vec<AnyBeeGroup>,
-    /// The run's seed (the spawn draws; the bee controller itself draws no random numbers).
+    /// The run's seed: the spawn draws and every bee's clock offset ([`bee_frame_time`]; the
+    /// bee controller itself draws no random numbers).
     pub seed: u32,
-    /// The next step to run; frame time is `step · dt`.
+    /// The next step to run; a bee's frame time is its own clock, `step · dt` plus its offset
+    /// ([`bee_frame_time`]).
     pub step: u32,
     /// Re-sort the slots by grid cell every this many steps (0: never). Changes no result.
     pub reorder_every: u32,
@@ -262,7 +272,7 @@ impl BeeSim {
         let step = self.step;
         self.world.index_positions();
         for g in &mut self.groups {
-            by_scalar!(g, g => g.decide(&self.world, step))?;
+            by_scalar!(g, g => g.decide(&self.world, self.seed, step))?;
         }
         let mut c = Contacts::default();
         for g in &mut self.groups {

@@ -1,9 +1,13 @@
 //! `trajectories.csv`: one row per agent per recorded step.
 //!
 //! ```text
-//! step,id,group,x,y,z,hx,hy,hz,label,motion
-//! 0,0,0,12.5,3.25,0,1,0,0,0,1
+//! step,id,group,x,y,z,hx,hy,hz,label,motion,roll_deg,pitch_deg
+//! 0,0,0,12.5,3.25,0,1,0,0,0,1,0,0
 //! ```
+//!
+//! `roll_deg` and `pitch_deg` are the body attitude in degrees (bees: the decision's
+//! set-points, positive roll = right wing down; ants: 0). Files written before those two
+//! columns existed (header [`CSV_HEADER_V1`]) are still read, with roll and pitch 0.
 //!
 //! Rows are grouped by step (increasing), agents in id order inside a step. Floats are printed
 //! with Rust's `{}` for `f32`, the shortest text that parses back to the same `f32`, so reading
@@ -18,7 +22,9 @@ use super::error::{OutputError, Result};
 use super::frames::{AgentSample, Frame};
 
 /// The header line (without the newline).
-pub const CSV_HEADER: &str = "step,id,group,x,y,z,hx,hy,hz,label,motion";
+pub const CSV_HEADER: &str = "step,id,group,x,y,z,hx,hy,hz,label,motion,roll_deg,pitch_deg";
+/// The header of files written before the attitude columns (read with roll and pitch 0).
+pub const CSV_HEADER_V1: &str = "step,id,group,x,y,z,hx,hy,hz,label,motion";
 
 /// Streams frames into `trajectories.csv`, atomically: nothing appears at the final path until
 /// [`CsvWriter::finish`]; dropping the writer unfinished leaves no file.
@@ -78,8 +84,8 @@ impl CsvWriter {
             let [hx, hy, hz] = a.heading;
             writeln!(
                 w,
-                "{step},{},{},{x},{y},{z},{hx},{hy},{hz},{},{}",
-                a.id, a.group, a.label, a.motion
+                "{step},{},{},{x},{y},{z},{hx},{hy},{hz},{},{},{},{}",
+                a.id, a.group, a.label, a.motion, a.roll, a.pitch
             )
             .map_err(|e| OutputError::io("writing", &path, e))?;
         }
@@ -125,7 +131,8 @@ pub fn read_csv(path: impl AsRef<Path>) -> Result<Vec<Frame>> {
     }
     lineno += 1;
     let header = line.trim_end_matches(['\n', '\r']);
-    if header != CSV_HEADER {
+    let attitude = header == CSV_HEADER;
+    if !attitude && header != CSV_HEADER_V1 {
         return Err(OutputError::format(
             path,
             1,
@@ -143,7 +150,8 @@ pub fn read_csv(path: impl AsRef<Path>) -> Result<Vec<Frame>> {
         if row.is_empty() {
             continue;
         }
-        let (step, sample) = parse_row(row).map_err(|m| OutputError::format(path, lineno, m))?;
+        let (step, sample) =
+            parse_row(row, attitude).map_err(|m| OutputError::format(path, lineno, m))?;
         let new_frame = frames.last().is_none_or(|f| f.step != step);
         if new_frame {
             if let Some(prev) = frames.last() {
@@ -215,12 +223,14 @@ pub fn read_csv(path: impl AsRef<Path>) -> Result<Vec<Frame>> {
     Ok(frames)
 }
 
-fn parse_row(row: &str) -> std::result::Result<(u32, AgentSample), String> {
+/// One data row: 13 fields, or the 11 of [`CSV_HEADER_V1`] when `attitude` is false.
+fn parse_row(row: &str, attitude: bool) -> std::result::Result<(u32, AgentSample), String> {
+    let fields = if attitude { 13 } else { 11 };
     let mut it = row.split(',');
     let mut next = |name: &str| {
         it.next()
             .map(str::trim)
-            .ok_or_else(|| format!("missing field {name:?} (expected 11 fields)"))
+            .ok_or_else(|| format!("missing field {name:?} (expected {fields} fields)"))
     };
     fn num<T: std::str::FromStr>(s: &str, name: &str) -> std::result::Result<T, String> {
         s.parse::<T>()
@@ -237,8 +247,16 @@ fn parse_row(row: &str) -> std::result::Result<(u32, AgentSample), String> {
     let hz: f32 = num(next("hz")?, "hz")?;
     let label: u8 = num(next("label")?, "label")?;
     let motion: u8 = num(next("motion")?, "motion")?;
+    let (roll, pitch): (f32, f32) = if attitude {
+        (
+            num(next("roll_deg")?, "roll_deg")?,
+            num(next("pitch_deg")?, "pitch_deg")?,
+        )
+    } else {
+        (0.0, 0.0)
+    };
     if it.next().is_some() {
-        return Err("too many fields (expected 11)".into());
+        return Err(format!("too many fields (expected {fields})"));
     }
     Ok((
         step,
@@ -249,6 +267,8 @@ fn parse_row(row: &str) -> std::result::Result<(u32, AgentSample), String> {
             group,
             label,
             motion,
+            roll,
+            pitch,
         },
     ))
 }
@@ -282,6 +302,8 @@ mod tests {
                         heading: [rnd(), rnd(), 0.0],
                         label: (i % 3) as u8,
                         motion: ((i + f) % 4) as u8,
+                        roll: rnd(),
+                        pitch: rnd(),
                     })
                     .collect(),
             })
@@ -309,10 +331,12 @@ mod tests {
                     assert_eq!(x.pos[k].to_bits(), y.pos[k].to_bits());
                     assert_eq!(x.heading[k].to_bits(), y.heading[k].to_bits());
                 }
+                assert_eq!(x.roll.to_bits(), y.roll.to_bits());
+                assert_eq!(x.pitch.to_bits(), y.pitch.to_bits());
             }
         }
         let text = std::fs::read_to_string(&p).unwrap();
-        assert!(text.starts_with("step,id,group,x,y,z,hx,hy,hz,label,motion\n"));
+        assert!(text.starts_with("step,id,group,x,y,z,hx,hy,hz,label,motion,roll_deg,pitch_deg\n"));
         assert_eq!(text.lines().count(), 1 + 7 * 13);
     }
 
@@ -329,13 +353,30 @@ mod tests {
                 heading: [1.0, 0.0, 0.0],
                 label: 1,
                 motion: 3,
+                roll: -12.5,
+                pitch: 16.25,
             }],
         }];
         write_csv(&p, &frames).unwrap();
         assert_eq!(
             std::fs::read_to_string(&p).unwrap(),
-            "step,id,group,x,y,z,hx,hy,hz,label,motion\n4,2,1,0.1,-2.5,0,1,0,0,1,3\n"
+            "step,id,group,x,y,z,hx,hy,hz,label,motion,roll_deg,pitch_deg\n\
+             4,2,1,0.1,-2.5,0,1,0,0,1,3,-12.5,16.25\n"
         );
+    }
+
+    #[test]
+    fn files_without_the_attitude_columns_read_with_level_attitude() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("v1.csv");
+        std::fs::write(&p, format!("{CSV_HEADER_V1}\n4,2,1,0.1,-2.5,0,1,0,0,1,3\n")).unwrap();
+        let f = read_csv(&p).unwrap();
+        assert_eq!(f[0].agents[0].pos, [0.1, -2.5, 0.0]);
+        assert_eq!((f[0].agents[0].roll, f[0].agents[0].pitch), (0.0, 0.0));
+        // The new header wants the two columns.
+        std::fs::write(&p, format!("{CSV_HEADER}\n4,2,1,0.1,-2.5,0,1,0,0,1,3\n")).unwrap();
+        let msg = read_csv(&p).unwrap_err().to_string();
+        assert!(msg.contains("roll_deg"), "{msg}");
     }
 
     #[test]
@@ -352,7 +393,7 @@ mod tests {
         let p = dir.path().join("bad.csv");
         std::fs::write(
             &p,
-            format!("{CSV_HEADER}\n0,0,0,1,2,3,1,0,0,0,1\n0,1,0,1,x,3,1,0,0,0,1\n"),
+            format!("{CSV_HEADER}\n0,0,0,1,2,3,1,0,0,0,1,0,0\n0,1,0,1,x,3,1,0,0,0,1,0,0\n"),
         )
         .unwrap();
         let msg = read_csv(&p).unwrap_err().to_string();
@@ -365,14 +406,17 @@ mod tests {
         // Second step lacks an agent.
         std::fs::write(
             &p,
-            format!("{CSV_HEADER}\n0,0,0,1,2,3,1,0,0,0,1\n0,1,0,1,2,3,1,0,0,0,1\n1,0,0,1,2,3,1,0,0,0,1\n"),
+            format!(
+                "{CSV_HEADER}\n0,0,0,1,2,3,1,0,0,0,1,0,0\n0,1,0,1,2,3,1,0,0,0,1,0,0\n\
+                 1,0,0,1,2,3,1,0,0,0,1,0,0\n"
+            ),
         )
         .unwrap();
         let msg = read_csv(&p).unwrap_err().to_string();
         assert!(msg.contains("step 1 has 1 agents"), "{msg}");
 
         // Too many fields.
-        std::fs::write(&p, format!("{CSV_HEADER}\n0,0,0,1,2,3,1,0,0,0,1,9\n")).unwrap();
+        std::fs::write(&p, format!("{CSV_HEADER}\n0,0,0,1,2,3,1,0,0,0,1,0,0,9\n")).unwrap();
         let msg = read_csv(&p).unwrap_err().to_string();
         assert!(msg.contains("too many fields"), "{msg}");
 

@@ -4,12 +4,15 @@ use std::path::Path;
 
 use super::error::{OutputError, Result};
 
-/// One agent at one recorded step (32 bytes).
+/// One agent at one recorded step (40 bytes).
 ///
 /// Coordinates are world coordinates: 2D ants use `z = 0` (and `hz = 0`); bees are 3D with `y`
 /// up. `label` and `motion` are the model's small state codes: for ants the `swarm-core` label
 /// (0 nothing, 1 food, 2 nest) and motion state (0 stop, 1 basic movement, 2 neighbours,
-/// 3 environment), see [`label_name`] and [`motion_name`].
+/// 3 environment), see [`label_name`] and [`motion_name`]. `roll` and `pitch` are the body
+/// attitude in degrees: for bees the set-points of the step's decision (chen eq. 3, and eq. 4
+/// or eq. 6 while avoiding; a positive roll lowers the right wing, the right being
+/// heading × up); ants are ground robots that stay level and record 0.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct AgentSample {
     /// Agent id (index in the swarm).
@@ -24,6 +27,10 @@ pub struct AgentSample {
     pub label: u8,
     /// Motion state code.
     pub motion: u8,
+    /// Roll angle in degrees (positive: right wing down); 0 for ants.
+    pub roll: f32,
+    /// Pitch angle in degrees (positive: nose up); 0 for ants.
+    pub pitch: f32,
 }
 
 /// The whole swarm at one recorded step: agents in id order, the same agents in every frame.
@@ -106,7 +113,7 @@ mod tests {
 
     #[test]
     fn sample_is_compact() {
-        assert_eq!(std::mem::size_of::<AgentSample>(), 32);
+        assert_eq!(std::mem::size_of::<AgentSample>(), 40);
     }
 
     #[test]

@@ -2,8 +2,9 @@
 //!
 //! | file               | written by                         | content                                   |
 //! |--------------------|------------------------------------|-------------------------------------------|
-//! | `trajectories.csv` | [`write_csv`] / [`CsvWriter`]      | `step,id,group,x,y,z,hx,hy,hz,label,motion` |
+//! | `trajectories.csv` | [`write_csv`] / [`CsvWriter`]      | `step,id,group,x,y,z,hx,hy,hz,label,motion,roll_deg,pitch_deg` |
 //! | `positions.npy`    | [`write_npy`] / [`NpyWriter`]      | `<f4` array `(frames, agents, 3)`          |
+//! | `attitude.npy`     | [`write_npy_of`] / [`NpyWriter`]   | 3D (bees) only: `<f4` `(frames, agents, 2)`, roll and pitch in degrees |
 //! | `summary.json`     | [`Summary::write`]                 | the run's numbers                          |
 //! | `scene.json`       | [`Scene::write`]                   | world bounds and objects to draw           |
 //! | `snapshot.png`     | [`render_png`]                     | last frame with fading trails              |
@@ -30,10 +31,13 @@ pub mod summary;
 use std::path::Path;
 
 pub use atomic::{AtomicFile, remove_stale_temps, write_atomic, write_atomic_bytes};
-pub use csv::{CSV_HEADER, CsvWriter, read_csv, write_csv};
+pub use csv::{CSV_HEADER, CSV_HEADER_V1, CsvWriter, read_csv, write_csv};
 pub use error::{OutputError, Result};
 pub use frames::{AgentSample, Frame, check_frames, label_name, motion_name};
-pub use npy::{NpyWriter, Positions, npy_header, read_npy, write_npy};
+pub use npy::{
+    NpyField, NpyWriter, Positions, npy_header, npy_header_of, read_attitude_npy, read_npy,
+    write_npy, write_npy_of,
+};
 pub use read::{RenderedFiles, RunDir, render_dir, render_dir_with};
 pub use render::{ColorBy, RenderOptions, render_gif, render_png};
 pub use scene::{Geometry, Scene, Shape, ShapeKind};
@@ -46,6 +50,8 @@ pub use summary::{
 pub const TRAJECTORIES_CSV: &str = "trajectories.csv";
 /// Positions as NumPy `.npy`.
 pub const POSITIONS_NPY: &str = "positions.npy";
+/// Roll and pitch (degrees) as NumPy `.npy`.
+pub const ATTITUDE_NPY: &str = "attitude.npy";
 /// The run summary.
 pub const SUMMARY_JSON: &str = "summary.json";
 /// The scene to draw.
@@ -58,7 +64,8 @@ pub const SNAPSHOT_PNG: &str = "snapshot.png";
 pub const RUN_GIF: &str = "run.gif";
 
 /// Writes the data files of a run into `dir` (created if missing): `scene.json`,
-/// `trajectories.csv`, `positions.npy` and `summary.json`, each whole or not at all. Pictures are
+/// `trajectories.csv`, `positions.npy`, `attitude.npy` (3D scenes: bees; ants are level) and
+/// `summary.json`, each whole or not at all. Pictures are
 /// made separately by [`render_dir`] (or [`render_png`] / [`render_gif`]).
 pub fn write_run(
     dir: impl AsRef<Path>,
@@ -72,5 +79,8 @@ pub fn write_run(
     scene.write(dir.join(SCENE_JSON))?;
     write_csv(dir.join(TRAJECTORIES_CSV), frames)?;
     write_npy(dir.join(POSITIONS_NPY), frames)?;
+    if scene.dim == 3 {
+        write_npy_of(dir.join(ATTITUDE_NPY), frames, NpyField::Attitude)?;
+    }
     summary.write(dir.join(SUMMARY_JSON))
 }

@@ -1,4 +1,6 @@
-//! `positions.npy`: every recorded position as a NumPy array, `np.load("positions.npy")`.
+//! `positions.npy`: every recorded position as a NumPy array, `np.load("positions.npy")`;
+//! `attitude.npy`: every recorded body attitude, shape `(frames, agents, 2)`, the roll and the
+//! pitch in degrees (bees: the decision's set-points, positive roll = right wing down; ants 0).
 //!
 //! Format: NPY version 1.0, dtype `<f4` (little-endian f32), shape `(frames, agents, 3)`, C
 //! order. The file is byte for byte what `numpy.save` (NumPy ≥ 1.24) writes for such an array:
@@ -32,8 +34,14 @@ const GROWTH_AXIS_MAX_DIGITS: usize = 21;
 /// The complete NPY 1.0 header (magic to `\n`) for an `<f4` C-order array of shape
 /// `(frames, agents, 3)`.
 pub fn npy_header(frames: usize, agents: usize) -> Vec<u8> {
-    let mut dict =
-        format!("{{'descr': '<f4', 'fortran_order': False, 'shape': ({frames}, {agents}, 3), }}");
+    npy_header_of(frames, agents, 3)
+}
+
+/// The complete NPY 1.0 header for an `<f4` C-order array of shape `(frames, agents, width)`.
+pub fn npy_header_of(frames: usize, agents: usize, width: usize) -> Vec<u8> {
+    let mut dict = format!(
+        "{{'descr': '<f4', 'fortran_order': False, 'shape': ({frames}, {agents}, {width}), }}"
+    );
     let digits = frames.to_string().len();
     dict.extend(std::iter::repeat_n(
         ' ',
@@ -52,11 +60,31 @@ pub fn npy_header(frames: usize, agents: usize) -> Vec<u8> {
     out
 }
 
-/// Streams frames into `positions.npy`, atomically (nothing at the final path until
-/// [`NpyWriter::finish`]).
+/// What an `.npy` file of frames holds per agent.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NpyField {
+    /// `positions.npy`: x, y, z.
+    Positions,
+    /// `attitude.npy`: roll and pitch in degrees.
+    Attitude,
+}
+
+impl NpyField {
+    /// Values per agent (the last axis).
+    pub fn width(self) -> usize {
+        match self {
+            NpyField::Positions => 3,
+            NpyField::Attitude => 2,
+        }
+    }
+}
+
+/// Streams frames into `positions.npy` (or `attitude.npy`), atomically (nothing at the final
+/// path until [`NpyWriter::finish`]).
 #[derive(Debug)]
 pub struct NpyWriter {
     file: AtomicFile,
+    field: NpyField,
     agents: usize,
     frames: usize,
     header_len: usize,
@@ -64,15 +92,21 @@ pub struct NpyWriter {
 }
 
 impl NpyWriter {
-    /// Starts a file for frames of `agents` agents.
+    /// Starts a positions file for frames of `agents` agents.
     pub fn create(path: impl AsRef<Path>, agents: usize) -> Result<Self> {
+        Self::create_of(path, agents, NpyField::Positions)
+    }
+
+    /// Starts a file of `field` for frames of `agents` agents.
+    pub fn create_of(path: impl AsRef<Path>, agents: usize, field: NpyField) -> Result<Self> {
         let mut file = AtomicFile::create(path)?;
-        let header = npy_header(0, agents);
+        let header = npy_header_of(0, agents, field.width());
         file.writer()
             .write_all(&header)
             .map_err(|e| OutputError::io("writing", file.path(), e))?;
         Ok(Self {
             file,
+            field,
             agents,
             frames: 0,
             header_len: header.len(),
@@ -85,7 +119,7 @@ impl NpyWriter {
         self.push_positions(&frame.agents)
     }
 
-    /// Appends the positions of one frame's agents.
+    /// Appends the values (positions, or attitudes) of one frame's agents.
     pub fn push_positions(&mut self, agents: &[AgentSample]) -> Result<()> {
         if agents.len() != self.agents {
             return Err(OutputError::invalid(
@@ -98,10 +132,18 @@ impl NpyWriter {
             ));
         }
         self.buf.clear();
-        self.buf.reserve(agents.len() * 12);
+        self.buf.reserve(agents.len() * 4 * self.field.width());
         for a in agents {
-            for c in a.pos {
-                self.buf.extend_from_slice(&c.to_le_bytes());
+            match self.field {
+                NpyField::Positions => {
+                    for c in a.pos {
+                        self.buf.extend_from_slice(&c.to_le_bytes());
+                    }
+                }
+                NpyField::Attitude => {
+                    self.buf.extend_from_slice(&a.roll.to_le_bytes());
+                    self.buf.extend_from_slice(&a.pitch.to_le_bytes());
+                }
             }
         }
         self.file
@@ -114,7 +156,7 @@ impl NpyWriter {
 
     /// Writes the final frame count into the header and moves the file into place.
     pub fn finish(mut self) -> Result<()> {
-        let header = npy_header(self.frames, self.agents);
+        let header = npy_header_of(self.frames, self.agents, self.field.width());
         if header.len() != self.header_len {
             return Err(OutputError::invalid(
                 self.file.path(),
@@ -128,9 +170,14 @@ impl NpyWriter {
 
 /// Writes the positions of all `frames` to `path` as an `(F, A, 3)` `<f4` array.
 pub fn write_npy(path: impl AsRef<Path>, frames: &[Frame]) -> Result<()> {
+    write_npy_of(path, frames, NpyField::Positions)
+}
+
+/// Writes `field` of all `frames` to `path` as an `(F, A, width)` `<f4` array.
+pub fn write_npy_of(path: impl AsRef<Path>, frames: &[Frame], field: NpyField) -> Result<()> {
     let path = path.as_ref();
     let agents = super::frames::check_frames(frames, path)?;
-    let mut w = NpyWriter::create(path, agents)?;
+    let mut w = NpyWriter::create_of(path, agents, field)?;
     for f in frames {
         w.push(f)?;
     }
@@ -175,6 +222,17 @@ impl Positions {
 
 /// Reads an `<f4` C-order array of shape `(F, A, 3)` (NPY version 1, 2 or 3).
 pub fn read_npy(path: impl AsRef<Path>) -> Result<Positions> {
+    read_npy_of(path, 3)
+}
+
+/// Reads `attitude.npy`, an `<f4` C-order array of shape `(F, A, 2)`: the roll and the pitch
+/// (degrees) of each agent in each frame, in [`Positions::data`] with 2 values per agent.
+pub fn read_attitude_npy(path: impl AsRef<Path>) -> Result<Positions> {
+    read_npy_of(path, 2)
+}
+
+/// Reads an `<f4` C-order array of shape `(F, A, width)`.
+fn read_npy_of(path: impl AsRef<Path>, width: usize) -> Result<Positions> {
     let path = path.as_ref();
     let bad = |m: String| OutputError::format(path, 0, m);
     let mut bytes = Vec::new();
@@ -221,14 +279,19 @@ pub fn read_npy(path: impl AsRef<Path>) -> Result<Positions> {
         .map(|s| s.parse::<usize>())
         .collect::<std::result::Result<_, _>>()
         .map_err(|_| bad(format!("shape {shape} is not a tuple of integers")))?;
-    let [frames, agents, 3] = dims[..] else {
+    let [frames, agents, w] = dims[..] else {
         return Err(bad(format!(
-            "shape is {shape}, expected (frames, agents, 3)"
+            "shape is {shape}, expected (frames, agents, {width})"
         )));
     };
+    if w != width {
+        return Err(bad(format!(
+            "shape is {shape}, expected (frames, agents, {width})"
+        )));
+    }
     let n = frames
         .checked_mul(agents)
-        .and_then(|x| x.checked_mul(12))
+        .and_then(|x| x.checked_mul(4 * width))
         .ok_or_else(|| bad(format!("shape {shape} is too large")))?;
     if bytes.len() - data_start != n {
         return Err(bad(format!(
@@ -340,6 +403,33 @@ mod tests {
         assert_eq!(back.get(1, 1), frames[1].agents[1].pos);
         let fr = back.to_frames();
         assert_eq!(fr[1].agents[0].pos, frames[1].agents[0].pos);
+    }
+
+    #[test]
+    fn attitude_round_trip() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("attitude.npy");
+        let mut frames = tiny();
+        frames[1].agents[0].roll = -12.5;
+        frames[1].agents[0].pitch = 16.25;
+        write_npy_of(&p, &frames, NpyField::Attitude).unwrap();
+        let b = std::fs::read(&p).unwrap();
+        assert!(
+            std::str::from_utf8(&b[10..128])
+                .unwrap()
+                .contains("'shape': (2, 2, 2)")
+        );
+        assert_eq!(b.len(), 128 + 2 * 2 * 2 * 4);
+        let back = read_attitude_npy(&p).unwrap();
+        assert_eq!((back.frames, back.agents), (2, 2));
+        assert_eq!(back.data[4..6], [-12.5, 16.25]);
+        // Not a positions array.
+        assert!(
+            read_npy(&p)
+                .unwrap_err()
+                .to_string()
+                .contains("(frames, agents, 3)")
+        );
     }
 
     #[test]

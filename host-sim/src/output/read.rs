@@ -6,19 +6,22 @@ use super::atomic::remove_stale_temps;
 use super::csv::read_csv;
 use super::error::{OutputError, Result};
 use super::frames::Frame;
-use super::npy::read_npy;
+use super::npy::{read_attitude_npy, read_npy};
 use super::render::{RenderOptions, render_gif, render_png};
 use super::scene::Scene;
 use super::summary::Summary;
-use super::{POSITIONS_NPY, RUN_GIF, SCENE_JSON, SNAPSHOT_PNG, SUMMARY_JSON, TRAJECTORIES_CSV};
+use super::{
+    ATTITUDE_NPY, POSITIONS_NPY, RUN_GIF, SCENE_JSON, SNAPSHOT_PNG, SUMMARY_JSON, TRAJECTORIES_CSV,
+};
 
 /// Where the trajectories of a [`RunDir`] came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TrajectorySource {
     /// `trajectories.csv`: everything recorded.
     Csv,
-    /// `positions.npy` (the CSV was absent): positions only; steps are the frame indices and
-    /// headings, groups, labels and motion states are zero.
+    /// `positions.npy` (the CSV was absent): positions, and roll and pitch from
+    /// `attitude.npy` when it is there and matches; steps are the frame indices and headings,
+    /// groups, labels and motion states are zero.
     Npy,
 }
 
@@ -66,7 +69,29 @@ impl RunDir {
         let (frames, source) = if csv.exists() {
             (read_csv(&csv)?, TrajectorySource::Csv)
         } else if npy.exists() {
-            (read_npy(&npy)?.to_frames(), TrajectorySource::Npy)
+            let mut frames = read_npy(&npy)?.to_frames();
+            let attitude = dir.join(ATTITUDE_NPY);
+            if attitude.exists() {
+                let a = read_attitude_npy(&attitude)?;
+                if (a.frames, a.agents)
+                    != (frames.len(), frames.first().map_or(0, |f| f.agents.len()))
+                {
+                    return Err(OutputError::invalid(
+                        &attitude,
+                        format!(
+                            "shape ({}, {}, 2) does not match {POSITIONS_NPY}",
+                            a.frames, a.agents
+                        ),
+                    ));
+                }
+                for (fi, f) in frames.iter_mut().enumerate() {
+                    for (ai, s) in f.agents.iter_mut().enumerate() {
+                        let i = (fi * a.agents + ai) * 2;
+                        (s.roll, s.pitch) = (a.data[i], a.data[i + 1]);
+                    }
+                }
+            }
+            (frames, TrajectorySource::Npy)
         } else {
             return Err(OutputError::Missing {
                 dir: dir.to_path_buf(),

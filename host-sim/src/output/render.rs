@@ -7,7 +7,12 @@
 //! the output is deterministic: the same inputs give the same bytes.
 //!
 //! 2D worlds are drawn with x to the right and y up; 3D worlds as a top view (looking down the
-//! y axis) with x to the right and z down.
+//! y axis) with x to the right and z down, and below it a side view (looking along +z: x to the
+//! right, y up) in which every bee is drawn as its body along its heading (a line from the dot
+//! toward where it flies) and its wings as a dark bar through the dot along the rolled wing axis
+//! cos(roll)·s − sin(roll)·up (s = heading × up, the bee's right), projected: a bee flying
+//! across the view shows its roll as the tilt of the bar (positive roll: right wing down).
+//! Shafts are drawn full height in the side view.
 
 use std::io;
 use std::path::Path;
@@ -422,6 +427,8 @@ struct View {
     /// World extent in pixels along v (for flipping).
     vspan: f32,
     flip: bool,
+    /// The side view of a 3D world (x, y) instead of its plan.
+    side: bool,
 }
 
 impl View {
@@ -445,6 +452,28 @@ impl View {
             oy: margin,
             vspan: dv * scale,
             flip: scene.dim != 3,
+            side: false,
+        }
+    }
+
+    /// The side view of a 3D scene (x to the right, y up) at the same scale as its plan `top`.
+    fn side(scene: &Scene, top: &View) -> Self {
+        let dv = (scene.max[1] - scene.min[1]).max(1e-6);
+        let margin = top.oy;
+        // Room for the panel's title above the world.
+        let title = 9.0 * (top.w as f32 / 400.0).max(1.0).floor();
+        let h = (dv * top.scale + 2.0 * margin + title).round().max(8.0);
+        View {
+            w: top.w,
+            h: h as usize,
+            u0: scene.min[0],
+            v0: scene.min[1],
+            scale: top.scale,
+            ox: top.ox,
+            oy: margin + title,
+            vspan: dv * top.scale,
+            flip: true,
+            side: true,
         }
     }
 
@@ -462,7 +491,11 @@ impl View {
 
     #[inline]
     fn world(&self, scene: &Scene, p: [f32; 3]) -> (f32, f32) {
-        self.px(scene.plan(p))
+        if self.side {
+            self.px([p[0], p[1]])
+        } else {
+            self.px(scene.plan(p))
+        }
     }
 }
 
@@ -517,6 +550,19 @@ fn draw_shape(canvas: &mut Canvas, view: &View, scene: &Scene, s: &Shape) {
     let c = kind_index(s.kind);
     let ring_px = (view.w as f32 / 400.0).max(1.5);
     match &s.geom {
+        Geometry::Circle { center, radius } if view.side && s.kind == ShapeKind::Shaft => {
+            // A vertical shaft, full height.
+            let (x0, y0) = view.world(scene, [center[0] - radius, scene.min[1], 0.0]);
+            let (x1, y1) = view.world(scene, [center[0] + radius, scene.max[1], 0.0]);
+            canvas.rect(
+                x0.round() as i64,
+                y1.min(y0).round() as i64,
+                x1.round().max(x0.round() + 1.0) as i64,
+                y0.max(y1).round() as i64,
+                c,
+            );
+        }
+        Geometry::Polygon { .. } if view.side => {}
         Geometry::Circle { center, radius } => {
             let (x, y) = view.world(scene, *center);
             let r = radius * view.scale;
@@ -623,6 +669,89 @@ fn draw_agents(
         if x.is_finite() && y.is_finite() {
             canvas.disc(x, y, r, agent_index(by, a.label, a.group, 0));
         }
+    }
+}
+
+/// The side view's bees: each a dot, its body as a line along its heading and its wings as a
+/// dark bar along the rolled wing axis, projected on (x, y) (see the module docs).
+fn draw_bees_side(
+    canvas: &mut Canvas,
+    view: &View,
+    scene: &Scene,
+    frame: &Frame,
+    r: f32,
+    by: ColorBy,
+) {
+    let body = (3.0 * r).max(5.0);
+    let wing = 0.7 * body;
+    for a in &frame.agents {
+        let (x, y) = view.world(scene, a.pos);
+        if !(x.is_finite() && y.is_finite()) {
+            continue;
+        }
+        let c = agent_index(by, a.label, a.group, 0);
+        let h = a.heading;
+        // Screen y grows downward: a world direction (u, v) is (u, −v) on screen.
+        canvas.line(x, y, x + body * h[0], y - body * h[1], c);
+        // s = heading × up = (−h.z, 0, h.x), normalized; wing axis cos·s − sin·up.
+        let len = h[0].hypot(h[2]);
+        let (sx, _sz) = if len > 1e-6 {
+            (-h[2] / len, h[0] / len)
+        } else {
+            (0.0, 1.0)
+        };
+        let (sin, cos) = a.roll.to_radians().sin_cos();
+        let (wx, wy) = (cos * sx, -sin);
+        canvas.line(
+            x - wing * wx,
+            y + wing * wy,
+            x + wing * wx,
+            y - wing * wy,
+            I_INK,
+        );
+        canvas.disc(x, y, (0.6 * r).max(0.5), c);
+    }
+}
+
+/// The side panel of a 3D scene at `frame`: world, shafts and objects, trails through
+/// `frames[idx]`, the bees with heading and wings, and a title.
+#[allow(clippy::too_many_arguments)]
+fn side_canvas(
+    view: &View,
+    scene: &Scene,
+    frames: &[Frame],
+    idx: &[usize],
+    stride: usize,
+    frame: &Frame,
+    r: f32,
+    by: ColorBy,
+) -> Canvas {
+    let mut canvas = Canvas::new(view.w, view.h, I_BG);
+    draw_base(&mut canvas, view, scene);
+    draw_trails(&mut canvas, view, scene, frames, idx, stride, by);
+    let mut objects = Canvas::new(view.w, view.h, CLEAR);
+    draw_objects(&mut objects, view, scene, frame.step);
+    compose(&mut canvas, &objects);
+    draw_bees_side(&mut canvas, view, scene, frame, r, by);
+    let scale = (view.w as i64 / 400).max(1);
+    canvas.text(
+        view.ox as i64,
+        2 * scale,
+        "side view - x right / y up - line: heading - bar: wings at the roll",
+        scale,
+        I_INK,
+    );
+    canvas
+}
+
+/// `top` with `bottom` below it (same width).
+fn stack(top: Canvas, bottom: &Canvas) -> Canvas {
+    let mut px = top.px;
+    px.extend_from_slice(&bottom.px);
+    Canvas {
+        w: top.w,
+        h: top.h + bottom.h,
+        px,
     }
 }
 
@@ -768,6 +897,20 @@ fn snapshot_canvas(scene: &Scene, frames: &[Frame], opts: &RenderOptions) -> (Ca
         let scale = (view.w as i64 / 400).max(1);
         draw_legend(&mut canvas, scene, frame, by, scale);
     }
+    if scene.dim == 3 {
+        let side = View::side(scene, &view);
+        let panel = side_canvas(
+            &side,
+            scene,
+            frames,
+            &idx,
+            trail_stride(n, opts.max_trail_agents),
+            frame,
+            r,
+            by,
+        );
+        canvas = stack(canvas, &panel);
+    }
     (canvas, view)
 }
 
@@ -839,10 +982,12 @@ pub fn render_gif(
     let path = path.as_ref();
     check_inputs(scene, frames, path)?;
     let view = View::new(scene, opts.gif_width);
-    if view.w > u16::MAX as usize || view.h > u16::MAX as usize {
+    let side = (scene.dim == 3).then(|| View::side(scene, &view));
+    let total_h = view.h + side.as_ref().map_or(0, |s| s.h);
+    if view.w > u16::MAX as usize || total_h > u16::MAX as usize {
         return Err(OutputError::invalid(
             path,
-            format!("GIF size {}x{} is too large", view.w, view.h),
+            format!("GIF size {}x{} is too large", view.w, total_h),
         ));
     }
     let by = resolve_color_by(opts.color_by, scene);
@@ -858,7 +1003,7 @@ pub fn render_gif(
     let flat_palette: Vec<u8> = palette().into_iter().flatten().collect();
 
     write_atomic(path, |w| {
-        let mut enc = gif::Encoder::new(w, view.w as u16, view.h as u16, &flat_palette)
+        let mut enc = gif::Encoder::new(w, view.w as u16, total_h as u16, &flat_palette)
             .map_err(io::Error::other)?;
         enc.set_repeat(gif::Repeat::Infinite)
             .map_err(io::Error::other)?;
@@ -893,12 +1038,22 @@ pub fn render_gif(
             compose(&mut canvas, &objects);
             draw_agents(&mut canvas, &view, scene, frame, r, by);
             draw_step(&mut canvas, frame.step, text_scale);
-            let mut gf = gif::Frame::from_indexed_pixels(
-                view.w as u16,
-                view.h as u16,
-                canvas.px.as_slice(),
-                None,
-            );
+            let both;
+            let pixels = match &side {
+                Some(sv) => {
+                    let panel = side_canvas(sv, scene, frames, &idx, stride, frame, r, by);
+                    let top = Canvas {
+                        w: canvas.w,
+                        h: canvas.h,
+                        px: canvas.px.clone(),
+                    };
+                    both = stack(top, &panel);
+                    both.px.as_slice()
+                }
+                None => canvas.px.as_slice(),
+            };
+            let mut gf =
+                gif::Frame::from_indexed_pixels(view.w as u16, total_h as u16, pixels, None);
             gf.delay = if k + 1 == shown.len() {
                 opts.gif_delay_cs.saturating_mul(20).max(100)
             } else {
@@ -947,6 +1102,7 @@ mod tests {
                             heading: [a.cos(), a.sin(), 0.0],
                             label: (i % 3) as u8,
                             motion: 1,
+                            ..Default::default()
                         }
                     })
                     .collect(),
@@ -1081,7 +1237,21 @@ mod tests {
         render_png(&sc, &fr, &p, &RenderOptions::default()).unwrap();
         let img = image::open(&p).unwrap().to_rgb8();
         let view = View::new(&sc, 1024);
-        assert_eq!((img.width(), img.height() as usize), (1024, view.h));
+        let side = View::side(&sc, &view);
+        // The top view, then the side view below it.
+        assert_eq!(
+            (img.width(), img.height() as usize),
+            (1024, view.h + side.h)
+        );
+        // The shaft stands full height in the side view.
+        for y in [2.0, 15.0, 28.0] {
+            let (x, py) = side.world(&sc, [50.0, y, 0.0]);
+            assert_eq!(
+                img.get_pixel(x.round() as u32, (py.round() as usize + view.h) as u32)
+                    .0,
+                kind_color(ShapeKind::Shaft)
+            );
+        }
         let (x, y) = view.world(&sc, [50.0, 99.0, 25.0]);
         assert_eq!(
             img.get_pixel(x.round() as u32, y.round() as u32).0,
@@ -1093,6 +1263,45 @@ mod tests {
         assert!(
             img.pixels()
                 .any(|px| px.0 == agent_color(ColorBy::Group, 1))
+        );
+    }
+
+    /// The side view draws a bee's wings as a bar along the rolled wing axis: a bee flying +x
+    /// (across the view, wings along z, edge-on) with a roll of 40° shows a dark bar above and
+    /// below its dot; a level one shows none.
+    #[test]
+    fn the_side_view_shows_the_roll_as_a_tilted_wing_bar() {
+        let sc = Scene::new_3d([0.0, 0.0, 0.0], [100.0, 30.0, 50.0]);
+        let ink = |roll: f32| {
+            let fr = vec![Frame {
+                step: 0,
+                agents: vec![AgentSample {
+                    pos: [50.0, 15.0, 25.0],
+                    heading: [1.0, 0.0, 0.0],
+                    roll,
+                    ..Default::default()
+                }],
+            }];
+            let opts = RenderOptions {
+                agent_radius_px: Some(4.0),
+                legend: false,
+                ..RenderOptions::default()
+            };
+            let img = snapshot_image(&sc, &fr, &opts).unwrap();
+            let view = View::new(&sc, opts.width);
+            let side = View::side(&sc, &view);
+            let (x, y) = side.world(&sc, [50.0, 15.0, 25.0]);
+            let (x, y) = (x.round() as u32, y.round() as u32 + view.h as u32);
+            // Pixels straight above and below the dot, past its disc.
+            (5..8)
+                .filter(|d| img.get_pixel(x, y - d).0 == INK && img.get_pixel(x, y + d).0 == INK)
+                .count()
+        };
+        assert!(ink(40.0) > 0, "no wing bar for a rolled bee");
+        assert_eq!(
+            ink(0.0),
+            0,
+            "a level bee flying across the view shows no bar"
         );
     }
 

@@ -35,7 +35,8 @@ use tempfile::TempDir;
 
 use super::error::{OutputError, Result};
 use super::{
-    POSITIONS_NPY, RUN_GIF, RUN_LOG, SCENE_JSON, SNAPSHOT_PNG, SUMMARY_JSON, TRAJECTORIES_CSV,
+    ATTITUDE_NPY, POSITIONS_NPY, RUN_GIF, RUN_LOG, SCENE_JSON, SNAPSHOT_PNG, SUMMARY_JSON,
+    TRAJECTORIES_CSV,
 };
 
 /// Every file a run writes into its folder. A new output file must be listed here: a run
@@ -45,6 +46,7 @@ pub const RUN_FILES: &[&str] = &[
     SCENE_JSON,
     TRAJECTORIES_CSV,
     POSITIONS_NPY,
+    ATTITUDE_NPY,
     SUMMARY_JSON,
     SNAPSHOT_PNG,
     RUN_GIF,

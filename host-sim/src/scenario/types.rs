@@ -574,7 +574,8 @@ pub struct Outputs {
     pub every: u32,
     /// Trajectories as CSV (default true).
     pub trajectories: bool,
-    /// Trajectories as `.npy` (default true).
+    /// Trajectories as `.npy`: `positions.npy`, and for 3D (bee) worlds `attitude.npy`, the
+    /// roll and pitch in degrees (default true).
     pub npy: bool,
     /// PNG snapshot (default true).
     pub render: bool,
