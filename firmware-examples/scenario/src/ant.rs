@@ -517,7 +517,7 @@ mod tests {
         let env =
             |i: usize| ant::environment(&ants[i], &w.plan_frame(&ants, i).objects, &p, ctx(i));
         assert!(
-            matches!(env(4), EnvAction::Avoid(_)),
+            matches!(env(4), EnvAction::Avoid(..)),
             "ant 4 avoids the rock: {:?}",
             env(4)
         );

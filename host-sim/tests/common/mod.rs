@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::process::{Command, Output};
 
-use swarm_sim::output::{RUN_FILES, read_npy};
+use swarm_sim::output::{ATTITUDE_NPY, RUN_FILES, read_npy};
 
 /// The `swarm` binary of this build.
 pub fn swarm() -> Command {
@@ -65,12 +65,17 @@ pub struct RunId {
 /// summary's recorded frames and agents in `positions.npy` and `trajectories.csv`, whole
 /// pictures); returns that run, or what does not fit.
 pub fn identify(dir: &Path) -> Result<RunId, String> {
-    let mut want: Vec<String> = RUN_FILES.iter().map(|s| s.to_string()).collect();
-    want.sort();
     if !dir.is_dir() {
         return Err(format!("no folder {}", dir.display()));
     }
     let have = entries(dir);
+    // Every run file; `attitude.npy` only for 3D (bee) runs.
+    let mut want: Vec<String> = RUN_FILES
+        .iter()
+        .filter(|&&f| f != ATTITUDE_NPY || have.iter().any(|h| h == ATTITUDE_NPY))
+        .map(|s| s.to_string())
+        .collect();
+    want.sort();
     if have != want {
         return Err(format!("files {have:?}, expected {want:?}"));
     }
