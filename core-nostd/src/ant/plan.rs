@@ -25,12 +25,15 @@ wire_type! {
 ///
 /// 1. **Stop** (§4.1): a stopped ant counts down its timer and stays; when a collecting
 ///    (dropping) stop runs out, S_c becomes S_food (S_nest), the latest arrival position is
-///    recorded and the ant turns back the way it came. An active ant stops casually with
-///    probability `p_stop`.
-/// 2. **Basic movement** (§4.1): turn by a uniform random angle in (−θ, θ).
+///    recorded, the ant turns back the way it came and takes the place it came from (its nest,
+///    its food) as its goal. An active ant stops casually with probability `p_stop`.
+/// 2. **Basic movement** (§4.1): turn by a uniform random angle in (−θ, θ) from the current
+///    orientation, or from the direction to the goal when the ant has one (ours).
 /// 3. **Interactions** (§4.2): a neighbour that can inform the ant (Table 1, nearest first)
-///    turns it toward that neighbour's latest arrival position; then the environment, which
-///    takes priority over neighbours, with obstacles > disturbance > food = nest.
+///    makes that neighbour's latest arrival position the ant's goal (Fig. 6; a goal reached
+///    without arriving is forgotten); then the environment, which takes priority over
+///    neighbours: stops at food or its nest, obstacles (avoiding, going round toward the goal,
+///    [`obstacle_heading`](super::obstacle_heading)) > disturbance > relabelling at the nest.
 /// 4. **Prediction** (eq. 1) and boundary check (§4.3): p* = p + v·O*·Δt; a prediction that
 ///    leaves the arena reflects O* off the wall(s) it crosses.
 ///
