@@ -317,6 +317,14 @@ fn fill_obstacles<S: SimScalar>(w: &AntWorld, i: usize, frame: &mut AntResolveFr
     let me = w.sensed.pos[i];
     let p = [me[0] as f32, me[1] as f32];
     let reach = w.step_reach;
+    // Indexed: only the active obstacles of the ant's cell (most cells have none).
+    let indexed = w
+        .objects_near(p)
+        .filter(|_| reach <= w.sense_range)
+        .map(|m| m & w.obstacle_bits);
+    if indexed == Some(0) {
+        return;
+    }
     // Pieces offered (more than this many within one step are not sensed).
     let mut found = [([0.0f32; 2], [0.0f32; 2]); 4 * SURFACES];
     let mut len = 0usize;
@@ -333,7 +341,7 @@ fn fill_obstacles<S: SimScalar>(w: &AntWorld, i: usize, frame: &mut AntResolveFr
             }
         });
     };
-    match w.objects_near(p).filter(|_| reach <= w.sense_range) {
+    match indexed {
         Some(mut mask) => {
             while mask != 0 {
                 let k = mask.trailing_zeros() as usize;

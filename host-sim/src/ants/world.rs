@@ -281,6 +281,8 @@ pub struct AntWorld {
     pub(crate) object_cells: Vec<u64>,
     /// The cells marked in `object_cells` (cleared one by one: objects cover few cells).
     object_marked: Vec<u32>,
+    /// Bit `k` set if object `k` is an active obstacle (with the index, up to 64 objects).
+    pub(crate) obstacle_bits: u64,
 }
 
 /// What an ant's neighbours can sense of it: struct of arrays, indexed by agent.
@@ -355,6 +357,7 @@ impl AntWorld {
             grid,
             object_cells: Vec::new(),
             object_marked: Vec::new(),
+            obstacle_bits: 0,
         }
     }
 
@@ -432,6 +435,12 @@ impl AntWorld {
             self.object_cells[c as usize] = 0;
         }
         let reach = self.sense_range + self.rounding_margin();
+        self.obstacle_bits = self
+            .objects
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| o.active && o.kind == AntObjectKind::Obstacle)
+            .fold(0, |bits, (k, _)| bits | 1 << k);
         let (cells, marked) = (&mut self.object_cells, &mut self.object_marked);
         for (k, o) in self.objects.iter().enumerate().filter(|(_, o)| o.active) {
             let (lo, hi) = o.bounding_box();
