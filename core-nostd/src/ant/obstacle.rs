@@ -77,20 +77,18 @@ pub fn tangent<S: Scalar>(n: Vec2<S>, turn: Turn) -> Vec2<S> {
 /// * **Avoiding** (Fig. 5b, the paper's rule): an obstacle ahead (the heading points into its
 ///   surface) within `avoid_range` turns the ant perpendicular to the ant-obstacle line, on the
 ///   side of its heading (the smaller turn; a random side when exactly head-on).
-/// * **Going round** (ours): an ant with a goal that meets an obstacle (or the dangerous circle
-///   of a disturbance, which it would otherwise walk back into as soon as it escaped, §4.2.2
-///   Fig. 5c) keeps to that side, along
-///   the surface, at about half the avoiding range (closer when farther, away when nearer),
-///   until the way toward the goal is free: the goal lies in front of the surface and the
-///   angle from the goal direction to the way along the surface, followed continuously since
-///   the start (`winding`, Pledge's counter, in quarter turns), is at most a quarter turn. The counter takes the ant out of a cup whose mouth faces away
-///   from the goal: inside, its heading has turned half a turn, so it follows the wall out over
-///   the lip and round the outside. The ant lets go of a surface more than twice the avoiding
-///   range away (the obstacle was removed, or the ant was pushed off).
-///
-/// The winding is the angle from the goal direction to the direction along the surface,
-/// followed continuously from tick to tick (it changes with the surface, not with the pushes of
-/// the neighbours).
+/// * **Going round** (ours): an ant with a goal that meets an obstacle ahead within twice the
+///   avoiding range (or the rim of a disturbance's dangerous circle, which it would otherwise
+///   walk back into as soon as it escaped, §4.2.2 Fig. 5c) turns along the surface on the
+///   shorter side and keeps to it, between half and the whole avoiding range from the surface
+///   (a rim: one to two avoiding ranges), until the way toward the goal is free: the goal lies in
+///   front of the surface and the angle from the goal direction to the way along the surface,
+///   followed continuously from tick to tick (`winding`, Pledge's counter, in quarter turns; it
+///   changes with the surface, not with the neighbours' pushes), is at most a quarter turn.
+///   Round a wall the ant lets go at the far corner; in a cup whose mouth faces away from the
+///   goal the winding is half a turn, so the ant follows the wall out over the lip and round
+///   the outside. It lets go of a surface more than twice the avoiding range away (the
+///   obstacle was removed, or the ant was pushed off).
 pub fn obstacle_heading<S: Scalar>(
     s: &AntState<S>,
     heading: Vec2<S>,
