@@ -24,7 +24,7 @@ mod tests;
 
 pub use frame::{AntNeighbor, AntObject, PlanFrame, ResolveFrame, SURFACES, Surface};
 pub use interact::{EnvAction, environment, informer, transfers};
-pub use obstacle::{SURFACE_MARGIN, constrain, nearest_obstacle, obstacle_heading, tangent};
+pub use obstacle::{SURFACE_MARGIN, constrain, obstacle_heading, tangent};
 pub use params::AntParams;
 pub use plan::{AntPlan, plan, plan_checked, predict};
 pub use resolve::{W_MAX, repulsion, resolve, resolve_checked};

@@ -12,14 +12,6 @@ use crate::{Scalar, StepCtx, Vec2};
 /// rounding of positions to `f32` or [`Fx`](crate::Fx) and of the sensed surfaces.
 pub const SURFACE_MARGIN: f32 = 1.0 / 64.0;
 
-/// The nearest obstacle among the sensed objects, with its distance (0 inside it).
-pub fn nearest_obstacle<S: Scalar>(
-    pos: Vec2<S>,
-    objects: &[AntObject<S>],
-) -> Option<(S, Surface<S>)> {
-    nearest_surface(pos, objects, false).map(|(d, s, _)| (d, s))
-}
-
 /// The nearest surface to go round: an obstacle, or with `disturbances` also the rim of a
 /// disturbance's dangerous circle the ant is outside of (an ant inside escapes instead); the
 /// flag tells a rim.

@@ -100,8 +100,8 @@ pub fn plan_checked<S: Scalar, const N: usize, const O: usize>(
     s.heading = reference.rotated(turn).normalized().unwrap_or(reference);
 
     // (3b) The environment, which the ant prefers to its neighbours (§4, Fig. 4a).
-    let follow = s.follow.take();
-    let sensing = AntState { follow, ..s };
+    let sensing = s;
+    s.follow = None;
     match environment(&sensing, &frame.objects, params, ctx) {
         EnvAction::None => {}
         EnvAction::Avoid(h, follow) => {

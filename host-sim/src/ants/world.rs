@@ -103,18 +103,18 @@ impl AntObjectDef {
     /// The convex pieces of the obstacle within `reach` of `p`, as sensed surfaces
     /// `(closest, outward normal, distance)`: a disc is one piece, a polygon one per edge (so
     /// that staying in front of each keeps an ant out of a concave polygon too; edges meeting
-    /// at the closest vertex give the same point, reported once). From inside, the one way
-    /// out: the closest boundary point.
+    /// at a vertex may give the same point twice). From inside, the one way out: the closest
+    /// boundary point.
     pub fn pieces_within(
         &self,
         p: [f32; 2],
         reach: f32,
         mut f: impl FnMut([f32; 2], [f32; 2], f32),
     ) {
+        let (q, n, inside) = self.surface(p);
         let points = match &self.shape {
-            Shape2::Polygon { points } if !self.surface(p).2 => points,
+            Shape2::Polygon { points } if !inside => points,
             _ => {
-                let (q, n, inside) = self.surface(p);
                 let d = if inside {
                     0.0
                 } else {
@@ -127,16 +127,13 @@ impl AntObjectDef {
             }
         };
         let k = points.len();
-        let mut last: Option<[f32; 2]> = None;
         for e in 0..k {
             let q = closest_on_segment(points[e], points[(e + 1) % k], p);
             let d = (p[0] - q[0]).hypot(p[1] - q[1]);
-            if d > reach || last == Some(q) {
-                continue;
+            if d <= reach {
+                let n = unit([p[0] - q[0], p[1] - q[1]]).unwrap_or_else(|| edge_normal(points, e));
+                f(q, n, d);
             }
-            let n = unit([p[0] - q[0], p[1] - q[1]]).unwrap_or_else(|| edge_normal(points, e));
-            last = Some(q);
-            f(q, n, d);
         }
     }
 
