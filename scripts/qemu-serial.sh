@@ -199,7 +199,7 @@ line = Line()
 result = {}
 
 if args.get("hello") == "1":
-    hello = bytes.fromhex("00 04 01 01 02 03 26 a3 00")   # 00, then Hello seq 2 (protocol.md 11)
+    hello = bytes.fromhex("00 04 02 01 02 03 fa 38 00")   # 00, then Hello seq 2 (protocol.md 11)
     line.send(hello)
     reply = line.frame()
     boot_ms = (time.time() - t0) * 1000
@@ -218,13 +218,13 @@ if args.get("hello") == "1":
     want_scal = 1 if img.endswith("fixed") else 0
     want_math = 2 if want_scal else 0
     want_caps = [8, 4, 0] if want_ctrl == 0 else [16, 0, 16]
-    want_max = 425 if want_ctrl == 0 else 942
+    want_max = 451 if want_ctrl == 0 else 942
     got = (proto, ctrl, scal, math, caps, max_frame, name)
-    want = (1, want_ctrl, want_scal, want_math, want_caps, want_max, img)
+    want = (2, want_ctrl, want_scal, want_math, want_caps, want_max, img)
     if got != want: fail(f"identity {got} != expected {want}")
     if img == "ant-node":
-        pinned = bytes.fromhex("04 01 02 02 02 01 01 01 03 08 04 17 a9 03 c3 8b a1 c0 ec f6 b8 9a 7e 08"
-                               " 61 6e 74 2d 6e 6f 64 65 e4 40 00")
+        pinned = bytes.fromhex("04 02 02 02 02 02 01 01 03 08 04 15 c3 03 c3 8b a1 c0 ec f6 b8 9a 7e 08"
+                               " 61 6e 74 2d 6e 6f 64 65 02 40 00")
         if reply != pinned: fail("Identity differs from docs/protocol.md section 11")
     print(f"ok    {img}: Hello -> Identity (controller {['Ant','Bee'][ctrl]}, scalar "
           f"{['F32','I16F16'][scal]}, math {['Libm','Micromath','Integer'][math]}, capacities {caps}, "

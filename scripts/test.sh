@@ -71,16 +71,20 @@ stage "swarm-core builds without std, every backend" bash -c '
     cargo build -q -p swarm-core --no-default-features --features micromath,fixed,serde &&
     cargo build -q -p swarm-core --no-default-features --features libm &&
     cargo build -q -p swarm-core --features fixed,serde,defmt'
+stage "swarm-core with feature small (the ant node's size options) passes its unit tests" \
+    cargo test -q -p swarm-core --release --features small --lib
 stage "cargo doc (warnings are errors)" env RUSTDOCFLAGS="-D warnings" cargo doc -q --workspace --no-deps
 stage "cargo test --workspace (unit, property, integration, doc tests)" cargo test --workspace --release
 
 if ((QUICK == 1)); then
     warn "--quick: SKIPPING the firmware build and QEMU tests"
 elif ((firmware_ok == 1)); then
-    stage "firmware: build ant-node and bee-node (f32, fixed) for Cortex-M" firmware-examples/build.sh
+    stage "firmware: build ant-node and bee-node (f32, fixed) for Cortex-M, within their size budgets" firmware-examples/build.sh --enforce-budgets
     stage "firmware: scenario branch coverage (host)" bash -c 'cd firmware-examples && cargo test -q -p fw-scenario --features std,fixed && cargo test -q -p fw-scenario --features std'
     stage "firmware: node loop and parameters (host)" bash -c 'cd firmware-examples && cargo test -q -p fw-node'
     stage "firmware: every image in qemu-system-arm equals the host, and a corrupted table fails" scripts/qemu-run.sh --self-test
+    stage "firmware: serial nodes in QEMU answer Hello with the documented Identity, replay a session byte for byte, stack peaks" \
+        scripts/qemu-serial.sh --check --steps 30
     stage "firmware: instructions per controller step in QEMU -icount (counted-loop cross-check; a wrong shift fails)" scripts/qemu-cycles.sh --self-test
     stage "firmware: swarm-hil mirrors every serial node in QEMU (2,000 decisions each, garbage, reset, refusal)" scripts/hil-qemu.sh
 fi

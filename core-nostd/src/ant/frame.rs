@@ -155,28 +155,40 @@ impl<S: Scalar, const N: usize, const O: usize> PlanFrame<S, N, O> {
     pub fn validate(&self, agent: u32) -> Result<()> {
         check_bounds(self.bounds)?;
         for (i, n) in self.neighbours.iter().enumerate() {
-            check_point(n.pos, "neighbours.pos").map_err(|e| e.at(i))?;
-            check_point(n.arrival, "neighbours.arrival").map_err(|e| e.at(i))?;
-            if n.id == agent || self.neighbours[..i].iter().any(|m| m.id == n.id) {
-                return Err(Error::inconsistent("neighbours.id").at(i));
-            }
-            if n.label == Label::Nest && n.origin != n.nest {
-                return Err(Error::inconsistent("neighbours.origin").at(i));
-            }
+            self.check_neighbour(i, n, agent).map_err(|e| e.at(i))?;
         }
-        let big = S::from_f32(super::state::COORD_LIMIT);
         for (i, o) in self.objects.iter().enumerate() {
-            let r = match *o {
-                AntObject::Obstacle(surface) => surface.check("objects.closest", "objects.normal"),
-                AntObject::Disturbance { center, radius }
-                | AntObject::Food { center, radius, .. }
-                | AntObject::Nest { center, radius, .. } => check_point(center, "objects.center")
-                    .and_then(|_| check_range(radius, S::EPS, big, "objects.radius"))
-                    .map(|_| ()),
-            };
-            r.map_err(|e| e.at(i))?;
+            check_object(o).map_err(|e| e.at(i))?;
         }
         Ok(())
+    }
+
+    /// Neighbour `i` (`n`): its points, an id other than the ant's and the earlier
+    /// neighbours', a consistent origin.
+    fn check_neighbour(&self, i: usize, n: &AntNeighbor<S>, agent: u32) -> Result<()> {
+        check_point(n.pos, "neighbours.pos")?;
+        check_point(n.arrival, "neighbours.arrival")?;
+        if n.id == agent || self.neighbours[..i].iter().any(|m| m.id == n.id) {
+            return Err(Error::inconsistent("neighbours.id"));
+        }
+        if n.label == Label::Nest && n.origin != n.nest {
+            return Err(Error::inconsistent("neighbours.origin"));
+        }
+        Ok(())
+    }
+}
+
+/// An object of a plan frame: a finite point and, for a disc, a positive radius.
+fn check_object<S: Scalar>(o: &AntObject<S>) -> Result<()> {
+    match *o {
+        AntObject::Obstacle(surface) => surface.check("objects.closest", "objects.normal"),
+        AntObject::Disturbance { center, radius }
+        | AntObject::Food { center, radius, .. }
+        | AntObject::Nest { center, radius, .. } => {
+            check_point(center, "objects.center")?;
+            let big = S::from_f32(super::state::COORD_LIMIT);
+            check_range(radius, S::EPS, big, "objects.radius").map(|_| ())
+        }
     }
 }
 

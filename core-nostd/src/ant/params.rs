@@ -91,8 +91,8 @@ impl<S: Scalar> AntParams<S> {
 
     /// Checks every parameter; the error names the first bad one.
     pub fn validate(&self) -> Result<()> {
-        let pos = |v: S, hi: f32, field: &'static str| {
-            if v.is_finite() && v > S::ZERO && v <= S::from_f32(hi) {
+        let pos = |v: S, hi: S, field: &'static str| {
+            if v.is_finite() && v > S::ZERO && v <= hi {
                 Ok(())
             } else {
                 Err(Error::BadParam { field })
@@ -105,13 +105,13 @@ impl<S: Scalar> AntParams<S> {
                 Err(Error::BadParam { field })
             }
         };
-        pos(self.speed, 100.0, "speed")?;
-        pos(self.dt, 100.0, "dt")?;
-        pos(self.theta, core::f32::consts::PI, "theta")?;
+        pos(self.speed, S::from_i32(100), "speed")?;
+        pos(self.dt, S::from_i32(100), "dt")?;
+        pos(self.theta, S::from_f32(core::f32::consts::PI), "theta")?;
         unit(self.p_stop, "p_stop")?;
-        pos(self.contact_range, 1000.0, "contact_range")?;
-        pos(self.avoid_range, 1000.0, "avoid_range")?;
-        pos(self.collision_range, 1000.0, "collision_range")?;
+        pos(self.contact_range, S::from_i32(1000), "contact_range")?;
+        pos(self.avoid_range, S::from_i32(1000), "avoid_range")?;
+        pos(self.collision_range, S::from_i32(1000), "collision_range")?;
         unit(self.w0, "w0")?;
         if !(self.c.is_finite() && self.c >= S::ZERO && self.c <= S::from_i32(1000)) {
             return Err(Error::BadParam { field: "c" });

@@ -47,6 +47,25 @@ impl Fx {
     pub const fn from_bits(bits: i32) -> Fx {
         Fx(I16F16::from_bits(bits))
     }
+    /// From `f32`, rounded to the nearest (ties to even), saturating; NaN gives 0. The same as
+    /// [`Scalar::from_f32`] (`I16F16::saturating_from_num`, tested), usable in constants.
+    #[inline(always)]
+    pub const fn from_f32_const(v: f32) -> Fx {
+        // v · 2^16 is exact (a power-of-two scale), or ±inf, which saturates below.
+        let x = v * 65_536.0;
+        // Adding and taking away 2^23 rounds |x| < 2^23 to an integer, ties to even (IEEE 754
+        // round-to-nearest); larger magnitudes are integers already.
+        const BIG: f32 = 8_388_608.0;
+        let r = if x >= 0.0 && x < BIG {
+            (x + BIG) - BIG
+        } else if x < 0.0 && x > -BIG {
+            -((-x + BIG) - BIG)
+        } else {
+            x
+        };
+        // `as` saturates at the i32 range and maps NaN to 0.
+        Fx::from_bits(r as i32)
+    }
     /// The raw bits.
     #[inline]
     pub const fn to_bits(self) -> i32 {
@@ -108,21 +127,24 @@ const fn isqrt(n: u64) -> u64 {
 
 impl Add for Fx {
     type Output = Fx;
-    #[inline]
+    #[cfg_attr(not(feature = "small"), inline)]
+    #[cfg_attr(feature = "small", inline(never))]
     fn add(self, o: Fx) -> Fx {
         Fx::from_bits(self.to_bits().saturating_add(o.to_bits()))
     }
 }
 impl Sub for Fx {
     type Output = Fx;
-    #[inline]
+    #[cfg_attr(not(feature = "small"), inline)]
+    #[cfg_attr(feature = "small", inline(never))]
     fn sub(self, o: Fx) -> Fx {
         Fx::from_bits(self.to_bits().saturating_sub(o.to_bits()))
     }
 }
 impl Mul for Fx {
     type Output = Fx;
-    #[inline]
+    #[cfg_attr(not(feature = "small"), inline)]
+    #[cfg_attr(feature = "small", inline(never))]
     fn mul(self, o: Fx) -> Fx {
         let p = self.to_bits() as i64 * o.to_bits() as i64;
         Fx::sat((p + (1 << 15)) >> 16)
@@ -130,9 +152,10 @@ impl Mul for Fx {
 }
 impl Div for Fx {
     type Output = Fx;
-    #[inline]
+    #[cfg_attr(not(feature = "small"), inline)]
+    #[cfg_attr(feature = "small", inline(never))]
     fn div(self, o: Fx) -> Fx {
-        let (a, b) = (self.to_bits() as i64, o.to_bits() as i64);
+        let (a, b) = (self.to_bits(), o.to_bits());
         if b == 0 {
             return match a {
                 0 => Fx::ZERO,
@@ -140,8 +163,41 @@ impl Div for Fx {
                 _ => Fx::MIN,
             };
         }
-        Fx::sat((a << 16) / b)
+        let q = div_q16(a.unsigned_abs(), b.unsigned_abs()) as i64;
+        Fx::sat(if (a < 0) != (b < 0) { -q } else { q })
     }
+}
+
+/// `(n << 16) / d`, truncated (`d > 0`): the quotient of `Fx` division before its sign. A
+/// 64-bit division where the machine has one; on 32-bit cores (Cortex-M), where it would be a
+/// library routine, [`div_q16_words`] (smaller and faster there).
+#[inline]
+fn div_q16(n: u32, d: u32) -> u64 {
+    #[cfg(target_pointer_width = "64")]
+    return ((n as u64) << 16) / d as u64;
+    #[cfg(not(target_pointer_width = "64"))]
+    return div_q16_words(n, d);
+}
+
+/// [`div_q16`] without a 64-bit division: long division with the core's
+/// 32-bit divide, the integer part in one step, then the 16 fraction bits in digits of as many
+/// bits `k` as keep `r << k` within 32 bits (`r < d`; one digit if `d < 2^16`, two below
+/// `2^24`). Equal to the 64-bit quotient for every input (tested).
+#[cfg(any(not(target_pointer_width = "64"), test))]
+fn div_q16_words(n: u32, d: u32) -> u64 {
+    let mut q = (n / d) as u64;
+    let mut r = n % d;
+    // `r < d < 2^(32 - lz)`, so `r << lz` fits; for `d = 2^31` (lz 0), `r << 1` does.
+    let digit = d.leading_zeros().max(1);
+    let mut left = 16;
+    while left > 0 {
+        let k = digit.min(left);
+        let x = r << k;
+        q = (q << k) | (x / d) as u64;
+        r = x % d;
+        left -= k;
+    }
+    q
 }
 impl Neg for Fx {
     type Output = Fx;
@@ -177,13 +233,16 @@ impl Scalar for Fx {
     const EPS: Fx = Fx::from_bits(1);
     const DIRECT_LENGTH: bool = false;
 
-    #[inline]
+    #[cfg_attr(not(feature = "small"), inline)]
+    #[cfg_attr(feature = "small", inline(never))]
+    fn abs(self) -> Fx {
+        Fx::from_bits(self.to_bits().saturating_abs())
+    }
+    // Always inlined: nearly every call converts a constant (a threshold, a limit), which then
+    // folds to its bit pattern instead of pulling soft-float code into integer-only firmware.
+    #[inline(always)]
     fn from_f32(v: f32) -> Fx {
-        if v.is_nan() {
-            Fx::ZERO
-        } else {
-            Fx(I16F16::saturating_from_num(v))
-        }
+        Fx::from_f32_const(v)
     }
     #[inline]
     fn to_f32(self) -> f32 {
@@ -321,6 +380,97 @@ mod tests {
     }
     fn close(a: Fx, b: f64, tol: f64) -> bool {
         (a.to_f32() as f64 - b).abs() <= tol
+    }
+
+    #[test]
+    fn const_conversion_equals_the_fixed_crate() {
+        let reference = |v: f32| {
+            if v.is_nan() {
+                0
+            } else {
+                I16F16::saturating_from_num(v).to_bits()
+            }
+        };
+        let mut specials = vec![
+            0.0f32,
+            -0.0,
+            f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::MAX,
+            f32::MIN,
+            f32::MIN_POSITIVE,
+            -f32::MIN_POSITIVE,
+            1e-45,
+            32767.99998,
+            32768.0,
+            -32768.0,
+            -32768.00001,
+            65536.0,
+        ];
+        // Ties at every scale: k/2^17 (halfway between two Fx values).
+        for k in -40i32..40 {
+            specials.push(k as f32 / 131_072.0);
+            specials.push(k as f32 * 0.5 + 0.25 / 65_536.0);
+        }
+        let mut g = 0x2545_F491u32;
+        for _ in 0..400_000 {
+            g ^= g << 13;
+            g ^= g >> 17;
+            g ^= g << 5;
+            specials.push(f32::from_bits(g));
+            // Magnitudes near the Fx range, where rounding and saturation matter.
+            specials.push(f32::from_bits(
+                (g & 0x807F_FFFF) | ((0x70 + (g >> 27)) << 23),
+            ));
+        }
+        for v in specials {
+            assert_eq!(
+                Fx::from_f32_const(v).to_bits(),
+                reference(v),
+                "{v:e} ({:#x})",
+                v.to_bits()
+            );
+        }
+    }
+
+    #[test]
+    fn word_division_equals_the_64_bit_quotient() {
+        let edges = [
+            1u32,
+            2,
+            3,
+            0xFFFF,
+            0x1_0000,
+            0x1_0001,
+            0x7FFF_FFFF,
+            0x8000_0000,
+        ];
+        let mut g = 0x9E37_79B9u32;
+        let mut next = || {
+            g ^= g << 13;
+            g ^= g >> 17;
+            g ^= g << 5;
+            g
+        };
+        let mut pairs: Vec<(u32, u32)> = Vec::new();
+        for &n in edges.iter().chain(&[0u32]) {
+            for &d in &edges {
+                pairs.push((n, d));
+            }
+        }
+        for _ in 0..200_000 {
+            // |a| and |b| of two i32s: at most 2^31; random magnitudes over every bit length.
+            let (n, sn, d, sd) = (next(), next() % 32, next(), next() % 32);
+            pairs.push(((n >> sn).min(1 << 31), (d >> sd).clamp(1, 1 << 31)));
+        }
+        for (n, d) in pairs {
+            assert_eq!(
+                div_q16_words(n, d),
+                ((n as u64) << 16) / d as u64,
+                "{n} / {d}"
+            );
+        }
     }
 
     #[test]

@@ -19,7 +19,16 @@ pub const MIN_RAW_LEN: usize = HEADER_LEN + CRC_LEN;
 ///
 /// It covers `header ‖ payload` and is appended little-endian. Python computes the same value
 /// with `binascii.crc_hqx(data, 0xFFFF)`.
-pub static CRC16: Crc<u16> = Crc::<u16>::new(&crc::CRC_16_IBM_3740);
+pub static CRC16: Crc<u16, CrcImpl> = Crc::<u16, CrcImpl>::new(&crc::CRC_16_IBM_3740);
+
+/// How [`CRC16`] is computed: a 256-entry table, or bit by bit with feature `small` (512 bytes
+/// less flash, the same checksums).
+#[cfg(not(feature = "small"))]
+pub type CrcImpl = crc::Table<1>;
+/// How [`CRC16`] is computed: a 256-entry table, or bit by bit with feature `small` (512 bytes
+/// less flash, the same checksums).
+#[cfg(feature = "small")]
+pub type CrcImpl = crc::NoTable;
 
 /// The most bytes a frame with a `payload_len`-byte payload can take on the wire, delimiter
 /// included: `COBS(4 + payload_len + 2) + 1`, where COBS adds one byte per started run of 254
@@ -68,7 +77,7 @@ impl<'a> Frame<'a> {
 /// so a frame is built in one pass with no scratch buffer.
 struct FrameWriter<'a> {
     enc: CobsEncoder<'a>,
-    digest: crc::Digest<'static, u16>,
+    digest: crc::Digest<'static, u16, CrcImpl>,
 }
 
 impl FrameWriter<'_> {
@@ -116,17 +125,28 @@ pub fn encode_frame<T: Serialize + ?Sized>(
     msg: &T,
     out: &mut [u8],
 ) -> Result<usize> {
+    encode_with(kind, seq, out, &mut |w| {
+        postcard::serialize_with_flavor(msg, w)
+    })
+}
+
+/// The payload writer of [`encode_with`]: serializes the message into the frame writer.
+type Body<'m> = dyn for<'w> FnMut(FrameWriter<'w>) -> postcard::Result<FrameWriter<'w>> + 'm;
+
+/// [`encode_frame`] around a payload writer: the part that does not depend on the message
+/// type (with feature `small`, one copy shared by every message type).
+#[cfg_attr(feature = "small", inline(never))]
+fn encode_with(kind: u8, seq: u16, out: &mut [u8], body: &mut Body<'_>) -> Result<usize> {
     let mut w = FrameWriter {
         enc: CobsEncoder::new(&mut *out),
         digest: CRC16.digest(),
     };
     w.put(&Header::new(kind, seq).to_bytes())
         .map_err(|_| Error::BufferFull)?;
-    let FrameWriter { mut enc, digest } =
-        postcard::serialize_with_flavor(msg, w).map_err(|e| match e {
-            postcard::Error::SerializeBufferFull => Error::BufferFull,
-            _ => Error::Payload,
-        })?;
+    let FrameWriter { mut enc, digest } = body(w).map_err(|e| match e {
+        postcard::Error::SerializeBufferFull => Error::BufferFull,
+        _ => Error::Payload,
+    })?;
     enc.push(&digest.finalize().to_le_bytes())
         .map_err(|_| Error::BufferFull)?;
     let len = enc.finalize();

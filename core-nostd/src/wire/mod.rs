@@ -96,7 +96,8 @@ pub use endpoint::{
     SessionState,
 };
 pub use frame::{
-    CRC_LEN, CRC16, Frame, MIN_RAW_LEN, decode_frame, decode_payload, encode_frame, max_frame_len,
+    CRC_LEN, CRC16, CrcImpl, Frame, MIN_RAW_LEN, decode_frame, decode_payload, encode_frame,
+    max_frame_len,
 };
 pub use header::{HEADER_LEN, Header, PROTOCOL_VERSION};
 pub use message::{
