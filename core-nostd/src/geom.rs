@@ -278,12 +278,14 @@ macro_rules! vec_ops {
     ($V:ident { $($f:ident),+ }) => {
         impl<S: Scalar> Add for $V<S> {
             type Output = Self;
-            #[inline]
+            #[cfg_attr(not(feature = "small"), inline)]
+            #[cfg_attr(feature = "small", inline(never))]
             fn add(self, o: Self) -> Self { $V { $($f: self.$f + o.$f),+ } }
         }
         impl<S: Scalar> Sub for $V<S> {
             type Output = Self;
-            #[inline]
+            #[cfg_attr(not(feature = "small"), inline)]
+            #[cfg_attr(feature = "small", inline(never))]
             fn sub(self, o: Self) -> Self { $V { $($f: self.$f - o.$f),+ } }
         }
         impl<S: Scalar> Neg for $V<S> {
@@ -293,7 +295,8 @@ macro_rules! vec_ops {
         }
         impl<S: Scalar> Mul<S> for $V<S> {
             type Output = Self;
-            #[inline]
+            #[cfg_attr(not(feature = "small"), inline)]
+            #[cfg_attr(feature = "small", inline(never))]
             fn mul(self, k: S) -> Self { $V { $($f: self.$f * k),+ } }
         }
         impl<S: Scalar> AddAssign for $V<S> {

@@ -42,11 +42,13 @@ pub const W_MAX: f32 = 1000.0;
 
 /// Phase 2 of the ant tick (xiang2018 §4.3, Algorithm 1 lines 4-5):
 ///
-/// * eq. 2: O(t+1) = w0·O*(t+1) + (1 − w0)·R_d(t+1) (see [`repulsion`] for eq. 3-4), normalised
-///   to a unit orientation (O* if the sum vanishes);
+/// * eq. 2: O(t+1) = w0·O*(t+1) + (1 − w0)·R_d(t+1) (see [`repulsion`] for eq. 3-4), with R_d
+///   limited to unit length (ours: the printed sum is unbounded, and a crowd's pushes then
+///   outweigh O* entirely), normalised to a unit orientation (O* if the sum vanishes);
 /// * eq. 5: p(t+1) = p(t) + v·O(t+1)·Δt, kept inside the arena and out of every obstacle
 ///   surface of the frame ([`constrain`]: the move slides along a surface it would cross, or
-///   the ant stays; ours), O(t+1) then being the direction of the move.
+///   the ant stays; ours; a move that would leave the arena is clamped to it first, then
+///   constrained), O(t+1) then being the direction of the move.
 ///
 /// A stopped ant does not move. Returns the ant's state for the next tick.
 pub fn resolve<S: Scalar, const N: usize>(
@@ -73,11 +75,33 @@ pub fn resolve_checked<S: Scalar, const N: usize>(
         return Ok(s);
     }
     let r = repulsion(plan.predicted, &frame.neighbours, params);
+    // R_d enters eq. 2 as an orientation, blended with the unit O* by w0 and 1 − w0: a sum
+    // longer than one is limited to unit length (ours; docs/models.md).
+    let r = if r.length_sq() > S::ONE {
+        r.normalized().unwrap_or(r)
+    } else {
+        r
+    };
     let o = s.heading * params.w0 + r * (S::ONE - params.w0);
     let o = o.normalized().unwrap_or(s.heading);
-    let m = constrain(s.pos, o * (params.speed * params.dt), &frame.obstacles);
+    // A move that would leave the arena is clamped to it first, then kept out of the
+    // obstacles: clamping afterwards could push the ant into an obstacle on the border.
+    let mut step = o * (params.speed * params.dt);
+    if !frame.bounds.contains(s.pos + step) {
+        step = frame.bounds.clamp(s.pos + step) - s.pos;
+    }
+    let mut m = constrain(s.pos, step, &frame.obstacles);
+    if !frame.bounds.contains(s.pos + m) {
+        // Sliding along a surface left the arena: stay (an ant that starts outside, as a
+        // state from outside may, is clamped).
+        m = if frame.bounds.contains(s.pos) {
+            Vec2::zero()
+        } else {
+            frame.bounds.clamp(s.pos + m) - s.pos
+        };
+    }
     // The orientation is the way the ant actually moved (unchanged if it stayed).
     s.heading = m.normalized().unwrap_or(o);
-    s.pos = frame.bounds.clamp(s.pos + m);
+    s.pos += m;
     Ok(s)
 }

@@ -395,8 +395,10 @@ fn boundary_reflects_the_heading_and_keeps_the_ant_inside() {
 fn eq2_to_4_against_hand_computed_values() {
     // Ant predicted at (10, 10) heading +x; neighbours predicted at (10, 11) and (9, 10) (both
     // within collision range 1.5), one at (12, 10) beyond it. C = 1, k = 2, w0 = 0.6, v = 1.
-    // R_1* = (0, -1), w_1 = 1/1^2 = 1; R_2* = (1, 0), w_2 = 1/1 = 1 ⇒ R_d = (1, -1).
-    // O = 0.6·(1, 0) + 0.4·(1, -1) = (1.0, -0.4) → unit (0.928477, -0.371391).
+    // R_1* = (0, -1), w_1 = 1/1^2 = 1; R_2* = (1, 0), w_2 = 1/1 = 1 ⇒ R_d = (1, -1), longer
+    // than one: limited to (0.707107, -0.707107).
+    // O = 0.6·(1, 0) + 0.4·(0.707107, -0.707107) = (0.882843, -0.282843)
+    //   → unit (0.952320, -0.305102).
     let p = AntParams::<F>::default();
     let mut s = ant(Label::Nest);
     s.pos = v(9.0, 10.0);
@@ -414,12 +416,67 @@ fn eq2_to_4_against_hand_computed_values() {
     rf.neighbours
         .extend([v(10.0, 11.0), v(9.0, 10.0), v(12.0, 10.0)]);
     let next = resolve(&plan, &rf, &p).unwrap();
-    assert!((next.heading - v(0.928_477, -0.371_391)).length() < 1e-5);
-    assert!((next.pos - v(9.928_477, 9.628_609)).length() < 1e-5);
+    assert!((next.heading - v(0.952_32, -0.305_102)).length() < 1e-5);
+    assert!((next.pos - v(9.952_32, 9.694_898)).length() < 1e-5);
+    // A single neighbour at distance 1.25 (w = 0.64) is not limited: O = (0.6, 0) + 0.4·(0,
+    // -0.64) = (0.6, -0.256) → unit (0.919778, -0.392438).
+    let mut rf = ResolveFrame::<F, 8>::new(arena());
+    rf.neighbours.push(v(10.0, 11.25)).unwrap();
+    let next = resolve(&plan, &rf, &p).unwrap();
+    assert!((next.heading - v(0.919_778, -0.392_438)).length() < 1e-5);
     // k = 1 and C = 2: w_d = 2/0.5 = 4 for a neighbour at distance 0.5 straight ahead.
     let p2 = AntParams { c: 2.0, k: 1, ..p };
     let r = repulsion(v(0.0, 0.0), &[v(0.5, 0.0)], &p2);
     assert!((r - v(-4.0, 0.0)).length() < 1e-6);
+}
+
+#[test]
+fn a_move_out_of_the_arena_is_not_clamped_into_an_obstacle_on_its_border() {
+    // An obstacle reaching past the top border with a shallow face: the half-plane below the
+    // line through (40, 100) and (80, 96) (a disc's tangent looks like this). An ant just
+    // above the face that walks into it slides along the face, up and out of the arena;
+    // clamping that end back onto the border moves it behind the face.
+    let p = AntParams::<F>::default();
+    let normal = v(0.1, 1.0).normalized().unwrap();
+    let face = |x: f32| v(x, 100.0 - 0.1 * (x - 40.0));
+    let mut checked = 0;
+    for i in 0..80 {
+        for d in [0.02, 0.05, 0.1, 0.2] {
+            let pos = face(40.5 + 0.5 * i as f32) + normal * d;
+            if !arena().contains(pos) {
+                continue;
+            }
+            for j in 0..72 {
+                let a = (j as f32) * core::f32::consts::TAU / 72.0;
+                let mut s = ant(Label::Nest);
+                s.pos = pos;
+                s.heading = v(a.cos(), a.sin());
+                let plan = AntPlan {
+                    state: s,
+                    predicted: pos + s.heading,
+                };
+                let mut rf = ResolveFrame::<F, 8>::new(arena());
+                rf.obstacles
+                    .push(Surface {
+                        closest: face(60.0),
+                        normal,
+                    })
+                    .unwrap();
+                let next = resolve(&plan, &rf, &p).unwrap();
+                assert!(
+                    arena().contains(next.pos),
+                    "{pos:?}, heading {a}: left the arena"
+                );
+                let clearance = (next.pos - face(60.0)).dot(normal);
+                assert!(
+                    clearance >= 0.0,
+                    "{pos:?}, heading {a}: ends {clearance} behind the face"
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 10_000, "{checked}");
 }
 
 // ---- Bad input ---------------------------------------------------------------------------
