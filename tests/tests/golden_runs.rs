@@ -1,0 +1,235 @@
+//! Every built-in scenario, in both scalars, produces exactly the recorded bytes: the hashes of
+//! its `positions.npy` and `summary.json` (the summary without its wall-clock fields: run time,
+//! rate and thread count) are pinned below.
+//!
+//! These pins hold the behaviour still while the engine is refactored (issue 13): a refactor
+//! changes no bit. A change that is *meant* to change the behaviour of a model updates them:
+//! run `GOLDEN_PRINT=1 cargo test --release -p swarm-tests --test golden_runs -- --nocapture`
+//! and paste the printed table, saying in the commit why the runs changed.
+
+use std::path::Path;
+
+use swarm_core::wire::fnv1a64;
+use swarm_sim::run::{RunOptions, run};
+use swarm_sim::scenario::{self, ScalarType};
+
+/// Ticks per run: long enough for trails, gathering and the first events (longer scenario
+/// events are covered by the behaviour tests), short enough for CI.
+const STEPS: u32 = 600;
+
+/// (scenario, scalar, FNV-1a 64 of positions.npy, of the normalised summary.json).
+const PINNED: &[(&str, &str, u64, u64)] = &[
+    (
+        "ants-fig7a-single-colony",
+        "f32",
+        0x863bc5094fc623c8,
+        0x1545fad23738791c,
+    ),
+    (
+        "ants-fig7a-single-colony",
+        "fixed",
+        0x0cd507256ab51af0,
+        0x48792b43c9f90d3a,
+    ),
+    (
+        "ants-fig7b-obstacles",
+        "f32",
+        0x67e3fde3508772a5,
+        0x81ad7de4a4af05ec,
+    ),
+    (
+        "ants-fig7b-obstacles",
+        "fixed",
+        0x94a61f625498983a,
+        0x791ebc007520a87e,
+    ),
+    (
+        "ants-fig8a-hybrid",
+        "f32",
+        0xcf05526c6ec62e2e,
+        0x5adffd6bedada3de,
+    ),
+    (
+        "ants-fig8a-hybrid",
+        "fixed",
+        0x530f57eb18f99248,
+        0x961ea8c395e100b1,
+    ),
+    (
+        "ants-fig8b-hybrid-obstacles",
+        "f32",
+        0x3da4e0b4c3e2a563,
+        0x4c6ae1d22b745b4f,
+    ),
+    (
+        "ants-fig8b-hybrid-obstacles",
+        "fixed",
+        0xe5bbba7c80d3b84c,
+        0x6f65372811ece2e3,
+    ),
+    (
+        "ants-fig11-dynamic-obstacles",
+        "f32",
+        0x6b946b43cdb4829e,
+        0xe749a491e592a2aa,
+    ),
+    (
+        "ants-fig11-dynamic-obstacles",
+        "fixed",
+        0x3fa1f74092bb3e25,
+        0x1dd7ddff412ce7e4,
+    ),
+    (
+        "ants-fig12-moved-food",
+        "f32",
+        0xd6f7053ec320e38a,
+        0x547d03ef22ba94c2,
+    ),
+    (
+        "ants-fig12-moved-food",
+        "fixed",
+        0x8305cb1221961892,
+        0xef9534a0b38f40d6,
+    ),
+    (
+        "ants-fig13-disturbance",
+        "f32",
+        0x3e9e9dcc24c74f7e,
+        0xb220afa547ca25c9,
+    ),
+    (
+        "ants-fig13-disturbance",
+        "fixed",
+        0x3030e676c0a48526,
+        0x0a52dafc74a3301b,
+    ),
+    (
+        "ants-fig1c-heart",
+        "f32",
+        0xcb83b1fbb48a1266,
+        0x3614ef898cb8bad6,
+    ),
+    (
+        "ants-fig1c-heart",
+        "fixed",
+        0x15e2dc3450fe5893,
+        0x26332b685a7c1328,
+    ),
+    (
+        "ants-fig14-waypoints",
+        "f32",
+        0x3fa2e1eb6be65633,
+        0x89bbfeb2a7375c83,
+    ),
+    (
+        "ants-fig14-waypoints",
+        "fixed",
+        0x1c5dbcddb9e4b93b,
+        0x6ad2a646c47ba2e4,
+    ),
+    (
+        "bees-fig11-grassland",
+        "f32",
+        0x198f3c2103455884,
+        0xe26ed3dbb23c7cf3,
+    ),
+    (
+        "bees-fig11-grassland",
+        "fixed",
+        0x2a20d82670abee82,
+        0x8d743707b2c6a872,
+    ),
+    (
+        "bees-fig15-nest",
+        "f32",
+        0x91077df04fe08408,
+        0xded6f9aed3f8cbf6,
+    ),
+    (
+        "bees-fig15-nest",
+        "fixed",
+        0xc91d9a28f579025b,
+        0x65ce4e59620c49e9,
+    ),
+    (
+        "bees-fig14-shafts",
+        "f32",
+        0xea0cbb8ccb8c256b,
+        0x76a66de4d82592ff,
+    ),
+    (
+        "bees-fig14-shafts",
+        "fixed",
+        0x2f7a556a5022c43c,
+        0x7e16d8eef5a8c411,
+    ),
+];
+
+/// The summary without what depends on the machine and the moment.
+fn normalised_summary(path: &Path) -> Vec<u8> {
+    let text = std::fs::read_to_string(path).expect("summary.json");
+    let mut v: serde_json::Value = serde_json::from_str(&text).expect("summary is JSON");
+    let obj = v.as_object_mut().expect("summary is an object");
+    for k in ["wall_seconds", "agent_steps_per_s", "threads"] {
+        obj.remove(k);
+    }
+    serde_json::to_vec(&v).expect("serialise")
+}
+
+fn hashes(name: &str, scalar: ScalarType) -> (u64, u64) {
+    let mut sc = scenario::builtin(name).expect("built-in");
+    for g in &mut sc.groups {
+        g.scalar = scalar;
+    }
+    sc.outputs.render = false;
+    sc.outputs.gif = false;
+    sc.outputs.trajectories = false;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("run");
+    let opts = RunOptions {
+        out: out.clone(),
+        steps: Some(STEPS.min(sc.steps)),
+        seed: None,
+        threads: Some(2),
+        progress: false,
+        warnings: Vec::new(),
+    };
+    run(&sc, &opts).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let npy = std::fs::read(out.join("positions.npy")).expect("positions.npy");
+    (
+        fnv1a64(&npy),
+        fnv1a64(&normalised_summary(&out.join("summary.json"))),
+    )
+}
+
+#[test]
+fn every_built_in_scenario_produces_the_pinned_bytes_in_both_scalars() {
+    let print = std::env::var_os("GOLDEN_PRINT").is_some();
+    let mut table = String::new();
+    let mut wrong = Vec::new();
+    for &name in scenario::builtin_names() {
+        for (scalar, tag) in [(ScalarType::F32, "f32"), (ScalarType::Fixed, "fixed")] {
+            let (npy, summary) = hashes(name, scalar);
+            table.push_str(&format!(
+                "    (\"{name}\", \"{tag}\", {npy:#018x}, {summary:#018x}),\n"
+            ));
+            let pinned = PINNED.iter().find(|p| p.0 == name && p.1 == tag);
+            match pinned {
+                Some(&(_, _, n, s)) if n == npy && s == summary => {}
+                Some(&(_, _, n, s)) => wrong.push(format!(
+                    "{name} ({tag}): positions.npy {npy:#018x} (pinned {n:#018x}), \
+                     summary.json {summary:#018x} (pinned {s:#018x})"
+                )),
+                None => wrong.push(format!("{name} ({tag}): not pinned")),
+            }
+        }
+    }
+    if print {
+        println!("const PINNED: &[(&str, &str, u64, u64)] = &[\n{table}];");
+    }
+    assert!(
+        wrong.is_empty(),
+        "runs differ from the pinned bytes:\n  {}\n(if the change is meant, see this file's docs)",
+        wrong.join("\n  ")
+    );
+}
