@@ -66,6 +66,7 @@ pub mod ant;
 pub mod bee;
 mod error;
 pub mod geom;
+pub mod model;
 pub mod rand;
 pub mod scalar;
 #[cfg(feature = "serde")]
@@ -75,7 +76,7 @@ pub use error::{Error, Result};
 pub use geom::{Rect, Vec2, Vec3};
 #[cfg(feature = "fixed")]
 pub use scalar::Fx;
-pub use scalar::{MathBackend, Scalar, ScalarKind};
+pub use scalar::{Constant, MathBackend, Scalar, ScalarKind};
 
 /// Parameters that passed their `validate()`: a controller given `Checked` parameters does not
 /// check them again (a simulator validates once, then runs millions of ticks). Obtained from

@@ -1,8 +1,9 @@
 //! Ant controller parameters (xiang2018 §4), defaulting to the paper's values where it gives
 //! them.
 
+use crate::model::{ModelParams, Range, model_params};
 use crate::scalar::pi;
-use crate::{Error, Result, Scalar};
+use crate::{Result, Scalar};
 
 wire_type! {
     /// The parameters of the ant controller.
@@ -89,45 +90,27 @@ impl<S: Scalar> AntParams<S> {
         Ok(crate::Checked::assume_valid(self))
     }
 
-    /// Checks every parameter; the error names the first bad one.
+    /// Checks every parameter against its range ([`ModelParams::SPECS`]); the error names the
+    /// first bad one.
     pub fn validate(&self) -> Result<()> {
-        let pos = |v: S, hi: S, field: &'static str| {
-            if v.is_finite() && v > S::ZERO && v <= hi {
-                Ok(())
-            } else {
-                Err(Error::BadParam { field })
-            }
-        };
-        let unit = |v: S, field: &'static str| {
-            if v.is_finite() && v >= S::ZERO && v <= S::ONE {
-                Ok(())
-            } else {
-                Err(Error::BadParam { field })
-            }
-        };
-        pos(self.speed, S::from_i32(100), "speed")?;
-        pos(self.dt, S::from_i32(100), "dt")?;
-        pos(self.theta, S::from_f32(core::f32::consts::PI), "theta")?;
-        unit(self.p_stop, "p_stop")?;
-        pos(self.contact_range, S::from_i32(1000), "contact_range")?;
-        pos(self.avoid_range, S::from_i32(1000), "avoid_range")?;
-        pos(self.collision_range, S::from_i32(1000), "collision_range")?;
-        unit(self.w0, "w0")?;
-        if !(self.c.is_finite() && self.c >= S::ZERO && self.c <= S::from_i32(1000)) {
-            return Err(Error::BadParam { field: "c" });
-        }
-        if self.k > 8 {
-            return Err(Error::BadParam { field: "k" });
-        }
-        for (t, field) in [
-            (self.casual_stop_ticks, "casual_stop_ticks"),
-            (self.collect_ticks, "collect_ticks"),
-            (self.drop_ticks, "drop_ticks"),
-        ] {
-            if t == 0 {
-                return Err(Error::BadParam { field });
-            }
-        }
-        Ok(())
+        ModelParams::validate(self)
+    }
+}
+
+model_params! {
+    AntParams {
+        speed: real = Range::above(0.0, 100.0), "units/tick";
+        dt: real = Range::above(0.0, 100.0), "s";
+        theta: real = Range::above(0.0, core::f32::consts::PI), "rad";
+        p_stop: real = Range::closed(0.0, 1.0), "per tick";
+        contact_range: real = Range::above(0.0, 1000.0), "units";
+        avoid_range: real = Range::above(0.0, 1000.0), "units";
+        collision_range: real = Range::above(0.0, 1000.0), "units";
+        w0: real = Range::closed(0.0, 1.0), "";
+        c: real = Range::closed(0.0, 1000.0), "";
+        k: int(u8) = Range::int(0, 8), "";
+        casual_stop_ticks: int(u16) = Range::int(1, u16::MAX as u32), "ticks";
+        collect_ticks: int(u16) = Range::int(1, u16::MAX as u32), "ticks";
+        drop_ticks: int(u16) = Range::int(1, u16::MAX as u32), "ticks";
     }
 }

@@ -2,6 +2,7 @@
 //! Γ = {κ1, κ2, κ3, L, ε, h}), and documented choices of ours for the constants the paper leaves
 //! open.
 
+use crate::model::{ModelParams, Range, model_params};
 use crate::{Error, Result, Scalar};
 
 /// Largest magnitude accepted for any input number or parameter (positions, velocities,
@@ -149,33 +150,36 @@ impl<S: Scalar> BeeParams<S> {
     /// step, `damping·dt ≤ 1` (explicit Euler then never reverses the velocity). The error
     /// names the first bad one.
     pub fn validate(&self) -> Result<()> {
-        let positive = [
-            (self.h, "h"),
-            (self.grid_edge, "grid_edge"),
-            (self.mass, "mass"),
-            (self.d0, "d0"),
-            (self.dt, "dt"),
-            (self.max_speed, "max_speed"),
-        ];
-        let non_negative = [
-            (self.kappa1, "kappa1"),
-            (self.kappa2, "kappa2"),
-            (self.kappa3, "kappa3"),
-            (self.epsilon, "epsilon"),
-            (self.gravity, "gravity"),
-            (self.air_density, "air_density"),
-            (self.wing_area, "wing_area"),
-            (self.radius, "radius"),
-            (self.stiffness, "stiffness"),
-            (self.rest_density, "rest_density"),
-            (self.damping, "damping"),
-        ];
-        for (v, field) in positive {
-            in_range(v, MIN_POSITIVE, field)?;
-        }
-        for (v, field) in non_negative {
-            in_range(v, 0.0, field)?;
-        }
+        ModelParams::validate(self)
+    }
+}
+
+model_params! {
+    BeeParams {
+        h: real = Range::closed(MIN_POSITIVE, LIMIT), "units";
+        grid_edge: real = Range::closed(MIN_POSITIVE, LIMIT), "units";
+        mass: real = Range::closed(MIN_POSITIVE, LIMIT), "";
+        d0: real = Range::closed(MIN_POSITIVE, LIMIT), "units";
+        dt: real = Range::closed(MIN_POSITIVE, LIMIT), "s";
+        max_speed: real = Range::closed(MIN_POSITIVE, LIMIT), "units/s";
+        kappa1: real = Range::closed(0.0, LIMIT), "";
+        kappa2: real = Range::closed(0.0, LIMIT), "";
+        kappa3: real = Range::closed(0.0, LIMIT), "";
+        epsilon: real = Range::closed(0.0, LIMIT), "";
+        gravity: real = Range::closed(0.0, LIMIT), "units/s²";
+        air_density: real = Range::closed(0.0, LIMIT), "";
+        wing_area: real = Range::closed(0.0, LIMIT), "units²";
+        radius: real = Range::closed(0.0, LIMIT), "units";
+        stiffness: real = Range::closed(0.0, LIMIT), "";
+        rest_density: real = Range::closed(0.0, LIMIT), "";
+        damping: real = Range::closed(0.0, LIMIT), "1/s, with damping·dt ≤ 1";
+    }
+    together damping_fits
+}
+
+impl<S: Scalar> BeeParams<S> {
+    /// The one rule between fields: the velocity damping may not overshoot in a step.
+    fn damping_fits(&self) -> Result<()> {
         if self.damping * self.dt > S::ONE {
             return Err(Error::BadParam { field: "damping" });
         }
@@ -192,15 +196,6 @@ pub fn stiffness_for_contact(p: &BeeParams<f32>) -> f32 {
     let drive = p.kappa1 * p.mass * p.gravity * angles + p.kappa2 * 4.8 * p.epsilon / p.grid_edge;
     let contact = p.kappa3 * p.mass * 45.0 / (core::f32::consts::PI * p.h * p.h * p.h * p.h);
     drive / contact
-}
-
-/// `Err(BadParam)` unless `lo ≤ v ≤ LIMIT` (NaN fails every comparison).
-fn in_range<S: Scalar>(v: S, lo: f32, field: &'static str) -> Result<()> {
-    if v.is_finite() && v >= S::from_f32(lo) && v <= S::from_f32(LIMIT) {
-        Ok(())
-    } else {
-        Err(Error::BadParam { field })
-    }
 }
 
 #[cfg(test)]

@@ -81,6 +81,10 @@ impl Scalar for f32 {
     fn from_f32(v: f32) -> f32 {
         if v.is_nan() { 0.0 } else { v }
     }
+    #[inline(always)]
+    fn constant(c: super::Constant) -> f32 {
+        c.f32()
+    }
     #[inline]
     fn to_f32(self) -> f32 {
         self

@@ -22,7 +22,7 @@ use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
 pub use fixed::types::I16F16;
 
-use super::{MathBackend, Scalar, ScalarKind};
+use super::{Constant, MathBackend, Scalar, ScalarKind};
 
 /// An I16F16 fixed-point number (range ±32768, step 2^-16 ≈ 1.5e-5) with total, saturating,
 /// bit-reproducible arithmetic. The wrapped [`I16F16`] is public for interop with `fixed`.
@@ -51,20 +51,7 @@ impl Fx {
     /// [`Scalar::from_f32`] (`I16F16::saturating_from_num`, tested), usable in constants.
     #[inline(always)]
     pub const fn from_f32_const(v: f32) -> Fx {
-        // v · 2^16 is exact (a power-of-two scale), or ±inf, which saturates below.
-        let x = v * 65_536.0;
-        // Adding and taking away 2^23 rounds |x| < 2^23 to an integer, ties to even (IEEE 754
-        // round-to-nearest); larger magnitudes are integers already.
-        const BIG: f32 = 8_388_608.0;
-        let r = if x >= 0.0 && x < BIG {
-            (x + BIG) - BIG
-        } else if x < 0.0 && x > -BIG {
-            -((-x + BIG) - BIG)
-        } else {
-            x
-        };
-        // `as` saturates at the i32 range and maps NaN to 0.
-        Fx::from_bits(r as i32)
+        Fx::from_bits(super::i16f16_bits(v))
     }
     /// The raw bits.
     #[inline]
@@ -243,6 +230,10 @@ impl Scalar for Fx {
     #[inline(always)]
     fn from_f32(v: f32) -> Fx {
         Fx::from_f32_const(v)
+    }
+    #[inline(always)]
+    fn constant(c: Constant) -> Fx {
+        Fx::from_bits(c.i16f16_bits())
     }
     #[inline]
     fn to_f32(self) -> f32 {

@@ -47,6 +47,52 @@ impl MathBackend {
     };
 }
 
+/// A constant in both number types, converted at compile time: what a table of constants
+/// shared by every scalar holds (the parameter ranges of [`crate::model`]), so that a device
+/// never converts an `f32` at run time. [`Scalar::constant`] gives it in a type.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Constant {
+    f32: f32,
+    i16f16: i32,
+}
+
+impl Constant {
+    /// `v` in both types.
+    pub const fn new(v: f32) -> Self {
+        Constant {
+            f32: v,
+            i16f16: i16f16_bits(v),
+        }
+    }
+    /// As `f32`.
+    pub const fn f32(self) -> f32 {
+        self.f32
+    }
+    /// As I16F16 bits (what `Fx::from_f32` gives).
+    pub const fn i16f16_bits(self) -> i32 {
+        self.i16f16
+    }
+}
+
+/// The I16F16 bits of `v`: rounded to the nearest, ties to even, saturating; NaN gives 0 (the
+/// conversion of `Fx::from_f32`, equal to the `fixed` crate's `saturating_from_num`, tested).
+pub const fn i16f16_bits(v: f32) -> i32 {
+    // v · 2^16 is exact (a power-of-two scale), or ±inf, which saturates below.
+    let x = v * 65_536.0;
+    // Adding and taking away 2^23 rounds |x| < 2^23 to an integer, ties to even (IEEE 754
+    // round-to-nearest); larger magnitudes are integers already.
+    const BIG: f32 = 8_388_608.0;
+    let r = if x >= 0.0 && x < BIG {
+        (x + BIG) - BIG
+    } else if x < 0.0 && x > -BIG {
+        -((-x + BIG) - BIG)
+    } else {
+        x
+    };
+    // `as` saturates at the i32 range and maps NaN to 0.
+    r as i32
+}
+
 /// A real number a controller can compute with: `f32` or [`Fx`].
 ///
 /// All operations are total: no operation panics, whatever the operands (`Fx` saturates,
@@ -88,6 +134,9 @@ pub trait Scalar:
 
     /// Converts a constant (NaN becomes 0, out-of-range values saturate for `Fx`).
     fn from_f32(v: f32) -> Self;
+    /// A [`Constant`] in this type: the same value as `from_f32` of it, converted at compile
+    /// time.
+    fn constant(c: Constant) -> Self;
     /// Converts to `f32` (for reports and comparisons).
     fn to_f32(self) -> f32;
     /// Converts an integer (saturating for `Fx`).

@@ -17,6 +17,7 @@ use serde::Deserialize;
 use swarm_core::Fx;
 use swarm_core::ant::AntParams;
 use swarm_core::bee::BeeParams;
+use swarm_core::model::ModelParams;
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
 
@@ -842,43 +843,30 @@ fn validate_ant_group(
         ));
     }
     let params = g.ant_params();
-    check_ant_params(&params, g.scalar).map_err(|f| {
-        Problem::new(
-            format!("{path}.ant.{f}"),
-            format!(
-                "invalid ant parameter `{f}`: expected {}",
-                ant_param_range(f)
-            ),
-        )
-    })
+    params
+        .validate()
+        .and_then(|()| match g.scalar {
+            ScalarType::Fixed => params.cast::<Fx>().validate(),
+            ScalarType::F32 => Ok(()),
+        })
+        .map_err(|e| param_problem::<AntParams<f32>>(path, "ant", e))
 }
 
-fn check_ant_params(
-    p: &AntParams<f32>,
-    scalar: ScalarType,
-) -> std::result::Result<(), &'static str> {
-    let bad = |e: swarm_core::Error| match e {
+/// The problem of a parameter set its model refuses: which parameter, and what it takes (from
+/// the model's parameter table in swarm-core).
+fn param_problem<P: ModelParams>(path: &str, model: &str, e: swarm_core::Error) -> Problem {
+    let field = match e {
         swarm_core::Error::BadParam { field } => field,
         _ => "?",
     };
-    p.validate().map_err(bad)?;
-    if scalar == ScalarType::Fixed {
-        p.cast::<Fx>().validate().map_err(bad)?;
-    }
-    Ok(())
-}
-
-fn ant_param_range(field: &str) -> &'static str {
-    match field {
-        "speed" | "dt" => "a number in (0, 100]",
-        "theta" => "an angle in (0, π] radians",
-        "p_stop" | "w0" => "a number in [0, 1]",
-        "contact_range" | "avoid_range" | "collision_range" => "a distance in (0, 1000]",
-        "c" => "a number in [0, 1000]",
-        "k" => "an integer power from 0 to 8",
-        "casual_stop_ticks" | "collect_ticks" | "drop_ticks" => "at least 1 tick",
-        _ => "a value accepted by `AntParams::validate`",
-    }
+    let takes = match P::index_of(field) {
+        Some(i) => P::SPECS[i].to_string(),
+        None => format!("a value `{model}` parameters accept"),
+    };
+    Problem::new(
+        format!("{path}.{model}.{field}"),
+        format!("invalid {model} parameter `{field}`: expected {takes}"),
+    )
 }
 
 fn validate_bee_group(
@@ -913,41 +901,13 @@ fn validate_bee_group(
         ));
     }
     let params = g.bee_params();
-    check_bee_params(&params, g.scalar).map_err(|f| {
-        Problem::new(
-            format!("{path}.bee.{f}"),
-            format!(
-                "invalid bee parameter `{f}`: expected {}",
-                bee_param_range(f)
-            ),
-        )
-    })
-}
-
-fn check_bee_params(
-    p: &BeeParams<f32>,
-    scalar: ScalarType,
-) -> std::result::Result<(), &'static str> {
-    let bad = |e: swarm_core::Error| match e {
-        swarm_core::Error::BadParam { field } => field,
-        _ => "?",
-    };
-    p.validate().map_err(bad)?;
-    if scalar == ScalarType::Fixed {
-        p.cast::<Fx>().validate().map_err(bad)?;
-    }
-    Ok(())
-}
-
-fn bee_param_range(field: &str) -> String {
-    use swarm_core::bee::params::{LIMIT, MIN_POSITIVE};
-    match field {
-        "h" | "grid_edge" | "mass" | "d0" | "dt" | "max_speed" => {
-            format!("a number in [{MIN_POSITIVE}, {LIMIT}]")
-        }
-        "damping" => format!("a number in [0, {LIMIT}] with damping·dt ≤ 1"),
-        _ => format!("a number in [0, {LIMIT}]"),
-    }
+    params
+        .validate()
+        .and_then(|()| match g.scalar {
+            ScalarType::Fixed => params.cast::<Fx>().validate(),
+            ScalarType::F32 => Ok(()),
+        })
+        .map_err(|e| param_problem::<BeeParams<f32>>(path, "bee", e))
 }
 
 fn validate_spawn(

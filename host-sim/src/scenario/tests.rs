@@ -580,7 +580,12 @@ fn parameter_overrides_are_validated_by_the_controllers() {
         "groups[0].ant.theta",
         "invalid ant parameter `theta`",
     );
-    assert!(d.message.contains("(0, π]"));
+    // What the parameter takes comes from swarm-core's parameter table.
+    assert!(
+        d.message.contains("a number in (0, 3.1415927] (rad)"),
+        "{}",
+        d.message
+    );
     let text = edit(
         ANTS,
         "radius = 5 }",
@@ -590,7 +595,7 @@ fn parameter_overrides_are_validated_by_the_controllers() {
         &text,
         line_of(&text, "collect_ticks = 0"),
         "groups[0].ant.collect_ticks",
-        "at least 1 tick",
+        "an integer from 1 to 65535 (ticks)",
     );
     let text = edit(BEES, "kappa2 = 3.0", "h = 0");
     expect_error(
