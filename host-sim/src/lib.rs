@@ -5,7 +5,12 @@
 //! device is checked against, so its sensor frames are built by public functions the HIL
 //! harness calls too.
 //!
-//! Work in progress (issue 3): scenario files, the CPU engine, outputs and the `swarm` CLI.
+//! * [`scenario`]: scenario files (TOML) and the built-in scenarios, checked before a run;
+//! * [`ants`], [`bees`]: each model's world, sensing and deterministic parallel CPU engine;
+//! * [`run`]: `swarm run`, a scenario from its first tick to its last into one output folder
+//!   ([`output`]: CSV, `.npy`, JSON, PNG, GIF); [`mod@bench`]: `swarm bench`.
+//!
+//! The GPU backend is not built yet (issue 14).
 
 pub use swarm_core;
 
