@@ -1,13 +1,12 @@
-//! `swarm bench`: agent-steps per second of the engine on a synthetic world, as JSON.
+//! `swarm bench`: agent-steps per second of the engine on a synthetic world, as JSON. What
+//! every model shares is here ([`BenchReport`], the timing loop); each model's folder builds
+//! its own bench world (`ants::bench_ants`, `bees::bench_bees`).
 
 use std::time::Instant;
 
 use serde::Serialize;
-use swarm_core::Vec2;
-use swarm_core::ant::{AntParams, AntState};
 
 use crate::Result;
-use crate::ants::{AntGroup, AntObjectDef, AntObjectKind, AntSim, AntWorld, Shape2};
 
 /// What `swarm bench` measures and prints.
 #[derive(Clone, Debug, Serialize)]
@@ -32,73 +31,6 @@ pub struct BenchReport {
     pub scalar: String,
     /// The machine (CPU model, cores).
     pub machine: String,
-}
-
-/// Ants per unit² in the bench world (the density of xiang2018's 500-ant scenes).
-const DENSITY: f32 = 0.02;
-
-/// A square world holding `n` ants spread uniformly (density `DENSITY`), with a nest and
-/// food sources and a rock, so every kind of interaction happens somewhere.
-pub fn bench_ant_world(n: usize, seed: u32) -> AntSim {
-    let params = AntParams::<f32>::default();
-    let side = ((n.max(1) as f32) / DENSITY).sqrt().clamp(50.0, 16_000.0);
-    let mut w = AntWorld::new(
-        [0.0, 0.0],
-        [side, side],
-        params.contact_range,
-        params.collision_range,
-    );
-    let c = side / 2.0;
-    let obj = |id, kind, center, radius| AntObjectDef {
-        id,
-        name: format!("object-{id}"),
-        kind,
-        shape: Shape2::Circle { center, radius },
-        active: true,
-    };
-    w.objects = vec![
-        obj(0, AntObjectKind::Nest, [c, c], 5.0),
-        obj(
-            1,
-            AntObjectKind::Food { amount: None },
-            [c + side / 4.0, c],
-            5.0,
-        ),
-        obj(
-            2,
-            AntObjectKind::Food { amount: None },
-            [c - side / 4.0, c],
-            5.0,
-        ),
-        obj(3, AntObjectKind::Obstacle, [c, c + side / 4.0], 8.0),
-    ];
-    let states = (0..n as u32)
-        .map(|i| {
-            let r = |k| swarm_core::rand::rand(seed, i, u32::MAX, k) as f32 / u32::MAX as f32;
-            let pos = Vec2::new(r(0) * side, r(1) * side);
-            let a = r(2) * std::f32::consts::TAU;
-            AntState::exploring(0, pos, Vec2::new(a.cos(), a.sin()))
-        })
-        .collect();
-    let params = params.checked().expect("default parameters are valid");
-    AntSim::new(
-        w,
-        vec![AntGroup::new("bench".into(), 0, params, states).into()],
-        seed,
-    )
-}
-
-/// Times `steps` ant ticks of `agents` ants ([`bench_ant_world`]) on `threads` threads
-/// (`None`: one per core), after one untimed warm-up tick.
-pub fn bench_ants(agents: usize, steps: u32, threads: Option<usize>) -> Result<BenchReport> {
-    time_steps(
-        "ants",
-        agents,
-        steps,
-        threads,
-        || bench_ant_world(agents, 1),
-        |sim| sim.step().map(drop),
-    )
 }
 
 /// Times `steps` calls of `step` on the world `build` makes, inside a pool of `threads`
@@ -169,11 +101,9 @@ pub fn machine() -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-
     #[test]
     fn a_bench_reports_what_ran_and_refuses_an_empty_one() {
-        let r = bench_ants(500, 2, Some(1)).unwrap();
+        let r = crate::ants::bench_ants(500, 2, Some(1)).unwrap();
         assert_eq!(
             (r.model.as_str(), r.agents, r.steps, r.threads),
             ("ants", 500, 2, 1)
@@ -182,7 +112,9 @@ mod tests {
         let r = crate::bees::bench_bees(200, 1, Some(2)).unwrap();
         assert_eq!((r.model.as_str(), r.agents, r.threads), ("bees", 200, 2));
         for (agents, steps, threads) in [(0, 5, Some(1)), (10, 0, Some(1)), (10, 5, Some(0))] {
-            let e = bench_ants(agents, steps, threads).unwrap_err().to_string();
+            let e = crate::ants::bench_ants(agents, steps, threads)
+                .unwrap_err()
+                .to_string();
             assert!(e.contains("at least"), "{e}");
         }
     }

@@ -1,10 +1,12 @@
 //! Ant colonies (xiang2018) on the host: the world, the sensor frames, the engine.
 
+mod bench;
 mod build;
 mod sense;
 mod sim;
 mod world;
 
+pub use bench::{bench_ant_world, bench_ants};
 pub use sense::{AntPlanFrame, AntResolveFrame, N, O, plan_frame, resolve_frame};
 pub use sim::{AntEvent, AntGroup, AntSim, AnyAntGroup};
 pub use world::{AntObjectDef, AntObjectKind, AntWorld, Sensed, Shape2};

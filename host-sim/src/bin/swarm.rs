@@ -164,7 +164,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 return Err(format!("--json: no folder {}", dir.display()).into());
             }
             let report = match model {
-                Model::Ants => swarm_sim::bench::bench_ants(agents, steps, threads)?,
+                Model::Ants => swarm_sim::ants::bench_ants(agents, steps, threads)?,
                 Model::Bees => swarm_sim::bees::bench_bees(agents, steps, threads)?,
             };
             let text = serde_json::to_string_pretty(&report)?;
