@@ -72,10 +72,7 @@ fn faults_on_the_line_are_survived_and_reported() {
     let spec: FaultSpec = "drop=0.0034,flip=0.0033,insert=0.0033,garbage=0.0005"
         .parse()
         .unwrap();
-    let client = ClientOptions {
-        timeout: Duration::from_millis(20),
-        ..ClientOptions::default()
-    };
+    let client = ClientOptions::default();
     for (link, scalar) in [
         (LinkKind::Memory, ScalarType::Fixed),
         (LinkKind::Pty, ScalarType::F32),

@@ -11,7 +11,7 @@ use swarm_core::Fx;
 use swarm_core::ant::AntParams;
 use swarm_core::bee::BeeParams;
 use swarm_core::wire::{AntDevice, BeeDevice};
-use swarm_hil::client::{Client, ClientOptions};
+use swarm_hil::client::{Client, ClientOptions, RtoOptions};
 use swarm_hil::loopback::{LinkKind, loopback, with_scalar};
 use swarm_hil::mirror::{
     BeeGroupsOf, DeviceParams, GroupsOf, MirrorOptions, MirrorReport, device_params,
@@ -82,11 +82,18 @@ struct Run {
     /// Requests in flight at once.
     #[arg(long, default_value_t = 8)]
     window: usize,
-    /// Milliseconds before a request is sent again.
+    /// Milliseconds before an unanswered request is sent again, until a round trip has been
+    /// measured (then the timeout follows the measured round trips).
     #[arg(long, default_value_t = 200)]
     timeout_ms: u64,
+    /// The retransmission timeout's floor, in milliseconds.
+    #[arg(long, default_value_t = 2.0)]
+    rto_min_ms: f64,
+    /// The retransmission timeout's ceiling (backoff included), in milliseconds.
+    #[arg(long, default_value_t = 2000.0)]
+    rto_max_ms: f64,
     /// Times a request is sent again before the run fails.
-    #[arg(long, default_value_t = 1000)]
+    #[arg(long, default_value_t = 10_000)]
     retries: u32,
     /// Seconds without any intact reply before the device is declared lost.
     #[arg(long, default_value_t = 5.0)]
@@ -318,7 +325,11 @@ fn run_scenario(run: &Run) -> Result<Scenario, AnyError> {
 fn client_options(run: &Run) -> ClientOptions {
     ClientOptions {
         window: run.window,
-        timeout: Duration::from_millis(run.timeout_ms),
+        rto: RtoOptions {
+            initial: Duration::from_millis(run.timeout_ms),
+            min: Duration::from_secs_f64(run.rto_min_ms.max(0.0) / 1000.0),
+            max: Duration::from_secs_f64(run.rto_max_ms.max(0.0) / 1000.0),
+        },
         retries: run.retries,
         dead_after: Duration::from_secs_f64(run.dead_after.max(0.001)),
     }
