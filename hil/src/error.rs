@@ -111,12 +111,38 @@ pub enum HilError {
         /// The pong's.
         got: u32,
     },
+    /// A mirror run stopped part way: `source` says why; `report` holds what was compared
+    /// until then (partial counters, every mismatch found so far, the verdict).
+    #[error("{source}")]
+    Aborted {
+        /// The partial report.
+        report: Box<crate::mirror::MirrorReport>,
+        /// What stopped the run.
+        source: Box<HilError>,
+    },
     /// A bad argument (the message says which and why).
     #[error("{0}")]
     Invalid(String),
 }
 
 impl HilError {
+    /// Applies `f` to the partial report of an [`HilError::Aborted`] (e.g. to add what the
+    /// caller knows: fault counts, the image size); other errors pass unchanged.
+    pub fn with_report(mut self, f: impl FnOnce(&mut crate::mirror::MirrorReport)) -> Self {
+        if let HilError::Aborted { report, .. } = &mut self {
+            f(report);
+        }
+        self
+    }
+
+    /// The partial report, when the run stopped part way.
+    pub fn report(&self) -> Option<&crate::mirror::MirrorReport> {
+        match self {
+            HilError::Aborted { report, .. } => Some(report),
+            _ => None,
+        }
+    }
+
     pub(crate) fn io(transport: &str, op: &'static str, source: std::io::Error) -> Self {
         HilError::Io {
             transport: transport.to_string(),

@@ -269,7 +269,7 @@ impl Machine {
         r.crc_errors = s.crc_errors.into();
         r.resyncs = s.resyncs().into();
         r.srtt_us = self.rto.srtt().map_or(0, |d| micros(d).into());
-        r.rto_us = micros(self.rto.timeout()).into();
+        r.rto_us = micros(self.rto()).into();
         r
     }
 
@@ -278,9 +278,11 @@ impl Machine {
         &self.latencies_us
     }
 
-    /// The current retransmission timeout.
+    /// The current retransmission timeout: the estimator's, and never more than an eighth of
+    /// [`ClientOptions::dead_after`], so a line that damages much but lives is tried at least
+    /// eight times before it is declared dead.
     pub fn rto(&self) -> Duration {
-        self.rto.timeout()
+        self.rto.timeout().min(self.opts.dead_after / 8)
     }
 
     /// Bytes received at `now`.
@@ -384,7 +386,7 @@ impl Machine {
 
     /// Runs the timers of the requests and the probe.
     fn expire(&mut self, now: Duration) {
-        let rto = self.rto.timeout();
+        let rto = self.rto();
         let start = self.progress;
         let mut expired = false;
         for p in self.flight.iter_mut().filter(|p| !p.lost) {
@@ -511,7 +513,7 @@ impl Machine {
         if self.flight.iter().any(|p| p.lost) || !self.outbox.is_empty() {
             return Some(Duration::ZERO);
         }
-        let rto = self.rto.timeout();
+        let rto = self.rto();
         let start = self.progress;
         self.flight
             .iter()

@@ -142,17 +142,33 @@ impl<T: Transport> Client<T> {
         &mut self,
         requests: &[Q],
     ) -> Result<Vec<std::result::Result<A, ErrorReply>>> {
-        let out = self.drive::<Q, A>(requests);
-        if out.is_err() {
+        let Partial { replies, error } = self.call_all_partial::<Q, A>(requests);
+        match error {
+            Some(e) => Err(e),
+            None => Ok(replies.into_iter().flatten().collect()),
+        }
+    }
+
+    /// [`call_all`](Self::call_all), keeping the answers that came before a failure: a
+    /// mirror must count a wrong answer even when the link dies right after it.
+    pub fn call_all_partial<Q: Message + Serialize, A: Message + DeserializeOwned>(
+        &mut self,
+        requests: &[Q],
+    ) -> Partial<A> {
+        let mut replies: Vec<Option<std::result::Result<A, ErrorReply>>> =
+            (0..requests.len()).map(|_| None).collect();
+        let error = self.drive::<Q, A>(requests, &mut replies).err();
+        if error.is_some() {
             self.machine.abort();
         }
-        out
+        Partial { replies, error }
     }
 
     fn drive<Q: Message + Serialize, A: Message + DeserializeOwned>(
         &mut self,
         requests: &[Q],
-    ) -> Result<Vec<std::result::Result<A, ErrorReply>>> {
+        replies: &mut [Option<std::result::Result<A, ErrorReply>>],
+    ) -> Result<()> {
         let mut jobs = Vec::with_capacity(requests.len());
         for q in requests {
             let payload = postcard::to_allocvec(q).map_err(|_| HilError::Encode {
@@ -162,8 +178,6 @@ impl<T: Transport> Client<T> {
             jobs.push(self.machine.submit(Q::KIND, payload, Expect::reply::<A>()));
         }
         let first = jobs.first().map_or(0, |j| j.0);
-        let mut replies: Vec<Option<std::result::Result<A, ErrorReply>>> =
-            (0..requests.len()).map(|_| None).collect();
         let mut done = 0;
         while done < requests.len() {
             self.machine.poll(self.now())?;
@@ -205,13 +219,22 @@ impl<T: Transport> Client<T> {
             let now = self.now();
             self.machine.on_bytes(now, &self.buf[..n]);
         }
-        Ok(replies.into_iter().flatten().collect())
+        Ok(())
     }
 
     /// The machine's clock: time since the client was made.
     fn now(&self) -> Duration {
         self.epoch.elapsed()
     }
+}
+
+/// The answers of [`Client::call_all_partial`]: in request order, `None` for a request not
+/// answered when `error` stopped the call.
+pub struct Partial<A> {
+    /// The answers.
+    pub replies: Vec<Option<std::result::Result<A, ErrorReply>>>,
+    /// What stopped the call, if anything.
+    pub error: Option<HilError>,
 }
 
 fn refused(request: &'static str, e: ErrorReply) -> HilError {

@@ -358,7 +358,7 @@ fn a_reordered_reply_still_answers_its_own_request() {
 #[test]
 fn timeouts_back_off_exponentially_until_the_line_answers_again() {
     let opts = ClientOptions {
-        dead_after: ms(10_000),
+        dead_after: ms(20_000),
         ..ClientOptions::default()
     };
     let mut w = World::new(opts, us(20), us(10));
