@@ -17,8 +17,10 @@ pub mod mirror;
 pub mod qemu;
 pub mod soft;
 pub mod transport;
+pub mod verdict;
 
 pub use client::{Client, ClientOptions, LinkReport};
 pub use error::{HilError, Result};
 pub use swarm_core::wire;
 pub use transport::Transport;
+pub use verdict::Verdict;

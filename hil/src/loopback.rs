@@ -87,11 +87,15 @@ where
     let mut client = Client::new(Faulty::new(host_end, faults, fault_seed), client);
     let report = mirror_scenario::<S, _>(sc, &mut client, opts, &mut |_| Ok(()));
     soft.stop()?;
-    let mut report = report?;
-    if !faults.is_clean() {
-        report.faults = Some(client.link_mut().counts());
+    let counts = (!faults.is_clean()).then(|| client.link_mut().counts());
+    let add_faults = |r: &mut MirrorReport| r.faults = counts;
+    match report {
+        Ok(mut r) => {
+            add_faults(&mut r);
+            Ok(r)
+        }
+        Err(e) => Err(e.with_report(add_faults)),
     }
-    Ok(report)
 }
 
 fn soft_err(e: swarm_core::Error) -> HilError {

@@ -21,8 +21,9 @@ use swarm_sim::bees::{BeeSim, bee_frame, bee_frame_time};
 use swarm_sim::scalar::{ByScalar, SimScalar};
 use swarm_sim::scenario::{Scenario, World};
 
-use crate::client::Client;
+use crate::client::{Client, Partial};
 use crate::transport::{FaultCounts, Transport};
+use crate::verdict::{MismatchAt, Verdict};
 use crate::{HilError, Result};
 
 /// What to mirror.
@@ -105,14 +106,22 @@ pub struct MirrorReport {
     pub transport: String,
     /// Agents mirrored.
     pub agents: usize,
-    /// Steps run.
+    /// Steps asked for.
     pub steps: u32,
+    /// Steps completed (fewer than `steps` when the run stopped part way).
+    pub completed_steps: u32,
+    /// What the run concluded (see [`Verdict`]).
+    pub verdict: Verdict,
+    /// Why the run stopped part way, if it did.
+    pub failure: Option<String>,
     /// Decisions compared.
     pub decisions: u64,
     /// Decisions that differed.
     pub mismatches: u64,
     /// The first of them.
     pub first_mismatch: Option<Mismatch>,
+    /// Where each of them was found.
+    pub mismatch_at: Vec<MismatchAt>,
     /// Reply frames dropped for a bad CRC (host side).
     pub crc_errors: u64,
     /// Times the host's receiver resynchronised.
@@ -125,9 +134,16 @@ pub struct MirrorReport {
     pub probes: u64,
     /// Times the device was found reset mid-run (it had lost the session) and re-handshaken.
     pub resets: u32,
-    /// Decisions that differed but equalled the host's when asked again: line damage that
-    /// passed the CRC, not a device divergence (a real divergence repeats).
+    /// Decisions that differed but equalled the host's when asked again: a flaky device
+    /// (verdict `flaky`, unless the line's damage explains them: see
+    /// [`crate::verdict::flaky`]).
     pub reasked: u64,
+    /// CRC-valid answers that did not decode (damage past the CRC), asked again.
+    pub undecodable: u64,
+    /// Smoothed round trip at the end, in microseconds.
+    pub srtt_us: u64,
+    /// Retransmission timeout at the end, in microseconds.
+    pub rto_us: u64,
     /// Round-trip latency.
     pub latency_us: Latency,
     /// Decisions per second of wall time.
@@ -149,23 +165,30 @@ pub struct MirrorReport {
 }
 
 impl MirrorReport {
-    /// Whether the device decided exactly what the host decided.
+    /// Whether the run completed and the device decided exactly what the host decided, at
+    /// the first asking.
     pub fn passed(&self) -> bool {
-        self.mismatches == 0
+        self.verdict.passed()
     }
 
     /// A few lines for people.
     pub fn human(&self) -> String {
         let mut s = format!(
-            "{} on {} over {}: {} decisions of {} agents in {} steps, {} mismatches\n",
+            "{} on {} over {}: {} decisions of {} agents in {} of {} steps, {} mismatches; \
+             verdict {}\n",
             self.scenario,
             self.device,
             self.transport,
             self.decisions,
             self.agents,
+            self.completed_steps,
             self.steps,
-            self.mismatches
+            self.mismatches,
+            self.verdict
         );
+        if let Some(f) = &self.failure {
+            s += &format!("stopped: {f}\n");
+        }
         if let Some(m) = &self.first_mismatch {
             s += &format!(
                 "first mismatch: step {}, agent {}, {}\n  host   {}\n  device {}\n",
@@ -182,8 +205,14 @@ impl MirrorReport {
         );
         s += &format!(
             "link: {} CRC errors, {} resyncs, {} timeouts, {} retries, {} device resets, {} \
-             answers damaged past the CRC (asked again)",
-            self.crc_errors, self.resyncs, self.timeouts, self.retries, self.resets, self.reasked
+             answers wrong then right when asked again, {} undecodable answers",
+            self.crc_errors,
+            self.resyncs,
+            self.timeouts,
+            self.retries,
+            self.resets,
+            self.reasked,
+            self.undecodable
         );
         if let Some(f) = &self.faults {
             s += &format!(
@@ -201,20 +230,24 @@ struct Tally {
     decisions: u64,
     mismatches: u64,
     first: Option<Mismatch>,
+    at: Vec<MismatchAt>,
 }
 
 impl Tally {
-    /// [`Tally::check`] for every chosen agent of one phase of `step`, in order.
+    /// [`Tally::check`] for every chosen agent of one phase of `step` that was answered, in
+    /// order.
     fn check_all<Q: Serialize, D: Serialize>(
         &mut self,
         (step, phase): (u32, &'static str),
         chosen: &[u32],
         requests: &[Q],
         host: &[D],
-        device: &[std::result::Result<D, ErrorReply>],
+        device: &[Option<std::result::Result<D, ErrorReply>>],
     ) {
         for ((&id, req), (h, d)) in chosen.iter().zip(requests).zip(host.iter().zip(device)) {
-            self.check((step, id, phase), req, h, d);
+            if let Some(d) = d {
+                self.check((step, id, phase), req, h, d);
+            }
         }
     }
 
@@ -235,6 +268,7 @@ impl Tally {
             return;
         }
         self.mismatches += 1;
+        self.at.push(MismatchAt { step, agent, phase });
         if self.first.is_none() {
             let json = |v: &dyn erased::Json| v.json();
             self.first = Some(Mismatch {
@@ -349,8 +383,8 @@ struct Session {
     id: u32,
     /// Times the device was found reset (it answered `NoSession`) and re-handshaken.
     resets: u32,
-    /// Decisions that differed, and equalled the host's when asked again (damage on the line
-    /// that passed the CRC).
+    /// Decisions that differed, and equalled the host's when asked again (a flaky device, or
+    /// damage on the line that passed the CRC).
     reasked: u64,
 }
 
@@ -361,48 +395,60 @@ fn bytes<D: Serialize>(d: &D) -> Option<Vec<u8>> {
 
 impl Session {
     /// Sends `requests` and returns the device's decisions (`decision` of each reply). A
-    /// decision that differs from the host's (`host`) is asked for again, up to twice: a CRC-16
-    /// lets about one damaged frame in 65,536 through, and a device's real divergence repeats
-    /// where line damage does not. An answer that then equals the host's replaces the first
-    /// (counted in `reasked`); otherwise the first stands as the device's decision.
+    /// decision that differs from the host's (`host`) is asked for again, up to twice: a
+    /// device's real divergence repeats. An answer that then equals the host's replaces the
+    /// first (counted in `reasked`: a flaky device, or line damage that passed the CRC);
+    /// otherwise the first stands as the device's decision. When the link fails, the decisions
+    /// that came so far (`None` for the others) come back with the error: a mismatch found
+    /// must be counted before the run stops.
     fn ask<T, Q, A, D>(
         &mut self,
         client: &mut Client<T>,
         requests: &[Q],
         host: &[D],
         decision: impl Fn(&A) -> D,
-    ) -> Result<Vec<std::result::Result<D, ErrorReply>>>
+    ) -> (Decisions<D>, Option<HilError>)
     where
         T: Transport,
         Q: Message + Serialize + Clone,
         A: Message + DeserializeOwned,
         D: Serialize,
     {
-        let mut out: Vec<std::result::Result<D, ErrorReply>> = self
-            .call_all::<T, Q, A>(client, requests)?
+        let Partial { replies, error } = self.call_all::<T, Q, A>(client, requests);
+        let mut out: Decisions<D> = replies
             .into_iter()
-            .map(|r| r.map(|a| decision(&a)))
+            .map(|r| r.map(|r| r.map(|a| decision(&a))))
             .collect();
+        if error.is_some() {
+            return (out, error);
+        }
         for _ in 0..2 {
             let differ: Vec<usize> = (0..out.len())
-                .filter(|&i| out[i].as_ref().ok().and_then(bytes) != bytes(&host[i]))
+                .filter(|&i| {
+                    out[i]
+                        .as_ref()
+                        .is_some_and(|d| d.as_ref().ok().and_then(bytes) != bytes(&host[i]))
+                })
                 .collect();
             if differ.is_empty() {
                 break;
             }
             let again: Vec<Q> = differ.iter().map(|&i| requests[i].clone()).collect();
-            let answers = self.call_all::<T, Q, A>(client, &again)?;
-            for (i, a) in differ.into_iter().zip(answers) {
-                if let Ok(a) = a {
+            let answers = self.call_all::<T, Q, A>(client, &again);
+            for (i, a) in differ.into_iter().zip(answers.replies) {
+                if let Some(Ok(a)) = a {
                     let d = decision(&a);
                     if bytes(&d) == bytes(&host[i]) {
-                        out[i] = Ok(d);
+                        out[i] = Some(Ok(d));
                         self.reasked += 1;
                     }
                 }
             }
+            if answers.error.is_some() {
+                return (out, answers.error);
+            }
         }
-        Ok(out)
+        (out, None)
     }
 
     /// Handshake and configure.
@@ -424,33 +470,50 @@ impl Session {
         Ok((s, device))
     }
 
-    /// [`Client::call_all`], re-handshaking and sending again the requests a reset device
-    /// refused for want of a session.
+    /// [`Client::call_all_partial`], re-handshaking and sending again the requests a reset
+    /// device refused for want of a session.
     fn call_all<T: Transport, Q: Message + Serialize + Clone, A: Message + DeserializeOwned>(
         &mut self,
         client: &mut Client<T>,
         requests: &[Q],
-    ) -> Result<Vec<std::result::Result<A, ErrorReply>>> {
-        let mut replies = client.call_all::<Q, A>(requests)?;
+    ) -> Partial<A> {
+        let mut p = client.call_all_partial::<Q, A>(requests);
         for _ in 0..3 {
-            let lost: Vec<usize> = (0..replies.len())
-                .filter(|&i| matches!(&replies[i], Err(e) if e.code == ErrorReply::NO_SESSION))
+            if p.error.is_some() {
+                break;
+            }
+            let lost: Vec<usize> = (0..p.replies.len())
+                .filter(
+                    |&i| matches!(&p.replies[i], Some(Err(e)) if e.code == ErrorReply::NO_SESSION),
+                )
                 .collect();
             if lost.is_empty() {
                 break;
             }
             self.resets += 1;
-            client.handshake(&self.expected)?;
-            client.configure(self.id, self.params_hash)?;
-            let again: Vec<Q> = lost.iter().map(|&i| requests[i].clone()).collect();
-            let answers = client.call_all::<Q, A>(&again)?;
-            for (i, a) in lost.into_iter().zip(answers) {
-                replies[i] = a;
+            let reopened = client
+                .handshake(&self.expected)
+                .and_then(|_| client.configure(self.id, self.params_hash));
+            if let Err(e) = reopened {
+                for &i in &lost {
+                    p.replies[i] = None;
+                }
+                p.error = Some(e);
+                break;
             }
+            let again: Vec<Q> = lost.iter().map(|&i| requests[i].clone()).collect();
+            let answers = client.call_all_partial::<Q, A>(&again);
+            for (i, a) in lost.into_iter().zip(answers.replies) {
+                p.replies[i] = a;
+            }
+            p.error = answers.error;
         }
-        Ok(replies)
+        p
     }
 }
+
+/// The device's decisions, in request order; `None` where no answer came.
+type Decisions<D> = Vec<Option<std::result::Result<D, ErrorReply>>>;
 
 /// The error for a frame the host's own controller refused (the harness built it wrong).
 fn host_refused(
@@ -523,8 +586,10 @@ where
                 .zip(chosen)
                 .map(|(h, &id)| h.map_err(host_refused("ant", id, step)))
                 .collect::<Result<Vec<AntPlan<S>>>>()?;
-            let device = session.ask(client, &plans, &host_plans, |r: &AntPlanReply<S>| r.plan)?;
+            let (device, failed) =
+                session.ask(client, &plans, &host_plans, |r: &AntPlanReply<S>| r.plan);
             tally.check_all((step, "plan"), chosen, &plans, &host_plans, &device);
+            failed.map_or(Ok(()), Err)?;
             let mut resolves = Vec::with_capacity(chosen.len());
             let mut host_next = Vec::with_capacity(chosen.len());
             for (&id, host) in chosen.iter().zip(&host_plans) {
@@ -534,10 +599,12 @@ where
                 host_next.push(next);
                 resolves.push(AntResolveRequest { plan: *host, frame });
             }
-            let device = session.ask(client, &resolves, &host_next, |r: &AntResolveReply<S>| {
-                r.state
-            })?;
+            let (device, failed) =
+                session.ask(client, &resolves, &host_next, |r: &AntResolveReply<S>| {
+                    r.state
+                });
             tally.check_all((step, "resolve"), chosen, &resolves, &host_next, &device);
+            failed.map_or(Ok(()), Err)?;
             sim.resolve_phase().map_err(sim_err)?;
             Ok(())
         },
@@ -603,10 +670,11 @@ where
                 );
                 requests.push(BeeStepRequest { state, frame });
             }
-            let device = session.ask(client, &requests, &host, |r: &BeeStepReply<S>| {
+            let (device, failed) = session.ask(client, &requests, &host, |r: &BeeStepReply<S>| {
                 (r.decision, r.state)
-            })?;
+            });
             tally.check_all((step, "step"), chosen, &requests, &host, &device);
+            failed.map_or(Ok(()), Err)?;
             sim.step().map_err(sim_err)?;
             Ok(())
         },
@@ -699,9 +767,13 @@ fn report<T: Transport>(
         transport: String::new(),
         agents,
         steps,
+        completed_steps: steps,
+        verdict: Verdict::default(),
+        failure: None,
         decisions: tally.decisions,
         mismatches: tally.mismatches,
         first_mismatch: tally.first,
+        mismatch_at: tally.at,
         crc_errors: link.crc_errors,
         resyncs: link.resyncs,
         timeouts: link.timeouts,
@@ -709,6 +781,9 @@ fn report<T: Transport>(
         probes: link.probes,
         resets: 0,
         reasked: 0,
+        undecodable: link.undecodable,
+        srtt_us: link.srtt_us,
+        rto_us: link.rto_us,
         latency_us: Latency::of(lat),
         decisions_per_s: tally.decisions as f64 / seconds.max(1e-9),
         bytes_tx: link.bytes_tx,
@@ -719,6 +794,13 @@ fn report<T: Transport>(
         faults: None,
         image: None,
     }
+}
+
+/// Whether `reasked` wrong-then-right answers are more than the damage seen on the line (frames
+/// dropped by either receiver) explains.
+fn flaky_beyond_line_damage(reasked: u64, host_drops: u64, device: Option<&DeviceStats>) -> bool {
+    let device_drops = device.map_or(0, |d| u64::from(d.link.resyncs()));
+    crate::verdict::flaky(reasked, host_drops + device_drops)
 }
 
 fn sim_err(e: swarm_sim::SimError) -> HilError {
@@ -754,7 +836,8 @@ impl Run {
     }
 
     /// Runs `tick` (one simulation step: ask, compare, advance) `opts.steps` times, then asks
-    /// for the device's counters and writes the report.
+    /// for the device's counters and writes the report. When a step fails, the report of what
+    /// was compared until then comes back inside [`HilError::Aborted`].
     fn finish<T: Transport>(
         mut self,
         name: &str,
@@ -766,8 +849,14 @@ impl Run {
         let bar = bar(opts.progress, opts.steps);
         let mut tally = Tally::default();
         let t0 = Instant::now();
+        let mut failure = None;
+        let mut completed = 0;
         for _ in 0..opts.steps {
-            tick(&mut self.session, client, &mut tally, &self.chosen)?;
+            if let Err(e) = tick(&mut self.session, client, &mut tally, &self.chosen) {
+                failure = Some(e);
+                break;
+            }
+            completed += 1;
             bar.inc(1);
             bar.set_message(format!(
                 "{} decisions, {} mismatches",
@@ -776,7 +865,11 @@ impl Run {
         }
         bar.finish_and_clear();
         let seconds = t0.elapsed().as_secs_f64();
-        let device_stats = client.device_stats().ok();
+        // After a failure the link may be dead: no waiting for the device's counters then.
+        let device_stats = match failure {
+            None => client.device_stats().ok(),
+            Some(_) => None,
+        };
         let mut r = report(
             name,
             model,
@@ -791,7 +884,20 @@ impl Run {
         r.resets = self.session.resets;
         r.reasked = self.session.reasked;
         r.transport = client.link_mut().name();
-        Ok(r)
+        r.completed_steps = completed;
+        r.failure = failure.as_ref().map(ToString::to_string);
+        r.verdict = Verdict {
+            mismatch: r.mismatches > 0,
+            flaky: flaky_beyond_line_damage(r.reasked, r.resyncs, r.device_stats.as_ref()),
+            link_failure: failure.is_some(),
+        };
+        match failure {
+            None => Ok(r),
+            Some(source) => Err(HilError::Aborted {
+                report: Box::new(r),
+                source: Box::new(source),
+            }),
+        }
     }
 }
 

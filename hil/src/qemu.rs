@@ -226,6 +226,10 @@ pub struct QemuRun {
     pub garbage: usize,
     /// Reset the board through the monitor before this step.
     pub reset_at: Option<u32>,
+    /// Faults injected on the link to the board (both directions).
+    pub faults: crate::transport::FaultSpec,
+    /// Seed of the injected faults.
+    pub fault_seed: u64,
 }
 
 impl QemuRun {
@@ -247,7 +251,7 @@ pub fn mirror_in_qemu(
     run: &QemuRun,
     client: crate::ClientOptions,
     mirror: impl FnOnce(
-        &mut crate::Client<crate::transport::SerialTransport>,
+        &mut crate::Client<crate::transport::Faulty<crate::transport::SerialTransport>>,
         &mut dyn FnMut(u32) -> Result<()>,
     ) -> Result<crate::mirror::MirrorReport>,
 ) -> Result<crate::mirror::MirrorReport> {
@@ -276,6 +280,7 @@ pub fn mirror_in_qemu(
             link.send(chunk)?;
         }
     }
+    let link = crate::transport::Faulty::new(link, run.faults, run.fault_seed);
     let mut client = crate::Client::new(link, client);
     let reset_at = run.reset_at;
     let mut hook = |step: u32| {
@@ -284,8 +289,19 @@ pub fn mirror_in_qemu(
         }
         Ok(())
     };
-    let mut report = mirror(&mut client, &mut hook)?;
-    report.image = Some(size);
-    report.transport = format!("{} ({} in QEMU {})", qemu.pty, run.image, board.machine);
-    Ok(report)
+    let result = mirror(&mut client, &mut hook);
+    let faults = (!run.faults.is_clean()).then(|| client.link_mut().counts());
+    let transport = format!("{} ({} in QEMU {})", qemu.pty, run.image, board.machine);
+    let add = |r: &mut crate::mirror::MirrorReport| {
+        r.image = Some(size);
+        r.transport = transport.clone();
+        r.faults = faults;
+    };
+    match result {
+        Ok(mut r) => {
+            add(&mut r);
+            Ok(r)
+        }
+        Err(e) => Err(e.with_report(add)),
+    }
 }

@@ -50,13 +50,17 @@ fn ten_thousand_decisions_of_ants_and_of_bees_match_in_memory_and_over_a_pty_in_
                 .unwrap();
                 assert_eq!(r.decisions, 10_000, "{what}");
                 assert_eq!(r.mismatches, 0, "{what}: {}", r.human());
-                assert_eq!((r.timeouts, r.retries, r.crc_errors), (0, 0, 0), "{what}");
+                // The timeout follows the measured round trips (tens of µs here, floor 2 ms):
+                // a host or device thread descheduled longer than that on a busy machine (the
+                // tests run in parallel) costs a harmless retransmission, answered twice.
+                assert_eq!(r.crc_errors, 0, "{what}");
+                assert!(r.retries <= 100, "{what}: {}", r.human());
                 let dev = r.device_stats.unwrap();
                 // Every request intact (the probes of the session setup and of the final stats
                 // request fall outside the device's counting).
                 let ok = dev.link.frames_ok as u64;
                 assert!(
-                    (10_000..=10_000 + r.probes + 1).contains(&ok),
+                    (10_000..=10_000 + r.probes + r.retries + 1).contains(&ok),
                     "{what}: {ok}"
                 );
                 assert_eq!(dev.link.resyncs(), 0, "{what}");
@@ -72,10 +76,7 @@ fn faults_on_the_line_are_survived_and_reported() {
     let spec: FaultSpec = "drop=0.0034,flip=0.0033,insert=0.0033,garbage=0.0005"
         .parse()
         .unwrap();
-    let client = ClientOptions {
-        timeout: Duration::from_millis(20),
-        ..ClientOptions::default()
-    };
+    let client = ClientOptions::default();
     for (link, scalar) in [
         (LinkKind::Memory, ScalarType::Fixed),
         (LinkKind::Pty, ScalarType::F32),
@@ -286,5 +287,256 @@ fn steps_zero_on_the_command_line_is_refused_like_steps_zero_in_a_file() {
     assert!(
         err.contains("--steps") && err.contains("expected at least 1 step, found 0"),
         "{err}"
+    );
+}
+
+/// What a [`Scripted`] device link does with the `n`-th plan reply (counted from 0, retries
+/// included).
+enum Act {
+    /// Sends it as it is.
+    Pass,
+    /// Moves its predicted x by one ulp (a wrong decision, valid CRC).
+    Wrong,
+    /// Replaces its payload by a byte that does not decode (valid CRC).
+    Garbled,
+    /// Sends nothing, now or ever again.
+    Silence,
+}
+
+/// A device link that follows a script for the plan replies.
+struct Scripted<F> {
+    inner: swarm_hil::transport::MemoryTransport,
+    rx: Accumulator<2048>,
+    plans: u32,
+    silent: bool,
+    script: F,
+}
+
+impl<F: FnMut(u32) -> Act + Send> Transport for Scripted<F> {
+    fn send(&mut self, bytes: &[u8]) -> Result<()> {
+        let mut out = Vec::new();
+        let mut input = bytes;
+        while let Some((event, rest)) = self.rx.feed(input) {
+            input = rest;
+            let Event::Frame(frame) = event else { continue };
+            let mut buf = [0u8; 512];
+            let seq = frame.header.seq;
+            let raw = |buf: &mut [u8]| {
+                wire::encode_frame(frame.header.kind, seq, &RawPayload(frame.payload), buf)
+            };
+            let n = if frame.header.kind == kind::ANT_PLAN_REPLY && !self.silent {
+                let n = self.plans;
+                self.plans += 1;
+                match (self.script)(n) {
+                    Act::Pass => raw(&mut buf).unwrap(),
+                    Act::Wrong => {
+                        let mut reply: AntPlanReply<f32> = frame.message().unwrap();
+                        let x = reply.plan.predicted.x;
+                        reply.plan.predicted.x = f32::from_bits(x.to_bits() ^ 1);
+                        wire::encode_message(seq, &reply, &mut buf).unwrap()
+                    }
+                    Act::Garbled => {
+                        wire::encode_frame(kind::ANT_PLAN_REPLY, seq, &(0xffu8,), &mut buf).unwrap()
+                    }
+                    Act::Silence => {
+                        self.silent = true;
+                        0
+                    }
+                }
+            } else if self.silent {
+                0
+            } else {
+                raw(&mut buf).unwrap()
+            };
+            out.extend_from_slice(&buf[..n]);
+        }
+        if out.is_empty() {
+            return Ok(());
+        }
+        self.inner.send(&out)
+    }
+    fn recv(&mut self, buf: &mut [u8], timeout: Duration) -> Result<usize> {
+        self.inner.recv(buf, timeout)
+    }
+    fn name(&self) -> String {
+        "scripted".into()
+    }
+}
+
+/// Mirrors 10 ants for 6 steps of fig. 7a against a soft device behind `script`.
+fn scripted(
+    script: impl FnMut(u32) -> Act + Send + 'static,
+    client: ClientOptions,
+) -> Result<swarm_hil::mirror::MirrorReport> {
+    let sc = with_scalar(&fig7a(), ScalarType::F32);
+    let sim = AntSim::from_scenario(&sc, sc.seed).unwrap();
+    let device = AntDevice::<f32>::new(AntParams::default(), "soft-ant").unwrap();
+    let (dev_end, host_end) = memory_pair();
+    let link = Scripted {
+        inner: dev_end,
+        rx: Accumulator::new(),
+        plans: 0,
+        silent: false,
+        script,
+    };
+    let soft = SoftDevice::spawn(move |stop| serve(device, link, stop).map(|_| ()));
+    let mut client = Client::new(host_end, client);
+    let r = mirror_ants::<f32, _>(&sc.name, sim, &mut client, &opts(10, 6));
+    soft.stop().unwrap();
+    r
+}
+
+#[test]
+fn a_mismatch_before_the_line_goes_silent_is_in_the_report_with_the_link_failure() {
+    // The 25th plan reply (step 2) is wrong, then the line goes silent: asking again fails.
+    let client = ClientOptions {
+        dead_after: Duration::from_millis(300),
+        ..ClientOptions::default()
+    };
+    let err = scripted(
+        |n| match n {
+            24 => Act::Wrong,
+            25.. => Act::Silence,
+            _ => Act::Pass,
+        },
+        client,
+    )
+    .unwrap_err();
+    let HilError::Aborted { report, source } = err else {
+        panic!("{err}")
+    };
+    assert!(matches!(*source, HilError::LinkDead { .. }), "{source}");
+    assert_eq!(report.completed_steps, 2);
+    assert_eq!(
+        report.decisions,
+        2 * 20 + 5,
+        "the answered plans of step 2 count"
+    );
+    assert_eq!(report.mismatches, 1, "{}", report.human());
+    let m = report.first_mismatch.as_ref().expect("the mismatch");
+    assert_eq!((m.step, m.phase), (2, "plan"));
+    assert_eq!(report.mismatch_at.len(), 1);
+    assert!(report.verdict.mismatch && report.verdict.link_failure);
+    assert_eq!(report.verdict.exit_code(), 3);
+    assert!(
+        report
+            .failure
+            .as_deref()
+            .is_some_and(|f| f.contains("nothing intact")),
+        "{:?}",
+        report.failure
+    );
+    let json = serde_json::to_value(&*report).unwrap();
+    assert_eq!(json["verdict"], "mismatch+link-failure");
+}
+
+#[test]
+fn a_crc_valid_reply_that_does_not_decode_is_asked_again() {
+    let r = scripted(
+        |n| if n == 7 { Act::Garbled } else { Act::Pass },
+        ClientOptions::default(),
+    )
+    .unwrap();
+    assert_eq!((r.decisions, r.mismatches), (120, 0), "{}", r.human());
+    assert_eq!(r.undecodable, 1);
+    assert!(r.passed(), "line damage is not the device's fault");
+}
+
+#[test]
+fn a_device_wrong_then_right_when_asked_again_is_flaky_not_passed() {
+    let r = scripted(
+        |n| if n == 13 { Act::Wrong } else { Act::Pass },
+        ClientOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(
+        (r.decisions, r.mismatches, r.reasked),
+        (120, 0, 1),
+        "{}",
+        r.human()
+    );
+    assert!(!r.passed());
+    assert_eq!(r.verdict.name(), "flaky");
+    assert_eq!(r.verdict.exit_code(), 4);
+}
+
+fn swarm_hil_cli(args: &[&str]) -> (Option<i32>, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_swarm-hil"))
+        .args(args)
+        .output()
+        .expect("runs swarm-hil");
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn usage_errors_exit_64_and_say_what_is_wrong() {
+    let base = ["--scenario", "ants-fig7a-single-colony", "--quiet"];
+    for (args, says) in [
+        (&["loopback", "--agents", "0"][..], "--agents 0"),
+        (&["loopback", "--agents", "501"][..], "has only 500 agents"),
+        (
+            &["loopback", "--steps", "0"][..],
+            "expected at least 1 step",
+        ),
+        (&["loopback", "--inject", "drop=2"][..], "rate in [0, 1]"),
+        (&["loopback", "--dead-after", "inf"][..], "--dead-after"),
+        (&["loopback", "--bogus"][..], "--bogus"),
+        (
+            &[
+                "qemu",
+                "--firmware",
+                "ant-node",
+                "--steps",
+                "5",
+                "--reset-at-step",
+                "5",
+            ][..],
+            "--reset-at-step 5 is beyond the run",
+        ),
+        (
+            &["mirror", "--tcp", "127.0.0.1:1", "--agents", "0"][..],
+            "--agents 0",
+        ),
+    ] {
+        let all: Vec<&str> = args.iter().chain(&base).copied().collect();
+        let (code, err) = swarm_hil_cli(&all);
+        assert_eq!(code, Some(64), "{all:?}: {err}");
+        assert!(err.contains(says), "{all:?}: {err}");
+    }
+    let (code, _) = swarm_hil_cli(&["--help"]);
+    assert_eq!(code, Some(0));
+}
+
+#[test]
+fn the_json_report_is_written_when_the_link_fails() {
+    // A device that never answers: no report of decisions, but a JSON that says why.
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("r.json");
+    let (code, err) = swarm_hil_cli(&[
+        "loopback",
+        "--scenario",
+        "ants-fig7a-single-colony",
+        "--agents",
+        "4",
+        "--steps",
+        "3",
+        "--quiet",
+        "--inject",
+        "drop=1",
+        "--dead-after",
+        "0.3",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(1), "{err}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(v["verdict"], "link-failure", "{v}");
+    assert!(
+        v["failure"].as_str().unwrap().contains("nothing intact"),
+        "{v}"
     );
 }

@@ -11,14 +11,15 @@ use swarm_core::Fx;
 use swarm_core::ant::AntParams;
 use swarm_core::bee::BeeParams;
 use swarm_core::wire::{AntDevice, BeeDevice};
-use swarm_hil::client::{Client, ClientOptions};
+use swarm_hil::client::{Client, ClientOptions, RtoOptions};
 use swarm_hil::loopback::{LinkKind, loopback, with_scalar};
 use swarm_hil::mirror::{
     BeeGroupsOf, DeviceParams, GroupsOf, MirrorOptions, MirrorReport, device_params,
     mirror_scenario,
 };
 use swarm_hil::qemu::{QemuRun, mirror_in_qemu};
-use swarm_hil::transport::{FaultSpec, SerialTransport, TcpTransport, Transport};
+use swarm_hil::transport::{FaultSpec, Faulty, SerialTransport, TcpTransport, Transport};
+use swarm_hil::{HilError, Verdict};
 use swarm_sim::ants::AntSim;
 use swarm_sim::bees::BeeSim;
 use swarm_sim::scalar::SimScalar;
@@ -32,12 +33,23 @@ use swarm_sim::scenario::{ScalarType, Scenario};
     long_about = "Runs a swarm-sim scenario and, for the chosen agents, sends every step's sensor \
                   frames to a device (a board on a serial port, QEMU over TCP, or the soft device) \
                   and compares its decisions with the host's, bit for bit. Exits non-zero on any \
-                  mismatch or protocol failure."
+                  mismatch or protocol failure.",
+    after_help = EXIT_CODES
 )]
 struct Cli {
     #[command(subcommand)]
     command: Command,
 }
+
+/// The exit statuses, for `--help`.
+const EXIT_CODES: &str = "Exit status: 0 when the run completed and every decision matched at the \
+first asking; otherwise the sum of\n  \
+1  the run did not complete: link, protocol or setup failure (the --json report holds what was \
+compared until then)\n  \
+2  a mismatch: the device decided otherwise, and again when asked again\n  \
+4  a flaky device: it answered wrong, then right when asked the same again\n\
+(3 = a mismatch found before the link failed); 64 when the command line cannot be used (nothing \
+was run).";
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 enum Scalar {
@@ -82,18 +94,31 @@ struct Run {
     /// Requests in flight at once.
     #[arg(long, default_value_t = 8)]
     window: usize,
-    /// Milliseconds before a request is sent again.
+    /// Milliseconds before an unanswered request is sent again, until a round trip has been
+    /// measured (then the timeout follows the measured round trips).
     #[arg(long, default_value_t = 200)]
     timeout_ms: u64,
+    /// The retransmission timeout's floor, in milliseconds.
+    #[arg(long, default_value_t = 2.0)]
+    rto_min_ms: f64,
+    /// The retransmission timeout's ceiling (backoff included), in milliseconds.
+    #[arg(long, default_value_t = 2000.0)]
+    rto_max_ms: f64,
     /// Times a request is sent again before the run fails.
-    #[arg(long, default_value_t = 1000)]
+    #[arg(long, default_value_t = 10_000)]
     retries: u32,
     /// Seconds without any intact reply before the device is declared lost.
     #[arg(long, default_value_t = 5.0)]
     dead_after: f64,
-    /// Write the report as JSON here.
+    /// Write the report as JSON here (on every exit but a usage error, failures included).
     #[arg(long)]
     json: Option<PathBuf>,
+    /// Damage the link: `drop=R,flip=R,insert=R,garbage=R,delay=MS@R` (rates per byte).
+    #[arg(long, default_value = "")]
+    inject: String,
+    /// Seed of the injected faults.
+    #[arg(long, default_value_t = 1)]
+    fault_seed: u64,
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
@@ -106,12 +131,6 @@ enum Command {
         /// The link to the soft device.
         #[arg(long, value_enum, default_value_t = Link::Memory)]
         transport: Link,
-        /// Damage the link: `drop=R,flip=R,insert=R,garbage=R,delay=MS@R` (rates per byte).
-        #[arg(long, default_value = "")]
-        inject: String,
-        /// Seed of the injected faults.
-        #[arg(long, default_value_t = 1)]
-        fault_seed: u64,
         #[command(flatten)]
         run: Run,
     },
@@ -167,28 +186,55 @@ enum Command {
 
 type AnyError = Box<dyn std::error::Error>;
 
+/// Why a command stopped without a verdict of its own.
+enum Stop {
+    /// The command line cannot be used: nothing was run.
+    Usage(String),
+    /// The run failed (a partial report, if any, is already written).
+    Failed(AnyError),
+}
+
+impl<E: Into<AnyError>> From<E> for Stop {
+    fn from(e: E) -> Self {
+        Stop::Failed(e.into())
+    }
+}
+
+fn usage(message: String) -> Stop {
+    Stop::Usage(message)
+}
+
 fn main() -> ExitCode {
-    match run(Cli::parse()) {
-        Ok(true) => ExitCode::SUCCESS,
-        Ok(false) => ExitCode::from(2),
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
         Err(e) => {
+            let _ = e.print();
+            return match e.kind() {
+                clap::error::ErrorKind::DisplayHelp | clap::error::ErrorKind::DisplayVersion => {
+                    ExitCode::SUCCESS
+                }
+                _ => ExitCode::from(Verdict::EXIT_USAGE),
+            };
+        }
+    };
+    match run(cli) {
+        Ok(verdict) => ExitCode::from(verdict.exit_code()),
+        Err(Stop::Usage(m)) => {
+            eprintln!("error: {m}");
+            ExitCode::from(Verdict::EXIT_USAGE)
+        }
+        Err(Stop::Failed(e)) => {
             eprintln!("error: {e}");
-            ExitCode::FAILURE
+            ExitCode::from(Verdict::EXIT_LINK_FAILURE)
         }
     }
 }
 
-/// `Ok(passed)`.
-fn run(cli: Cli) -> Result<bool, AnyError> {
+/// The verdict of the run.
+fn run(cli: Cli) -> Result<Verdict, Stop> {
     match cli.command {
-        Command::Loopback {
-            transport,
-            inject,
-            fault_seed,
-            run,
-        } => {
-            let sc = run_scenario(&run)?;
-            let faults: FaultSpec = inject.parse()?;
+        Command::Loopback { transport, run } => {
+            let (sc, faults) = checked(&run, None)?;
             let link = match transport {
                 Link::Memory => LinkKind::Memory,
                 Link::Pty => LinkKind::Pty,
@@ -198,11 +244,11 @@ fn run(cli: Cli) -> Result<bool, AnyError> {
                 run.scalar.into(),
                 link,
                 faults,
-                fault_seed,
-                client_options(&run),
+                run.fault_seed,
+                client_options(&run)?,
                 &mirror_options(&run),
-            )?;
-            finish(&report, run.json.as_deref())
+            );
+            finish(report, run.json.as_deref())
         }
         Command::Mirror {
             port,
@@ -210,15 +256,25 @@ fn run(cli: Cli) -> Result<bool, AnyError> {
             tcp,
             run,
         } => {
+            let (sc, faults) = checked(&run, None)?;
+            let opts = client_options(&run)?;
             let link: Box<dyn Transport> = match (port, tcp) {
                 (Some(p), _) => Box::new(SerialTransport::open(&p, baud)?),
                 (None, Some(a)) => Box::new(TcpTransport::connect(&a, Duration::from_secs(5))?),
-                (None, None) => return Err("give --port or --tcp".into()),
+                (None, None) => return Err(usage("give --port or --tcp".into())),
             };
-            let sc = with_scalar(&run_scenario(&run)?, run.scalar.into());
-            let mut client = Client::new(link, client_options(&run));
-            let report = mirror(&sc, &mut client, &run, &mut |_| Ok(()))?;
-            finish(&report, run.json.as_deref())
+            let sc = with_scalar(&sc, run.scalar.into());
+            let mut client = Client::new(Faulty::new(link, faults, run.fault_seed), opts);
+            let report = mirror(&sc, &mut client, &run, &mut |_| Ok(()));
+            let counts = (!faults.is_clean()).then(|| client.link_mut().counts());
+            let report = match report {
+                Ok(mut r) => {
+                    r.faults = counts;
+                    Ok(r)
+                }
+                Err(e) => Err(e.with_report(|r| r.faults = counts)),
+            };
+            finish(report, run.json.as_deref())
         }
         Command::Qemu {
             firmware,
@@ -227,26 +283,32 @@ fn run(cli: Cli) -> Result<bool, AnyError> {
             reset_at_step,
             run,
         } => {
+            let (sc, faults) = checked(&run, reset_at_step)?;
             let image = match run.scalar {
                 Scalar::F32 => firmware.clone(),
                 Scalar::Fixed => format!("{firmware}-fixed"),
             };
             let elf = match elf {
                 Some(e) => e,
-                None => QemuRun::elf_of(Path::new("."), &image)
-                    .ok_or_else(|| format!("unknown firmware `{firmware}` (ant-node, bee-node)"))?,
+                None => QemuRun::elf_of(Path::new("."), &image).ok_or_else(|| {
+                    usage(format!(
+                        "unknown firmware `{firmware}` (ant-node, bee-node)"
+                    ))
+                })?,
             };
             let qrun = QemuRun {
                 image,
                 elf,
                 garbage,
                 reset_at: reset_at_step,
+                faults,
+                fault_seed: run.fault_seed,
             };
-            let sc = with_scalar(&run_scenario(&run)?, run.scalar.into());
-            let report = mirror_in_qemu(&qrun, client_options(&run), |client, hook| {
+            let sc = with_scalar(&sc, run.scalar.into());
+            let report = mirror_in_qemu(&qrun, client_options(&run)?, |client, hook| {
                 mirror(&sc, client, &run, hook)
-            })?;
-            finish(&report, run.json.as_deref())
+            });
+            finish(report, run.json.as_deref())
         }
         Command::Device {
             port,
@@ -254,7 +316,10 @@ fn run(cli: Cli) -> Result<bool, AnyError> {
             scenario: name,
             scalar,
         } => {
-            let sc = with_scalar(&scenario(&name)?, scalar.into());
+            let sc = with_scalar(
+                &scenario(&name).map_err(|e| usage(e.to_string()))?,
+                scalar.into(),
+            );
             let link = SerialTransport::open(&port, baud)?;
             eprintln!(
                 "soft device on {port} ({scalar:?}, parameters of {}); Ctrl-C stops it",
@@ -265,7 +330,7 @@ fn run(cli: Cli) -> Result<bool, AnyError> {
                 Scalar::F32 => serve::<f32>(&sc, link, &stop)?,
                 Scalar::Fixed => serve::<Fx>(&sc, link, &stop)?,
             }
-            Ok(true)
+            Ok(Verdict::default())
         }
     }
 }
@@ -309,19 +374,60 @@ fn scenario(name: &str) -> Result<Scenario, AnyError> {
     Ok(swarm_sim::scenario::resolve(name)?)
 }
 
-/// The scenario of a mirror run; `--steps 0` is refused like `steps = 0` in a file.
-fn run_scenario(run: &Run) -> Result<Scenario, AnyError> {
-    swarm_sim::scenario::check_steps(run.steps, "--steps")?;
-    scenario(&run.scenario)
+/// The scenario and the faults of a mirror run, after checking the command line against
+/// them: at least one step and one agent, no more agents than the scenario has, a reset
+/// within the run, finite times, a valid `--inject`.
+fn checked(run: &Run, reset_at_step: Option<u32>) -> Result<(Scenario, FaultSpec), Stop> {
+    swarm_sim::scenario::check_steps(run.steps, "--steps").map_err(|e| usage(e.to_string()))?;
+    let sc = scenario(&run.scenario).map_err(|e| usage(e.to_string()))?;
+    let population: u64 = sc.groups.iter().map(|g| u64::from(g.count)).sum();
+    match run.agents {
+        Some(0) => return Err(usage("--agents 0: mirror at least one agent".into())),
+        Some(k) if k as u64 > population => {
+            return Err(usage(format!(
+                "--agents {k}: scenario `{}` has only {population} agents",
+                sc.name
+            )));
+        }
+        _ => {}
+    }
+    if let Some(r) = reset_at_step
+        && r >= run.steps
+    {
+        return Err(usage(format!(
+            "--reset-at-step {r} is beyond the run: steps are 0 to {} (--steps {})",
+            run.steps - 1,
+            run.steps
+        )));
+    }
+    let faults: FaultSpec = run
+        .inject
+        .parse()
+        .map_err(|e: swarm_hil::HilError| usage(e.to_string()))?;
+    Ok((sc, faults))
 }
 
-fn client_options(run: &Run) -> ClientOptions {
-    ClientOptions {
-        window: run.window,
-        timeout: Duration::from_millis(run.timeout_ms),
-        retries: run.retries,
-        dead_after: Duration::from_secs_f64(run.dead_after.max(0.001)),
+/// A duration given in seconds on the command line, or the usage error naming `flag`.
+fn seconds(flag: &str, s: f64) -> Result<Duration, Stop> {
+    Duration::try_from_secs_f64(s)
+        .map_err(|_| usage(format!("{flag}: `{s}` is not a duration (a number ≥ 0)")))
+}
+
+fn client_options(run: &Run) -> Result<ClientOptions, Stop> {
+    let dead_after = seconds("--dead-after", run.dead_after)?;
+    if dead_after.is_zero() {
+        return Err(usage("--dead-after must be more than 0 seconds".into()));
     }
+    Ok(ClientOptions {
+        window: run.window,
+        rto: RtoOptions {
+            initial: Duration::from_millis(run.timeout_ms),
+            min: seconds("--rto-min-ms", run.rto_min_ms / 1000.0)?,
+            max: seconds("--rto-max-ms", run.rto_max_ms / 1000.0)?,
+        },
+        retries: run.retries,
+        dead_after,
+    })
 }
 
 fn mirror_options(run: &Run) -> MirrorOptions {
@@ -333,13 +439,36 @@ fn mirror_options(run: &Run) -> MirrorOptions {
     }
 }
 
-/// Prints the summary, writes the JSON; `Ok(passed)`.
-fn finish(report: &MirrorReport, json: Option<&std::path::Path>) -> Result<bool, AnyError> {
+/// Prints the summary and writes the JSON of a run, completed or stopped part way (the
+/// partial report); the verdict.
+fn finish(report: swarm_hil::Result<MirrorReport>, json: Option<&Path>) -> Result<Verdict, Stop> {
+    let (report, error) = match report {
+        Ok(r) => (r, None),
+        Err(HilError::Aborted { report, source }) => (*report, Some(*source)),
+        Err(e) => {
+            if let Some(path) = json {
+                let text = serde_json::json!({
+                    "verdict": Verdict { link_failure: true, ..Verdict::default() },
+                    "failure": e.to_string(),
+                });
+                write_json(path, &text)?;
+            }
+            return Err(e.into());
+        }
+    };
     println!("{}", report.human());
     if let Some(path) = json {
-        let text = serde_json::to_string_pretty(report)?;
-        swarm_sim::output::write_atomic_bytes(path, text.as_bytes())?;
-        println!("wrote {}", path.display());
+        write_json(path, &report)?;
     }
-    Ok(report.passed())
+    if let Some(e) = error {
+        eprintln!("error: {e}");
+    }
+    Ok(report.verdict)
+}
+
+fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<(), Stop> {
+    let text = serde_json::to_string_pretty(value)?;
+    swarm_sim::output::write_atomic_bytes(path, text.as_bytes())?;
+    println!("wrote {}", path.display());
+    Ok(())
 }
