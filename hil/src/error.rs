@@ -22,14 +22,6 @@ pub enum HilError {
     /// The other end of the link is gone.
     #[error("{0}: the other end closed the link")]
     Closed(String),
-    /// Nothing came back in time.
-    #[error("{what}: no answer within {timeout:?}")]
-    Timeout {
-        /// What was awaited.
-        what: String,
-        /// How long.
-        timeout: Duration,
-    },
     /// A serial port could not be opened or set up.
     #[error("serial port {path}: {source}")]
     Serial {
@@ -41,9 +33,6 @@ pub enum HilError {
     /// The device is not the one expected (every difference named in the message).
     #[error("handshake: {0}")]
     Handshake(String),
-    /// The device broke the protocol (the message says how).
-    #[error("protocol: {0}")]
-    Protocol(String),
     /// Nothing intact came back from the device for `silent` while requests waited.
     #[error(
         "{waiting_for}: the device sent nothing intact for {silent:.1?} ({unanswered} requests \
