@@ -4,7 +4,12 @@
 //!
 //! * [`transport`]: byte links to a device behind one [`Transport`] trait (in memory, serial
 //!   ports and pseudo-terminals, TCP) and a fault-injecting wrapper.
-//! * [`client`]: the host end of a session (handshake, pipelined requests, retries).
+//! * [`client`]: the host end of a session (handshake, pipelined requests, retries), a pure
+//!   state machine driven over any transport.
+//! * [`mirror`]: a scenario run on the host with every chosen agent's decisions asked of the
+//!   device and compared bit for bit; [`verdict`]: what a run concludes.
+//! * [`loopback`]: the mirror against the soft device, in memory or over a pseudo-terminal.
+//! * `qemu` (Unix): the firmware images in QEMU, on a pseudo-terminal.
 //! * [`soft`]: the soft device, `swarm-core`'s device endpoint served on the host.
 //! * [`wire`]: the frame codec and the session protocol of `swarm_core`, shared with the
 //!   firmware.
