@@ -294,9 +294,10 @@ impl<C: Controller, const TX: usize> Core<C, TX> {
 ///   cannot serve gets an [`ErrorReply`];
 /// * garbage is skipped up to the next `0x00`; frames with a bad CRC, bad COBS, too short or
 ///   too long (more than `RX` bytes) are dropped unanswered and counted; a CRC-valid frame of
-///   another protocol version is answered with [`ErrorReply::VERSION`];
-/// * frames of a reply kind (e.g. another device's replies) are dropped unanswered and
-///   counted;
+///   another protocol version is answered with [`ErrorReply::VERSION`], whatever its kind
+///   (reply kinds included) except [`kind::ERROR_REPLY`];
+/// * frames of this version of a reply kind (e.g. another device's replies) are dropped
+///   unanswered and counted;
 /// * controller requests are refused with [`ErrorReply::NO_SESSION`] until `Hello` and
 ///   `Configure`;
 /// * it keeps no per-request state: a repeated request (a host's retry) is served again, and

@@ -127,7 +127,9 @@ pub mod kind {
         })
     }
 
-    /// Whether `kind` is a reply of this protocol (sent by a device, never answered by one).
+    /// Whether `kind` is a reply of this protocol (sent by a device, never answered by one
+    /// when the frame is of this protocol version; a device answers a frame of another
+    /// version with an error reply unless its kind is [`ERROR_REPLY`]).
     pub const fn is_reply(kind: u8) -> bool {
         matches!(
             kind,

@@ -101,8 +101,9 @@ pub struct Configure {
     pub session: u32,
     /// The [`params_hash`] the host computed from its own parameters.
     pub params_hash: u64,
-    /// Zero every device counter first (link and session), so the statistics of a run are
-    /// those of this session only.
+    /// Zero every device counter (link and session), so the statistics of a run are those of
+    /// this session only. Only an accepted `Configure` resets, after it was itself counted and
+    /// before its [`Configured`] is: right after, `replies` is 1 and every other counter 0.
     pub reset_stats: bool,
 }
 
@@ -155,7 +156,9 @@ pub struct DeviceStats {
     pub errors: u32,
     /// Requests of an unknown kind, or whose payload did not decode (each got an error reply).
     pub decode_errors: u32,
-    /// Intact frames of a reply kind, dropped unanswered.
+    /// Intact frames of this protocol version of a reply kind, dropped unanswered (a reply
+    /// kind of another version is answered with an error reply, see
+    /// [`DeviceEndpoint`](super::DeviceEndpoint)).
     pub ignored: u32,
     /// The open session's id, `None` when no session is open.
     pub session: Option<u32>,

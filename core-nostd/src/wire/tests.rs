@@ -1083,3 +1083,736 @@ proptest! {
         prop_assert_eq!(&r[0], &expected(1, direct));
     }
 }
+
+// ---- docs/protocol.md kept equal to the code ----
+
+/// Checks that tie `docs/protocol.md` to the code: the parameter tables and hashes of 10.2,
+/// and the decoder and device behaviour the spec states (sections 3, 5, 6, 7, 10).
+mod spec {
+    use super::*;
+    use crate::model::{ModelParams, ParamValue};
+    use crate::scalar::i16f16_bits;
+
+    const DOC: &str = include_str!("../../../docs/protocol.md");
+
+    /// The text from the line `start` to the next line starting with `end`.
+    fn section(start: &str, end: &str) -> &'static str {
+        let from = DOC
+            .find(start)
+            .unwrap_or_else(|| panic!("no {start:?} in protocol.md"));
+        let rest = &DOC[from..];
+        let to = rest[start.len()..]
+            .find(end)
+            .map_or(rest.len(), |i| i + start.len());
+        &rest[..to]
+    }
+
+    /// The body rows of the first Markdown table in `text` whose header row has `header` as
+    /// one of its cells; cells trimmed, backticks removed.
+    fn table(text: &str, header: &str) -> Vec<Vec<String>> {
+        let cells = |line: &str| -> Vec<String> {
+            let line = line.trim().trim_start_matches('|').trim_end_matches('|');
+            line.split('|').map(|c| c.trim().replace('`', "")).collect()
+        };
+        let mut lines = text.lines().skip_while(|l| {
+            !(l.starts_with('|') && cells(l).iter().any(|c| c == &header.replace('`', "")))
+        });
+        assert!(
+            lines.next().is_some(),
+            "no table with the column {header:?}"
+        );
+        lines
+            .skip(1) // the |---| line
+            .take_while(|l| l.starts_with('|'))
+            .map(cells)
+            .collect()
+    }
+
+    /// The hex bytes of a dump line: its two-digit hex tokens up to the first other token (a
+    /// comment), after an optional leading label ending in `()`.
+    fn dump_bytes(line: &str) -> Vec<u8> {
+        line.split_whitespace()
+            .skip_while(|t| t.ends_with("()"))
+            .take_while(|t| t.len() == 2 && t.bytes().all(|b| b.is_ascii_hexdigit()))
+            .map(|t| u8::from_str_radix(t, 16).unwrap())
+            .collect()
+    }
+
+    /// The code blocks of `text`, each as its lines.
+    fn code_blocks(text: &str) -> Vec<Vec<&str>> {
+        text.split("```")
+            .skip(1)
+            .step_by(2)
+            .map(|b| b.lines().filter(|l| !l.trim().is_empty()).collect())
+            .collect()
+    }
+
+    /// Bytes per label of a dump block whose entries start with `label()`.
+    fn labelled_dumps(block: &[&str]) -> Vec<(String, Vec<u8>)> {
+        let mut out: Vec<(String, Vec<u8>)> = Vec::new();
+        for line in block {
+            let first = line.split_whitespace().next().unwrap_or("");
+            if let Some(label) = first.strip_suffix("()") {
+                out.push((label.to_string(), Vec::new()));
+            }
+            out.last_mut()
+                .expect("a labelled line first")
+                .1
+                .extend(dump_bytes(line));
+        }
+        out
+    }
+
+    fn postcard_bytes<T: Serialize>(v: &T) -> Vec<u8> {
+        let mut buf = [0u8; 256];
+        postcard::to_slice(v, &mut buf).unwrap().to_vec()
+    }
+
+    /// Every field of `P` with its wire type (`S`, `u16`, `u8`), in postcard order: the order
+    /// in which changing one field at a time changes the first byte of the encoding.
+    fn postcard_order<P>() -> Vec<(&'static str, &'static str)>
+    where
+        P: ModelParams<Scalar = f32> + Serialize + Clone + Default,
+    {
+        let base = P::default();
+        let bytes = postcard_bytes(&base);
+        let mut at: Vec<(usize, &'static str, &'static str)> = P::SPECS
+            .iter()
+            .enumerate()
+            .map(|(i, spec)| {
+                let mut p = base.clone();
+                let (changed, ty) = match p.get(i).unwrap() {
+                    ParamValue::Real(v) => (ParamValue::Real(v + 1.0), "S"),
+                    ParamValue::Int(n) => {
+                        let mut q = base.clone();
+                        let ty = if !q.set(i, ParamValue::Int(300)) {
+                            "u8"
+                        } else if !q.set(i, ParamValue::Int(70_000)) {
+                            "u16"
+                        } else {
+                            "u32"
+                        };
+                        (ParamValue::Int(n ^ 1), ty)
+                    }
+                };
+                assert!(p.set(i, changed));
+                let other = postcard_bytes(&p);
+                assert_eq!(other.len(), bytes.len(), "{}", spec.name);
+                let first = (0..bytes.len()).find(|&k| bytes[k] != other[k]).unwrap();
+                (first, spec.name, ty)
+            })
+            .collect();
+        at.sort_unstable();
+        assert!(
+            at.windows(2).all(|w| w[0].0 < w[1].0),
+            "one offset per field"
+        );
+        at.into_iter().map(|(_, n, t)| (n, t)).collect()
+    }
+
+    /// The value of field `name` of `p` as the tables write it.
+    fn value_of<P: ModelParams>(p: &P, name: &str) -> ParamValue<P::Scalar> {
+        p.get(P::index_of(name).unwrap()).unwrap()
+    }
+
+    /// A documented decimal, as `f32` (decimal → f32, round to nearest).
+    fn decimal(cell: &str) -> f32 {
+        cell.parse::<f32>()
+            .unwrap_or_else(|_| panic!("not a number: {cell:?}"))
+    }
+
+    /// Checks the documented fields of `P` (names, order, types) against the code.
+    fn check_fields<P>(rows: &[Vec<String>])
+    where
+        P: ModelParams<Scalar = f32> + Serialize + Clone + Default,
+    {
+        let documented: Vec<(&str, &str)> = rows
+            .iter()
+            .map(|r| (r[1].as_str(), r[2].as_str()))
+            .collect();
+        assert_eq!(documented, postcard_order::<P>());
+        let numbers: Vec<String> = rows.iter().map(|r| r[0].clone()).collect();
+        let expected: Vec<String> = (1..=rows.len()).map(|i| i.to_string()).collect();
+        assert_eq!(numbers, expected);
+        // Every field, nothing more (SPECS lists each once, in validation order).
+        let mut names: Vec<&str> = P::SPECS.iter().map(|s| s.name).collect();
+        let mut doc_names: Vec<&str> = documented.iter().map(|d| d.0).collect();
+        names.sort_unstable();
+        doc_names.sort_unstable();
+        assert_eq!(doc_names, names);
+    }
+
+    /// Checks a documented value column against a preset in both scalars.
+    fn check_values<P>(rows: &[Vec<String>], column: usize, f32_params: &P, fx_params: &P::Fx)
+    where
+        P: ModelParams<Scalar = f32> + Castable,
+    {
+        for row in rows {
+            let (name, cell) = (row[1].as_str(), row[column].as_str());
+            match value_of(f32_params, name) {
+                ParamValue::Real(v) => {
+                    let doc = decimal(cell);
+                    assert_eq!(doc.to_bits(), v.to_bits(), "{name}: {cell} vs {v}");
+                    let ParamValue::Real(x) = value_of(fx_params, name) else {
+                        panic!()
+                    };
+                    assert_eq!(x.to_bits(), i16f16_bits(doc), "{name} in I16F16");
+                }
+                ParamValue::Int(n) => {
+                    assert_eq!(cell.parse::<u32>().unwrap(), n, "{name}");
+                    assert_eq!(value_of(fx_params, name), ParamValue::Int(n), "{name}");
+                }
+            }
+        }
+    }
+
+    /// Parameters with an `Fx` version.
+    trait Castable {
+        type Fx: ModelParams<Scalar = Fx> + Serialize;
+    }
+    impl Castable for AntParams<f32> {
+        type Fx = AntParams<Fx>;
+    }
+    impl Castable for BeeParams<f32> {
+        type Fx = BeeParams<Fx>;
+    }
+
+    fn hash_of(cell: &str) -> u64 {
+        u64::from_str_radix(cell.trim_start_matches("0x"), 16).unwrap()
+    }
+
+    #[test]
+    fn params_tables_match_the_code() {
+        let text = section("### 10.2", "### 10.3");
+        let ant_f32 = AntParams::<f32>::default();
+        let ant_fx = ant_f32.cast::<Fx>();
+
+        // AntParams: fields, defaults, f32 bits, I16F16 raw bits.
+        let rows = table(text, "`AntParams` field");
+        check_fields::<AntParams<f32>>(&rows);
+        check_values(&rows, 3, &ant_f32, &ant_fx);
+        for row in &rows {
+            if let ParamValue::Real(v) = value_of(&ant_f32, &row[1]) {
+                assert_eq!(row[4], format!("{:08x}", v.to_bits()), "{}", row[1]);
+                let ParamValue::Real(x) = value_of(&ant_fx, &row[1]) else {
+                    panic!()
+                };
+                let bits = x.to_bits();
+                assert_eq!(row[5], format!("{bits} (0x{bits:x})"), "{}", row[1]);
+            } else {
+                assert_eq!((row[4].as_str(), row[5].as_str()), ("", ""), "{}", row[1]);
+            }
+        }
+
+        // BeeParams: fields and the three presets.
+        let rows = table(text, "`BeeParams` field");
+        check_fields::<BeeParams<f32>>(&rows);
+        let presets = [
+            (
+                "default",
+                BeeParams::<f32>::default(),
+                BeeParams::<Fx>::default(),
+            ),
+            (
+                "grassland",
+                BeeParams::grassland(),
+                BeeParams::<Fx>::grassland(),
+            ),
+            (
+                "around_nest",
+                BeeParams::around_nest(),
+                BeeParams::<Fx>::around_nest(),
+            ),
+        ];
+        for (column, (_, f, x)) in presets.iter().enumerate() {
+            check_values(&rows, 3 + column, f, x);
+            assert_eq!(f.cast::<Fx>(), *x, "the Fx preset is the cast f32 preset");
+        }
+
+        // The byte dumps: ant f32, ant Fx, bee f32, bee Fx.
+        let blocks = code_blocks(text);
+        let dump = |b: &[&str]| b.iter().flat_map(|l| dump_bytes(l)).collect::<Vec<u8>>();
+        assert_eq!(dump(&blocks[1]), postcard_bytes(&ant_f32));
+        assert_eq!(dump(&blocks[2]), postcard_bytes(&ant_fx));
+        let bee_f32 = labelled_dumps(&blocks[3]);
+        let bee_fx = labelled_dumps(&blocks[4]);
+        assert_eq!((bee_f32.len(), bee_fx.len()), (3, 3));
+        for (i, (name, f, x)) in presets.iter().enumerate() {
+            assert_eq!(bee_f32[i], (name.to_string(), postcard_bytes(f)));
+            assert_eq!(bee_fx[i], (name.to_string(), postcard_bytes(x)));
+        }
+
+        // The hash table, both scalars.
+        let rows = table(text, "preset");
+        let expected = [
+            (
+                "AntParams::default()",
+                params_hash(&ant_f32),
+                params_hash(&ant_fx),
+            ),
+            (
+                "BeeParams::default()",
+                params_hash(&presets[0].1),
+                params_hash(&presets[0].2),
+            ),
+            (
+                "BeeParams::grassland()",
+                params_hash(&presets[1].1),
+                params_hash(&presets[1].2),
+            ),
+            (
+                "BeeParams::around_nest()",
+                params_hash(&presets[2].1),
+                params_hash(&presets[2].2),
+            ),
+        ];
+        assert_eq!(rows.len(), expected.len());
+        for (row, (name, f, x)) in rows.iter().zip(expected) {
+            assert_eq!(row[0], name);
+            assert_eq!(Ok(hash_of(&row[1])), f, "{name} f32");
+            assert_eq!(Ok(hash_of(&row[2])), x, "{name} I16F16");
+        }
+        // The ant default computed in fixed point differs (10.2, 10.8).
+        let own = AntParams::<Fx>::default();
+        assert_eq!(
+            (own.theta.to_bits(), ant_fx.theta.to_bits()),
+            (34_314, 34_315)
+        );
+        assert_eq!(
+            own,
+            AntParams {
+                theta: own.theta,
+                ..ant_fx
+            }
+        );
+        assert_eq!(params_hash(&own), Ok(0xdd18_a3c3_afda_9647));
+        assert!(text.contains("`0xdd18a3c3afda9647`"));
+    }
+
+    /// 10.2: decimal → f32 (nearest) → I16F16 (nearest, ties to even, saturating).
+    #[test]
+    fn decimal_to_i16f16_examples() {
+        let via = |d: &str| i16f16_bits(d.parse::<f32>().unwrap());
+        assert_eq!(via("1000.00001"), 65_536_000); // the f32 is 1000.0
+        assert_eq!(via("0.00003814697265625"), 2); // 2.5 raw units: ties to even
+        assert_eq!(via("0.00002288818359375"), 2); // 1.5 raw units
+        assert_eq!(via("40000"), i32::MAX);
+        assert_eq!(via("-40000"), i32::MIN);
+        assert_eq!(i16f16_bits(f32::NAN), 0);
+        for d in [
+            "1000.00001",
+            "0.00003814697265625",
+            "0.6",
+            "0.005",
+            "-40000",
+        ] {
+            assert_eq!(Fx::from_f32(d.parse().unwrap()).to_bits(), via(d), "{d}");
+        }
+    }
+
+    /// Section 6: non-shortest varints within the maximum length are accepted.
+    #[test]
+    fn non_shortest_varints_are_accepted() {
+        assert_eq!(decode_payload::<u16>(&[0x80, 0x00]), Ok(0));
+        assert_eq!(decode_payload::<u16>(&[0x80, 0x80, 0x00]), Ok(0));
+        assert_eq!(
+            decode_payload::<u16>(&[0x80, 0x80, 0x80, 0x00]),
+            Err(Error::Payload)
+        );
+        assert_eq!(decode_payload::<u16>(&[0xff, 0xff, 0x03]), Ok(u16::MAX));
+        assert_eq!(
+            decode_payload::<u16>(&[0xff, 0xff, 0x04]),
+            Err(Error::Payload)
+        );
+        assert_eq!(decode_payload::<i32>(&[0x81, 0x00]), Ok(-1));
+        assert_eq!(
+            decode_payload::<u32>(&[0x80, 0x80, 0x80, 0x80, 0x00]),
+            Ok(0)
+        );
+        assert_eq!(
+            decode_payload::<u32>(&[0xff, 0xff, 0xff, 0xff, 0x0f]),
+            Ok(u32::MAX)
+        );
+        assert_eq!(
+            decode_payload::<u32>(&[0xff, 0xff, 0xff, 0xff, 0x10]),
+            Err(Error::Payload)
+        );
+        let mut max64 = [0xffu8; 10];
+        max64[9] = 0x01;
+        assert_eq!(decode_payload::<u64>(&max64), Ok(u64::MAX));
+        max64[9] = 0x02;
+        assert_eq!(decode_payload::<u64>(&max64), Err(Error::Payload));
+        assert_eq!(
+            decode_payload::<Fx>(&[0x80, 0x80, 0x80, 0x80, 0x00]),
+            Ok(Fx::ZERO)
+        );
+        assert_eq!(decode_payload::<ant::Label>(&[0x82, 0x00]), Ok(Label::Nest));
+        assert_eq!(
+            decode_payload::<heapless::Vec<u8, 4>>(&[0x80, 0x00]),
+            Ok(heapless::Vec::new())
+        );
+        // A device serves such a request; its reply is in the shortest form.
+        let mut dev = ant_device::<f32>();
+        let ping = frame_of_kind(kind::PING, 9, &[0x85u8, 0x80, 0x00]); // nonce 5
+        let r = replies(&mut dev, &ping);
+        assert_eq!(r, vec![frame_of(9, &Pong { nonce: 5 })]);
+    }
+
+    /// Section 3: the optional trailing `01` exists only after a final `FF` block.
+    #[test]
+    fn cobs_trailing_01_only_after_a_final_ff_block() {
+        // A 254-byte raw frame with no zero: version 2, kind 0x85, seq 0x0101, 248 × 0x11, CRC.
+        let mut raw = vec![PROTOCOL_VERSION, 0x85, 1, 1];
+        raw.extend([0x11u8; 248]);
+        raw.extend_from_slice(&CRC16.checksum(&raw).to_le_bytes());
+        assert_eq!(raw.len(), 254);
+        assert!(!raw.contains(&0));
+        let mut shortest = vec![0xffu8];
+        shortest.extend_from_slice(&raw);
+        let mut padded = shortest.clone();
+        padded.push(0x01);
+        assert_eq!(frame_of_kind(0x85, 0x0101, &frame::Raw(&[0x11; 248])), {
+            let mut l = shortest.clone();
+            l.push(0);
+            l
+        });
+        for line in [&shortest, &padded] {
+            let mut body = line.clone();
+            let f = decode_frame(&mut body).unwrap();
+            assert_eq!(
+                (f.header, f.payload),
+                (Header::new(0x85, 0x0101), &[0x11u8; 248][..])
+            );
+            let mut acc = Accumulator::<300>::new();
+            let mut with_delimiter = line.clone();
+            with_delimiter.push(0);
+            assert!(matches!(
+                acc.feed(&with_delimiter),
+                Some((Event::Frame(_), []))
+            ));
+        }
+        // After any other code byte a final 01 encodes a trailing zero: not padding.
+        let decode = |enc: &[u8]| {
+            let mut b = enc.to_vec();
+            cobs::decode_in_place(&mut b).map(|n| b[..n].to_vec())
+        };
+        assert_eq!(decode(&[0x03, 0x11, 0x22]), Ok(vec![0x11, 0x22]));
+        assert_eq!(
+            decode(&[0x03, 0x11, 0x22, 0x01]),
+            Ok(vec![0x11, 0x22, 0x00])
+        );
+        assert_eq!(
+            decode(&[0x03, 0x11, 0x22, 0x01, 0x01]),
+            Ok(vec![0x11, 0x22, 0, 0])
+        );
+    }
+
+    /// A CRC-valid frame of protocol version `version`.
+    fn foreign(version: u8, kind: u8, seq: u16, payload: &[u8]) -> Vec<u8> {
+        let mut raw = vec![version, kind];
+        raw.extend_from_slice(&seq.to_le_bytes());
+        raw.extend_from_slice(payload);
+        raw.extend_from_slice(&CRC16.checksum(&raw).to_le_bytes());
+        let mut out = vec![0u8; raw.len() + 4];
+        let n = cobs::try_encode(&raw, &mut out).unwrap();
+        out.truncate(n);
+        out.push(0);
+        out
+    }
+
+    /// Sections 5, 10.4, 10.5: a foreign-version frame of any kind but 0x0F is answered with
+    /// ErrorReply 10 (reply kinds and 0x00 included); in version 2, reply kinds are dropped
+    /// and 0x00 gets ErrorReply 11.
+    #[test]
+    fn foreign_version_frames_are_answered_whatever_their_kind() {
+        for version in [0u8, 1, 3, 0xff] {
+            let mut dev = ant_device::<f32>();
+            open(&mut dev, 1);
+            let line: Vec<u8> = (0..=255u8)
+                .flat_map(|k| foreign(version, k, 0x4200 | u16::from(k), &[]))
+                .collect();
+            let r = replies(&mut dev, &line);
+            let answered: Vec<(u16, u8)> = r.iter().map(|f| error_code(f)).collect();
+            let expected: Vec<(u16, u8)> = (0..=255u8)
+                .filter(|&k| k != kind::ERROR_REPLY)
+                .map(|k| (0x4200 | u16::from(k), ErrorReply::VERSION))
+                .collect();
+            assert_eq!(answered, expected, "version {version}");
+            let s = dev.stats();
+            assert_eq!((s.link.version_errors, s.errors, s.requests), (256, 255, 0));
+            assert_eq!((s.ignored, s.decode_errors), (0, 0));
+        }
+        // The same kinds in version 2: reply kinds dropped, 0x00 is UnknownKind.
+        let mut dev = ant_device::<f32>();
+        open(&mut dev, 1);
+        let replies_kinds = [0x02u8, 0x04, 0x06, 0x08, 0x0f, 0x11, 0x13, 0x21];
+        assert!(replies_kinds.iter().all(|&k| kind::is_reply(k)));
+        assert_eq!((0..=255u8).filter(|&k| kind::is_reply(k)).count(), 8);
+        for k in replies_kinds {
+            assert!(replies(&mut dev, &frame_of_kind(k, 1, &())).is_empty());
+        }
+        let r = replies(&mut dev, &frame_of_kind(0x00, 2, &()));
+        assert_eq!(
+            r.iter().map(|f| error_code(f)).collect::<Vec<_>>(),
+            vec![(2, 11)]
+        );
+    }
+
+    /// 10.1: what `Configure { reset_stats: true }` zeroes, and when.
+    #[test]
+    fn reset_stats_zeroes_every_counter_after_counting_the_configure() {
+        let mut dev = ant_device::<f32>();
+        open(&mut dev, 1);
+        let mut line = vec![0u8, 0]; // empty frames
+        line.extend(frame_of(1, &Ping { nonce: 1 }));
+        let mut bad = frame_of(2, &Ping { nonce: 2 });
+        bad[3] ^= 0x40;
+        line.extend(bad);
+        line.extend(foreign(1, kind::PING, 3, &[3]));
+        line.extend(frame_of(4, &Pong { nonce: 4 }));
+        line.extend(frame_of_kind(0x30, 5, &()));
+        assert_eq!(replies(&mut dev, &line).len(), 3);
+        let s = dev.stats();
+        assert!(s.link.empty > 0 && s.link.crc_errors > 0 && s.link.version_errors > 0);
+        assert!(s.ignored > 0 && s.decode_errors > 0 && s.errors > 0 && s.replies > 0);
+        // A refused Configure (other hash) resets nothing, and closes the session.
+        let hash = dev.identity().params_hash;
+        let refused = Configure {
+            session: 2,
+            params_hash: hash ^ 1,
+            reset_stats: true,
+        };
+        replies(&mut dev, &frame_of(6, &refused));
+        assert_eq!(dev.stats().errors, s.errors + 1);
+        assert_eq!(dev.stats().session, None);
+        // An accepted one zeroes all 13 counters after counting itself: only its reply counts.
+        let accepted = Configure {
+            session: 3,
+            params_hash: hash,
+            reset_stats: true,
+        };
+        replies(&mut dev, &frame_of(7, &accepted));
+        assert_eq!(
+            dev.stats(),
+            DeviceStats {
+                replies: 1,
+                session: Some(3),
+                ..DeviceStats::default()
+            }
+        );
+    }
+
+    /// Section 7: a few of the documented checks, at their limits.
+    #[test]
+    fn request_checks_as_documented() {
+        let p = AntParams::<f32>::default();
+        let bounds = Rect::new(Vec2::from_f32(0.0, 0.0), Vec2::from_f32(100.0, 100.0));
+        let state =
+            AntState::<f32>::exploring(0, Vec2::from_f32(5.0, 5.0), Vec2::from_f32(1.0, 0.0));
+        let ctx = StepCtx {
+            seed: 1,
+            agent: 7,
+            step: 3,
+        };
+        let plan = |s: &AntState<f32>, f: &WirePlanFrame<f32>| ant::plan(s, f, &p, ctx);
+        let frame = WirePlanFrame::new(bounds);
+        assert!(plan(&state, &frame).is_ok());
+        // heading: x² + y² strictly inside (0.9801, 1.0201).
+        let with_heading = |x: f32| AntState {
+            heading: Vec2::new(x, 0.0),
+            ..state
+        };
+        assert!(with_heading(0.995).validate().is_ok());
+        assert!(matches!(
+            with_heading(0.98).validate(),
+            Err(Error::OutOfRange {
+                field: "state.heading",
+                ..
+            })
+        ));
+        assert!(matches!(
+            with_heading(f32::NAN).validate(),
+            Err(Error::NonFinite {
+                field: "state.heading",
+                ..
+            })
+        ));
+        // Coordinates: ±16384 included.
+        let at = |x: f32| AntState {
+            pos: Vec2::new(x, 5.0),
+            ..state
+        };
+        assert!(at(16384.0).validate().is_ok());
+        assert!(matches!(
+            at(16385.0).validate(),
+            Err(Error::OutOfRange {
+                field: "state.pos",
+                ..
+            })
+        ));
+        // pos inside bounds: checked by plan (after the frame), not by resolve.
+        let outside = at(-1.0);
+        assert!(matches!(
+            plan(&outside, &frame),
+            Err(Error::OutOfRange {
+                field: "state.pos",
+                ..
+            })
+        ));
+        let resolve_frame = WireResolveFrame::new(bounds);
+        let out_plan = AntPlan {
+            state: outside,
+            predicted: outside.pos,
+        };
+        assert!(ant::resolve(&out_plan, &resolve_frame, &p).is_ok());
+        // A neighbour may not carry ctx.agent.
+        let mut f = frame.clone();
+        f.neighbours
+            .push(AntNeighbor {
+                id: 7,
+                pos: Vec2::from_f32(5.5, 5.0),
+                label: Label::Nothing,
+                nest: 0,
+                origin: 0,
+                arrival: Vec2::from_f32(5.5, 5.0),
+            })
+            .unwrap();
+        assert!(matches!(
+            plan(&state, &f),
+            Err(Error::Inconsistent {
+                field: "neighbours.id",
+                ..
+            })
+        ));
+        // Disc radius: from the scalar's smallest step.
+        let disc = |radius: f32| {
+            let mut f = frame.clone();
+            let center = Vec2::from_f32(50.0, 50.0);
+            f.objects
+                .push(AntObject::Food {
+                    id: 1,
+                    center,
+                    radius,
+                })
+                .unwrap();
+            plan(&state, &f)
+        };
+        assert!(disc(f32::EPSILON).is_ok());
+        assert!(matches!(
+            disc(f32::EPSILON / 2.0),
+            Err(Error::OutOfRange {
+                field: "objects.radius",
+                ..
+            })
+        ));
+        // Stop rules.
+        let stopped = |motion, stop| AntState {
+            motion,
+            stop,
+            ..state
+        };
+        let timer = |reason, remaining, place| {
+            Some(StopTimer {
+                reason,
+                remaining,
+                place,
+            })
+        };
+        assert!(
+            stopped(MotionState::Stop, timer(StopReason::Casual, 1, 99))
+                .validate()
+                .is_ok()
+        );
+        assert!(matches!(
+            stopped(MotionState::Stop, timer(StopReason::Casual, 0, 0)).validate(),
+            Err(Error::OutOfRange {
+                field: "state.stop.remaining",
+                ..
+            })
+        ));
+        assert!(matches!(
+            stopped(MotionState::BasicMovement, timer(StopReason::Casual, 1, 0)).validate(),
+            Err(Error::Inconsistent {
+                field: "state.stop",
+                ..
+            })
+        ));
+        assert!(matches!(
+            stopped(MotionState::Stop, timer(StopReason::DroppingFood, 1, 0)).validate(),
+            Err(Error::Inconsistent {
+                field: "state.stop.reason",
+                ..
+            })
+        ));
+    }
+
+    /// Section 7 and 10.8: how a bee step reads `forward` (and ignores density, u0, roll,
+    /// pitch).
+    #[test]
+    fn bee_forward_is_replaced_as_documented() {
+        let p = BeeParams::<f32>::default();
+        let v = Vec3::<f32>::from_f32;
+        let hover = BeeState::new(v(1.0, 2.0, 3.0), v(0.0, 0.0, 0.0));
+        let step = |s: &BeeState<f32>, goal: Option<Vec3<f32>>| {
+            let mut f = WireBeeFrame::<f32>::new(1.0);
+            f.goal = goal;
+            bee::step(s, &f, &p).unwrap()
+        };
+        // Hovering: forward normalised; zero forward: toward the goal, else +x.
+        let s = BeeState {
+            forward: v(0.0, 0.0, -3.0),
+            ..hover
+        };
+        assert_eq!(step(&s, None).1.forward, v(0.0, 0.0, -1.0));
+        let s = BeeState {
+            forward: Vec3::zero(),
+            ..hover
+        };
+        assert_eq!(step(&s, Some(v(1.0, 2.0, 5.0))).1.forward, v(0.0, 0.0, 1.0));
+        assert_eq!(step(&s, None).1.forward, v(1.0, 0.0, 0.0));
+        // Moving: forward ignored.
+        let moving = BeeState {
+            vel: v(0.0, 2.0, 0.0),
+            ..hover
+        };
+        let a = step(
+            &BeeState {
+                forward: v(5.0, 0.0, 0.0),
+                ..moving
+            },
+            None,
+        );
+        let b = step(
+            &BeeState {
+                forward: v(0.0, 0.0, 0.0),
+                ..moving
+            },
+            None,
+        );
+        assert_eq!(a, b);
+        assert_eq!(a.1.forward, v(0.0, 1.0, 0.0));
+        // density, u0, roll, pitch: checked, not used.
+        let c = step(
+            &BeeState {
+                density: 7.0,
+                u0: v(1.0, 1.0, 1.0),
+                roll: 0.5,
+                pitch: -0.5,
+                ..moving
+            },
+            None,
+        );
+        assert_eq!(a, c);
+        let bad = BeeState {
+            density: -1.0,
+            ..moving
+        };
+        assert!(matches!(
+            bad.validate(),
+            Err(Error::OutOfRange {
+                field: "state.density",
+                ..
+            })
+        ));
+    }
+}
