@@ -2,7 +2,6 @@
 //! them.
 
 use crate::model::{ModelParams, Range, model_params};
-use crate::scalar::pi;
 use crate::{Result, Scalar};
 
 wire_type! {
@@ -48,7 +47,9 @@ impl<S: Scalar> Default for AntParams<S> {
         AntParams {
             speed: S::ONE,
             dt: S::ONE,
-            theta: pi::<S>() / S::from_i32(6),
+            // π/6 as one constant, so that the fixed-point default is the f32 default converted
+            // (π/6 computed in fixed point would truncate one step lower).
+            theta: S::from_f32(core::f32::consts::FRAC_PI_6),
             p_stop: S::from_f32(0.005),
             casual_stop_ticks: 5,
             collect_ticks: 10,
