@@ -15,8 +15,6 @@ use std::path::Path;
 
 use serde::Deserialize;
 use swarm_core::Fx;
-use swarm_core::ant::AntParams;
-use swarm_core::bee::BeeParams;
 use swarm_core::model::ModelParams;
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
@@ -843,18 +841,32 @@ fn validate_ant_group(
         ));
     }
     let params = g.ant_params();
-    params
-        .validate()
-        .and_then(|()| match g.scalar {
-            ScalarType::Fixed => params.cast::<Fx>().validate(),
-            ScalarType::F32 => Ok(()),
-        })
-        .map_err(|e| param_problem::<AntParams<f32>>(path, "ant", e))
+    check_params(
+        &params,
+        || params.cast::<Fx>().validate(),
+        g.scalar,
+        path,
+        "ant",
+    )
 }
 
-/// The problem of a parameter set its model refuses: which parameter, and what it takes (from
+/// Checks a group's parameters, and for a fixed-point group also `in_fixed` (the same
+/// parameters converted to `Fx`); the problem names the first bad one and what it takes (from
 /// the model's parameter table in swarm-core).
-fn param_problem<P: ModelParams>(path: &str, model: &str, e: swarm_core::Error) -> Problem {
+fn check_params<P: ModelParams>(
+    params: &P,
+    in_fixed: impl FnOnce() -> swarm_core::Result<()>,
+    scalar: ScalarType,
+    path: &str,
+    model: &str,
+) -> std::result::Result<(), Problem> {
+    let checked = params.validate().and_then(|()| match scalar {
+        ScalarType::Fixed => in_fixed(),
+        ScalarType::F32 => Ok(()),
+    });
+    let Err(e) = checked else {
+        return Ok(());
+    };
     let field = match e {
         swarm_core::Error::BadParam { field } => field,
         _ => "?",
@@ -863,10 +875,10 @@ fn param_problem<P: ModelParams>(path: &str, model: &str, e: swarm_core::Error) 
         Some(i) => P::SPECS[i].to_string(),
         None => format!("a value `{model}` parameters accept"),
     };
-    Problem::new(
+    Err(Problem::new(
         format!("{path}.{model}.{field}"),
         format!("invalid {model} parameter `{field}`: expected {takes}"),
-    )
+    ))
 }
 
 fn validate_bee_group(
@@ -901,13 +913,13 @@ fn validate_bee_group(
         ));
     }
     let params = g.bee_params();
-    params
-        .validate()
-        .and_then(|()| match g.scalar {
-            ScalarType::Fixed => params.cast::<Fx>().validate(),
-            ScalarType::F32 => Ok(()),
-        })
-        .map_err(|e| param_problem::<BeeParams<f32>>(path, "bee", e))
+    check_params(
+        &params,
+        || params.cast::<Fx>().validate(),
+        g.scalar,
+        path,
+        "bee",
+    )
 }
 
 fn validate_spawn(
