@@ -21,6 +21,7 @@ mod resolve;
 mod state;
 #[cfg(test)]
 mod tests;
+mod wire;
 
 pub use frame::{AntNeighbor, AntObject, PlanFrame, ResolveFrame, SURFACES, Surface};
 pub use interact::{EnvAction, environment, informer, transfers};
@@ -30,4 +31,12 @@ pub use plan::{AntPlan, plan, plan_checked, predict};
 pub use resolve::{W_MAX, repulsion, resolve, resolve_checked};
 pub use state::{
     AntState, COORD_LIMIT, Follow, Label, MotionState, StopReason, StopTimer, Turn, WINDING_LIMIT,
+};
+#[cfg(feature = "serde")]
+pub use wire::{
+    AntDevice, MAX_ANT_FRAME, MAX_ANT_PAYLOAD, MAX_ANT_REPLY_FRAME, MAX_ANT_REPLY_PAYLOAD,
+};
+pub use wire::{
+    AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, Plan, Resolve,
+    WIRE_ANT_NEIGHBOURS, WIRE_ANT_OBJECTS, WirePlanFrame, WireResolveFrame,
 };

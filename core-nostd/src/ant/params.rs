@@ -87,8 +87,7 @@ impl<S: Scalar> AntParams<S> {
 
     /// The parameters, validated once (see [`Checked`](crate::Checked)).
     pub fn checked(self) -> Result<crate::Checked<Self>> {
-        self.validate()?;
-        Ok(crate::Checked::assume_valid(self))
+        ModelParams::checked(self)
     }
 
     /// Checks every parameter against its range ([`ModelParams::SPECS`]); the error names the

@@ -59,7 +59,15 @@ pub mod perlin;
 pub mod sph;
 pub mod step;
 pub mod vision;
+mod wire;
 
 pub use frame::{BeeDecision, BeeFrame, BeeNeighbor, BeeState, ObstacleSense};
 pub use params::BeeParams;
 pub use step::{StepConsts, step, step_checked, step_with};
+#[cfg(feature = "serde")]
+pub use wire::{
+    BeeDevice, MAX_BEE_FRAME, MAX_BEE_PAYLOAD, MAX_BEE_REPLY_FRAME, MAX_BEE_REPLY_PAYLOAD,
+};
+pub use wire::{
+    BeeStepReply, BeeStepRequest, Step, WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS, WireBeeFrame,
+};

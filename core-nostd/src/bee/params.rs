@@ -141,8 +141,7 @@ impl<S: Scalar> BeeParams<S> {
 
     /// The parameters, validated once (see [`Checked`](crate::Checked)).
     pub fn checked(self) -> Result<crate::Checked<Self>> {
-        self.validate()?;
-        Ok(crate::Checked::assume_valid(self))
+        ModelParams::checked(self)
     }
 
     /// Checks every parameter: finite and at most [`LIMIT`]; h, L, m, Δt, d0 and the speed

@@ -144,6 +144,16 @@ pub trait ModelParams: Sized {
         }
         self.check_together()
     }
+
+    /// The parameters, validated once (see [`Checked`](crate::Checked)).
+    ///
+    /// # Errors
+    ///
+    /// The first bad parameter ([`ModelParams::validate`]).
+    fn checked(self) -> Result<crate::Checked<Self>> {
+        self.validate()?;
+        Ok(crate::Checked::assume_valid(self))
+    }
 }
 
 /// Implements [`ModelParams`] for a parameter struct generic over its scalar from one list of

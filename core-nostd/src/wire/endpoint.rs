@@ -1,162 +1,17 @@
 //! The device side of the protocol: a `no_std` state machine that eats bytes and produces
 //! reply frames, with fixed buffers.
 
-use serde::Serialize;
-use serde::de::DeserializeOwned;
-
 use super::accumulator::{Accumulator, Event};
-use super::frame::{decode_payload, max_frame_len};
+use super::frame::decode_payload;
 use super::header::Header;
-use super::message::{
-    AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, BeeStepReply, BeeStepRequest,
-    ErrorReply, MAX_ANT_FRAME, MAX_ANT_REPLY_PAYLOAD, MAX_BEE_FRAME, MAX_BEE_REPLY_PAYLOAD,
-    WIRE_ANT_NEIGHBOURS, WIRE_ANT_OBJECTS, WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS, kind,
-};
+use super::message::{ErrorReply, kind};
+use super::serve::{Controller, Serve};
 use super::session::{
-    Capacities, Configure, Configured, ControllerKind, DeviceName, DeviceStats, Identity,
-    MAX_SESSION_FRAME, MAX_SESSION_PAYLOAD, Ping, Pong, device_name, params_hash,
+    Configure, Configured, DeviceName, DeviceStats, Identity, MAX_SESSION_FRAME, Ping, Pong,
+    device_name, params_hash,
 };
 use super::{Message, encode_message};
-use crate::ant::{self, AntParams};
-use crate::bee::{self, BeeParams};
 use crate::{Checked, Error, Result, Scalar};
-
-/// A controller a [`DeviceEndpoint`] can serve: its parameters type, which requests it
-/// answers and how.
-///
-/// Implemented for [`AntParams<S>`] (requests `0x10` plan, `0x12` resolve) and
-/// [`BeeParams<S>`] (request `0x20` step), for `S` = `f32` or [`Fx`](crate::Fx). The
-/// implementing type *is* the parameter set: its postcard encoding is what
-/// [`params_hash`] hashes.
-pub trait Controller: Serialize + Sized {
-    /// The number type of its messages.
-    type Scalar: Scalar;
-    /// Which controller it is ([`Identity::controller`]).
-    const KIND: ControllerKind;
-    /// The sensor-frame list capacities of its requests ([`Identity::capacities`]).
-    const CAPACITIES: Capacities;
-    /// The longest frame it receives (its largest request, delimiter included): the `RX`
-    /// that receives every request.
-    const MAX_REQUEST_FRAME: usize;
-    /// The longest frame it sends (its largest reply or any session reply, delimiter
-    /// included): the smallest `TX` a [`DeviceEndpoint`] accepts.
-    const MAX_REPLY_FRAME: usize;
-
-    /// Checks the parameters (the endpoint does it once, in [`DeviceEndpoint::new`]).
-    fn validate(&self) -> Result<()>;
-
-    /// Whether this controller serves requests of `kind`.
-    fn serves(kind: u8) -> bool;
-
-    /// Serves one request of a kind it [`serves`](Controller::serves): decodes `payload`,
-    /// runs the controller and encodes the reply frame (sequence number `seq`) into `out`,
-    /// returning its length.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::Payload`] if the payload does not decode, [`Error::UnknownKind`] for a kind it
-    /// does not serve, the controller's error for refused input, [`Error::BufferFull`] if
-    /// `out` is too small.
-    fn serve(
-        params: &Checked<Self>,
-        kind: u8,
-        seq: u16,
-        payload: &[u8],
-        out: &mut [u8],
-    ) -> Result<usize>;
-}
-
-const fn max(a: usize, b: usize) -> usize {
-    if a > b { a } else { b }
-}
-
-/// The longest reply frame of an ant device (its largest plan reply, or a session reply),
-/// delimiter included: the `TX` of an [`AntDevice`].
-pub const MAX_ANT_REPLY_FRAME: usize =
-    max_frame_len(max(MAX_SESSION_PAYLOAD, MAX_ANT_REPLY_PAYLOAD));
-/// The longest reply frame of a bee device (its largest step reply, or a session reply),
-/// delimiter included: the `TX` of a [`BeeDevice`].
-pub const MAX_BEE_REPLY_FRAME: usize =
-    max_frame_len(max(MAX_SESSION_PAYLOAD, MAX_BEE_REPLY_PAYLOAD));
-
-impl<S: Scalar + Serialize + DeserializeOwned> Controller for AntParams<S> {
-    type Scalar = S;
-    const KIND: ControllerKind = ControllerKind::Ant;
-    const CAPACITIES: Capacities = Capacities {
-        neighbours: WIRE_ANT_NEIGHBOURS as u16,
-        objects: WIRE_ANT_OBJECTS as u16,
-        targets: 0,
-    };
-    const MAX_REQUEST_FRAME: usize = MAX_ANT_FRAME;
-    const MAX_REPLY_FRAME: usize = MAX_ANT_REPLY_FRAME;
-
-    fn validate(&self) -> Result<()> {
-        AntParams::validate(self)
-    }
-
-    fn serves(kind: u8) -> bool {
-        matches!(kind, kind::ANT_PLAN_REQUEST | kind::ANT_RESOLVE_REQUEST)
-    }
-
-    fn serve(
-        params: &Checked<Self>,
-        kind: u8,
-        seq: u16,
-        payload: &[u8],
-        out: &mut [u8],
-    ) -> Result<usize> {
-        match kind {
-            kind::ANT_PLAN_REQUEST => {
-                let req: AntPlanRequest<S> = decode_payload(payload)?;
-                let plan = ant::plan_checked(&req.state, &req.frame, params, req.ctx)?;
-                encode_message(seq, &AntPlanReply { plan }, out)
-            }
-            kind::ANT_RESOLVE_REQUEST => {
-                let req: AntResolveRequest<S> = decode_payload(payload)?;
-                let state = ant::resolve_checked(&req.plan, &req.frame, params)?;
-                encode_message(seq, &AntResolveReply { state }, out)
-            }
-            kind => Err(Error::UnknownKind { kind }),
-        }
-    }
-}
-
-impl<S: Scalar + Serialize + DeserializeOwned> Controller for BeeParams<S> {
-    type Scalar = S;
-    const KIND: ControllerKind = ControllerKind::Bee;
-    const CAPACITIES: Capacities = Capacities {
-        neighbours: WIRE_BEE_NEIGHBOURS as u16,
-        objects: 0,
-        targets: WIRE_BEE_TARGETS as u16,
-    };
-    const MAX_REQUEST_FRAME: usize = MAX_BEE_FRAME;
-    const MAX_REPLY_FRAME: usize = MAX_BEE_REPLY_FRAME;
-
-    fn validate(&self) -> Result<()> {
-        BeeParams::validate(self)
-    }
-
-    fn serves(kind: u8) -> bool {
-        kind == kind::BEE_STEP_REQUEST
-    }
-
-    fn serve(
-        params: &Checked<Self>,
-        kind: u8,
-        seq: u16,
-        payload: &[u8],
-        out: &mut [u8],
-    ) -> Result<usize> {
-        match kind {
-            kind::BEE_STEP_REQUEST => {
-                let req: BeeStepRequest<S> = decode_payload(payload)?;
-                let (decision, state) = bee::step_checked(&req.state, &req.frame, params)?;
-                encode_message(seq, &BeeStepReply { decision, state }, out)
-            }
-            kind => Err(Error::UnknownKind { kind }),
-        }
-    }
-}
 
 /// Where a device's session stands.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -250,15 +105,15 @@ impl<C: Controller, const TX: usize> Core<C, TX> {
             kind::STATS_REQUEST => {
                 decode_payload::<super::StatsRequest>(payload).map(|_| Todo::Stats(header))
             }
-            k if kind::is_reply(k) => {
+            k if kind::is_reply(k) || C::Phases::replies(k) => {
                 bump(&mut self.counters.ignored);
                 return Todo::Nothing;
             }
-            k if !C::serves(k) => Err(Error::UnknownKind { kind: k }),
+            k if !C::Phases::serves(k) => Err(Error::UnknownKind { kind: k }),
             _ if !matches!(self.state, SessionState::Open { .. }) => {
                 return Todo::Fail(header, Error::NoSession);
             }
-            k => match C::serve(&self.params, k, seq, payload, &mut self.tx) {
+            k => match C::Phases::serve(&self.params, k, seq, payload, &mut self.tx) {
                 Ok(n) => {
                     bump(&mut self.counters.replies);
                     return Todo::Sent(n);
@@ -329,11 +184,6 @@ pub struct DeviceEndpoint<C, const RX: usize, const TX: usize> {
     rx: Accumulator<RX>,
     core: Core<C, TX>,
 }
-
-/// An ant device: [`DeviceEndpoint`] sized for every ant request and reply.
-pub type AntDevice<S> = DeviceEndpoint<AntParams<S>, MAX_ANT_FRAME, MAX_ANT_REPLY_FRAME>;
-/// A bee device: [`DeviceEndpoint`] sized for every bee request and reply.
-pub type BeeDevice<S> = DeviceEndpoint<BeeParams<S>, MAX_BEE_FRAME, MAX_BEE_REPLY_FRAME>;
 
 impl<C: Controller, const RX: usize, const TX: usize> DeviceEndpoint<C, RX, TX> {
     /// A device running `params` (validated here, once), reporting `name` in its

@@ -1,49 +1,26 @@
-//! The controller messages: one request and one reply per controller call, for both scalars.
+//! The registry of message kinds, the error reply, and the largest message of the built-in
+//! models.
 //!
-//! The host sends a request, the device runs the controller on it ([`AntPlanRequest::run`]
-//! and friends) and answers with the reply of the same sequence number, or with an
-//! [`ErrorReply`] when the controller refused the input. Every message is generic over the
-//! scalar `S` (`f32` or [`Fx`](crate::Fx)); both ends must agree on it (the session handshake
-//! checks that: [`Identity::scalar`](super::Identity::scalar)), since the kind byte does not
-//! say which.
+//! A model's controller messages are its phases' requests and replies, defined in the model's
+//! folder ([`crate::ant::AntPlanRequest`], [`crate::bee::BeeStepRequest`], ...): the host
+//! sends a request, the device runs the phase on it and answers with the reply of the same
+//! sequence number, or with an [`ErrorReply`] when the controller refused the input. Every
+//! message is generic over the scalar `S` (`f32` or [`Fx`](crate::Fx)); both ends must agree on
+//! it (the session handshake checks that: [`Identity::scalar`](super::Identity::scalar)), since
+//! the kind byte does not say which.
 //!
-//! Sensor-frame capacities on the wire are fixed ([`WIRE_ANT_NEIGHBOURS`] and friends), so
-//! every message has a bounded size: [`MAX_PAYLOAD`] bytes at most, [`MAX_FRAME`] on the line.
+//! Sensor-frame capacities on the wire are fixed per model, so every message has a bounded
+//! size: [`MAX_PAYLOAD`] bytes at most for the built-in models, [`MAX_FRAME`] on the line.
 
-use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
 use super::Message;
 use super::frame::max_frame_len;
-use crate::ant::{self, AntParams, AntPlan, AntState, PlanFrame, ResolveFrame};
-use crate::bee::{self, BeeDecision, BeeFrame, BeeParams, BeeState};
-use crate::{Error, Result, Scalar, StepCtx};
+use crate::Error;
+use crate::ant::MAX_ANT_PAYLOAD;
+use crate::bee::MAX_BEE_PAYLOAD;
 
-/// Neighbours in an ant sensor frame on the wire (plan and resolve phases).
-pub const WIRE_ANT_NEIGHBOURS: usize = 8;
-/// Environment objects in an ant plan frame on the wire.
-pub const WIRE_ANT_OBJECTS: usize = 4;
-/// Neighbours in a bee sensor frame on the wire.
-pub const WIRE_BEE_NEIGHBOURS: usize = 16;
-/// Target particles in a bee sensor frame on the wire.
-pub const WIRE_BEE_TARGETS: usize = 16;
-
-/// The largest payload of an ant message (or [`ErrorReply`]), for either scalar
-/// ([`AntPlanRequest<Fx>`](AntPlanRequest) with full lists; pinned by a test).
-pub const MAX_ANT_PAYLOAD: usize = 441;
-/// The largest payload of an ant reply ([`AntPlanReply<Fx>`](AntPlanReply); pinned by a test).
-pub const MAX_ANT_REPLY_PAYLOAD: usize = 74;
-/// The longest frame of an ant message (or [`ErrorReply`]), delimiter included: buffer size
-/// for a node that only runs the ant controller.
-pub const MAX_ANT_FRAME: usize = max_frame_len(MAX_ANT_PAYLOAD);
-/// The largest payload of a bee message (or [`ErrorReply`]), for either scalar
-/// ([`BeeStepRequest<Fx>`](BeeStepRequest) with full lists; pinned by a test).
-pub const MAX_BEE_PAYLOAD: usize = 930;
-/// The largest payload of a bee reply ([`BeeStepReply<Fx>`](BeeStepReply); pinned by a test).
-pub const MAX_BEE_REPLY_PAYLOAD: usize = 122;
-/// The longest frame of a bee message (or [`ErrorReply`]), delimiter included.
-pub const MAX_BEE_FRAME: usize = max_frame_len(MAX_BEE_PAYLOAD);
-/// The largest payload of any message of this module, for either scalar.
+/// The largest payload of any message of the built-in models, for either scalar.
 pub const MAX_PAYLOAD: usize = if MAX_ANT_PAYLOAD > MAX_BEE_PAYLOAD {
     MAX_ANT_PAYLOAD
 } else {
@@ -53,13 +30,6 @@ pub const MAX_PAYLOAD: usize = if MAX_ANT_PAYLOAD > MAX_BEE_PAYLOAD {
 /// buffer that always suffices, and an [`Accumulator`](super::Accumulator) capacity that
 /// always receives.
 pub const MAX_FRAME: usize = max_frame_len(MAX_PAYLOAD);
-
-/// The ant plan-phase sensor frame with the wire capacities.
-pub type WirePlanFrame<S> = PlanFrame<S, WIRE_ANT_NEIGHBOURS, WIRE_ANT_OBJECTS>;
-/// The ant resolve-phase sensor frame with the wire capacity.
-pub type WireResolveFrame<S> = ResolveFrame<S, WIRE_ANT_NEIGHBOURS>;
-/// The bee sensor frame with the wire capacities.
-pub type WireBeeFrame<S> = BeeFrame<S, WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS>;
 
 /// The message kinds (header byte 1).
 ///
@@ -143,64 +113,6 @@ pub mod kind {
                 | BEE_STEP_REPLY
         )
     }
-}
-
-/// Request: run [`ant::plan`] (phase 1 of the ant tick).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct AntPlanRequest<S> {
-    /// The ant's state at the start of the tick.
-    pub state: AntState<S>,
-    /// What it senses.
-    pub frame: WirePlanFrame<S>,
-    /// Seed, agent id and step: the inputs of its random numbers.
-    pub ctx: StepCtx,
-}
-
-/// Reply to [`AntPlanRequest`]: the plan (the predicted position is what the ant broadcasts).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct AntPlanReply<S> {
-    /// The outcome of [`ant::plan`].
-    pub plan: AntPlan<S>,
-}
-
-/// Request: run [`ant::resolve`] (phase 2 of the ant tick).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct AntResolveRequest<S> {
-    /// The ant's own plan from phase 1.
-    pub plan: AntPlan<S>,
-    /// The neighbours' predicted positions.
-    pub frame: WireResolveFrame<S>,
-}
-
-/// Reply to [`AntResolveRequest`]: the ant's state for the next tick.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct AntResolveReply<S> {
-    /// The outcome of [`ant::resolve`].
-    pub state: AntState<S>,
-}
-
-/// Request: run [`bee::step()`].
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct BeeStepRequest<S> {
-    /// The bee's state.
-    pub state: BeeState<S>,
-    /// What it senses.
-    pub frame: WireBeeFrame<S>,
-}
-
-/// Reply to [`BeeStepRequest`]: the decision and the bee's next state.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct BeeStepReply<S> {
-    /// The set-points (and the density to broadcast).
-    pub decision: BeeDecision<S>,
-    /// The state for the next step.
-    pub state: BeeState<S>,
 }
 
 /// Reply to any request the device could not serve: which [`Error`] it hit, as a code.
@@ -298,55 +210,26 @@ impl From<Error> for ErrorReply {
     }
 }
 
-impl<S: Scalar> AntPlanRequest<S> {
-    /// Runs [`ant::plan`] on the request: what a device does with it.
-    pub fn run(&self, params: &AntParams<S>) -> Result<AntPlanReply<S>> {
-        ant::plan(&self.state, &self.frame, params, self.ctx).map(|plan| AntPlanReply { plan })
-    }
-}
-
-impl<S: Scalar> AntResolveRequest<S> {
-    /// Runs [`ant::resolve`] on the request: what a device does with it.
-    pub fn run(&self, params: &AntParams<S>) -> Result<AntResolveReply<S>> {
-        ant::resolve(&self.plan, &self.frame, params).map(|state| AntResolveReply { state })
-    }
-}
-
-impl<S: Scalar> BeeStepRequest<S> {
-    /// Runs [`bee::step()`] on the request: what a device does with it.
-    pub fn run(&self, params: &BeeParams<S>) -> Result<BeeStepReply<S>> {
-        bee::step(&self.state, &self.frame, params)
-            .map(|(decision, state)| BeeStepReply { decision, state })
-    }
-}
-
-macro_rules! message_kinds {
-    ($($ty:ident $(<$s:ident>)? = $kind:path;)*) => {$(
-        impl$(<$s: Serialize + DeserializeOwned>)? Message for $ty$(<$s>)? {
-            const KIND: u8 = $kind;
-        }
-    )*};
-}
-
-message_kinds! {
-    ErrorReply = kind::ERROR_REPLY;
-    AntPlanRequest<S> = kind::ANT_PLAN_REQUEST;
-    AntPlanReply<S> = kind::ANT_PLAN_REPLY;
-    AntResolveRequest<S> = kind::ANT_RESOLVE_REQUEST;
-    AntResolveReply<S> = kind::ANT_RESOLVE_REPLY;
-    BeeStepRequest<S> = kind::BEE_STEP_REQUEST;
-    BeeStepReply<S> = kind::BEE_STEP_REPLY;
+impl Message for ErrorReply {
+    const KIND: u8 = kind::ERROR_REPLY;
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::ant::{
-        AntNeighbor, AntObject, Follow, Label, MotionState, StopReason, StopTimer, Surface, Turn,
+        AntNeighbor, AntObject, AntParams, AntPlan, AntPlanReply, AntPlanRequest, AntResolveReply,
+        AntResolveRequest, AntState, Follow, Label, MAX_ANT_FRAME, MAX_ANT_REPLY_PAYLOAD,
+        MotionState, StopReason, StopTimer, Surface, Turn, WirePlanFrame, WireResolveFrame,
     };
-    use crate::bee::{BeeNeighbor, ObstacleSense};
+    use crate::bee::{
+        BeeDecision, BeeNeighbor, BeeParams, BeeState, BeeStepReply, BeeStepRequest, MAX_BEE_FRAME,
+        MAX_BEE_REPLY_PAYLOAD, ObstacleSense, WireBeeFrame,
+    };
     use crate::wire::{Accumulator, Event, Header, encode_frame, encode_message};
     use crate::{Fx, Rect, Vec2, Vec3};
+    use crate::{Scalar, StepCtx};
+    use serde::de::DeserializeOwned;
 
     fn v2<S: Scalar>(x: f32, y: f32) -> Vec2<S> {
         Vec2::new(S::from_f32(x), S::from_f32(y))

@@ -86,26 +86,30 @@ mod endpoint;
 mod frame;
 mod header;
 mod message;
+mod serve;
 mod session;
 #[cfg(test)]
 mod tests;
 
 pub use accumulator::{Accumulator, Event, Stats};
-pub use endpoint::{
-    AntDevice, BeeDevice, Controller, DeviceEndpoint, MAX_ANT_REPLY_FRAME, MAX_BEE_REPLY_FRAME,
-    SessionState,
-};
+pub use endpoint::{DeviceEndpoint, SessionState};
 pub use frame::{
     CRC_LEN, CRC16, CrcImpl, Frame, MIN_RAW_LEN, decode_frame, decode_payload, encode_frame,
     max_frame_len,
 };
 pub use header::{HEADER_LEN, Header, PROTOCOL_VERSION};
-pub use message::{
-    AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, BeeStepReply, BeeStepRequest,
-    ErrorReply, MAX_ANT_FRAME, MAX_ANT_PAYLOAD, MAX_ANT_REPLY_PAYLOAD, MAX_BEE_FRAME,
-    MAX_BEE_PAYLOAD, MAX_BEE_REPLY_PAYLOAD, MAX_FRAME, MAX_PAYLOAD, WIRE_ANT_NEIGHBOURS,
-    WIRE_ANT_OBJECTS, WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS, WireBeeFrame, WirePlanFrame,
-    WireResolveFrame, kind,
+pub use message::{ErrorReply, MAX_FRAME, MAX_PAYLOAD, kind};
+pub use serve::{Controller, Serve};
+// The built-in models' messages and devices, defined in their folders, re-exported here where
+// a protocol user looks for them.
+pub use crate::ant::{
+    AntDevice, AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, MAX_ANT_FRAME,
+    MAX_ANT_PAYLOAD, MAX_ANT_REPLY_FRAME, MAX_ANT_REPLY_PAYLOAD, WIRE_ANT_NEIGHBOURS,
+    WIRE_ANT_OBJECTS, WirePlanFrame, WireResolveFrame,
+};
+pub use crate::bee::{
+    BeeDevice, BeeStepReply, BeeStepRequest, MAX_BEE_FRAME, MAX_BEE_PAYLOAD, MAX_BEE_REPLY_FRAME,
+    MAX_BEE_REPLY_PAYLOAD, WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS, WireBeeFrame,
 };
 pub use session::{
     Capacities, Configure, Configured, ControllerKind, DEVICE_NAME_LEN, DeviceName, DeviceStats,

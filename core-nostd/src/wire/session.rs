@@ -30,14 +30,19 @@ pub const MAX_SESSION_PAYLOAD: usize = 71;
 /// The longest frame of a session message, delimiter included.
 pub const MAX_SESSION_FRAME: usize = max_frame_len(MAX_SESSION_PAYLOAD);
 
-/// Which controller a device runs.
+/// Which controller a device runs: a number (a varint on the wire), so that a new model needs
+/// no change here. `0` ant, `1` bee; `2`-`127` are kept for this project's models, `128` and
+/// above are free for applications and tests.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(transparent)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum ControllerKind {
+pub struct ControllerKind(pub u32);
+
+impl ControllerKind {
     /// The ant controller ([`crate::ant`]): plan and resolve requests.
-    Ant,
+    pub const ANT: ControllerKind = ControllerKind(0);
     /// The bee controller ([`crate::bee`]): step requests.
-    Bee,
+    pub const BEE: ControllerKind = ControllerKind(1);
 }
 
 /// The capacity of each list of a sensor frame the device accepts; 0 for a list its
@@ -330,17 +335,14 @@ impl HandshakeMismatch {
 
     /// The closest [`Error`]: [`Error::ParamsMismatch`] if only the parameter hash differs
     /// (or besides it nothing the protocol could report), else the first difference as
-    /// [`Error::Version`], [`Error::UnknownKind`] (controller) or [`Error::BadParam`] naming
+    /// [`Error::Version`], or [`Error::BadParam`] naming
     /// the field.
     pub fn error(&self) -> Error {
         let (d, h) = (&self.device, &self.host);
         match self.differences().next() {
             Some(Difference::Protocol) => Error::Version { got: d.protocol },
-            Some(Difference::Controller) => Error::UnknownKind {
-                kind: match h.controller {
-                    ControllerKind::Ant => kind::ANT_PLAN_REQUEST,
-                    ControllerKind::Bee => kind::BEE_STEP_REQUEST,
-                },
+            Some(Difference::Controller) => Error::BadParam {
+                field: "controller",
             },
             Some(Difference::Scalar) => Error::BadParam { field: "scalar" },
             Some(Difference::Math) => Error::BadParam { field: "math" },
@@ -377,10 +379,14 @@ const fn math_name(m: MathBackend) -> &'static str {
     }
 }
 
-const fn controller_name(c: ControllerKind) -> &'static str {
-    match c {
-        ControllerKind::Ant => "ant",
-        ControllerKind::Bee => "bee",
+impl fmt::Display for ControllerKind {
+    /// `ant`, `bee`, or `controller N` for any other.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            ControllerKind::ANT => f.write_str("ant"),
+            ControllerKind::BEE => f.write_str("bee"),
+            ControllerKind(n) => write!(f, "controller {n}"),
+        }
     }
 }
 
@@ -398,12 +404,9 @@ impl fmt::Display for HandshakeMismatch {
                 Difference::Protocol => {
                     write!(f, "protocol version {} ≠ {}", d.protocol, h.protocol)
                 }
-                Difference::Controller => write!(
-                    f,
-                    "controller {} ≠ {}",
-                    controller_name(d.controller),
-                    controller_name(h.controller)
-                ),
+                Difference::Controller => {
+                    write!(f, "controller {} ≠ {}", d.controller, h.controller)
+                }
                 Difference::Scalar => write!(
                     f,
                     "scalar {} ≠ {}",
@@ -734,7 +737,7 @@ mod tests {
                 "protocol version 1 ≠ 2",
             ),
             (
-                |d| d.controller = ControllerKind::Bee,
+                |d| d.controller = ControllerKind::BEE,
                 Difference::Controller,
                 "controller bee ≠ ant",
             ),
@@ -830,8 +833,8 @@ mod tests {
         }
         assert_eq!(
             err.error(),
-            Error::UnknownKind {
-                kind: kind::ANT_PLAN_REQUEST
+            Error::BadParam {
+                field: "controller"
             }
         );
     }

@@ -453,7 +453,7 @@ fn configure_with_other_params_is_refused() {
 #[test]
 fn identity_says_what_the_device_runs() {
     let ant = ant_device::<Fx>().identity();
-    assert_eq!(ant.controller, ControllerKind::Ant);
+    assert_eq!(ant.controller, ControllerKind::ANT);
     assert_eq!(ant.scalar, crate::ScalarKind::I16F16);
     assert_eq!(ant.math, crate::MathBackend::Integer);
     assert_eq!(
@@ -471,7 +471,7 @@ fn identity_says_what_the_device_runs() {
     assert_eq!(usize::from(bee_device::<Fx>().identity().max_frame), 942);
     assert_eq!(ant.name, "ant-test");
     let bee = bee_device::<f32>().identity();
-    assert_eq!(bee.controller, ControllerKind::Bee);
+    assert_eq!(bee.controller, ControllerKind::BEE);
     assert_eq!(bee.scalar, crate::ScalarKind::F32);
     assert_eq!(bee.math, crate::MathBackend::F32);
     assert_eq!(

@@ -178,7 +178,7 @@ fn every_image_identity() {
         assert!(got.check(want).is_ok());
     }
     assert_eq!(cases[1].1.scalar, ScalarKind::I16F16);
-    assert_eq!(cases[2].1.controller, ControllerKind::Bee);
+    assert_eq!(cases[2].1.controller, ControllerKind::BEE);
 }
 
 fn serve<C: Controller, const RX: usize, const TX: usize>(
