@@ -109,6 +109,13 @@ pub enum HilError {
         /// What stopped the run.
         source: Box<HilError>,
     },
+    /// The host simulation failed or cannot be mirrored (its groups do not share one device,
+    /// a controller refused a frame, ...).
+    #[error("simulation: {0}")]
+    Sim(#[from] swarm_sim::SimError),
+    /// The soft device could not be made.
+    #[error("soft device: {0}")]
+    SoftDevice(swarm_core::Error),
     /// A bad argument (the message says which and why).
     #[error("{0}")]
     Invalid(String),

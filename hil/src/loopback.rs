@@ -2,25 +2,14 @@
 //! pseudo-terminal pair, optionally through injected faults. What `swarm-hil loopback` runs,
 //! and how the protocol and the harness are tested without hardware.
 
-use serde::Serialize;
-use serde::de::DeserializeOwned;
-use swarm_core::Fx;
-use swarm_core::ant::AntParams;
-use swarm_core::bee::BeeParams;
-use swarm_core::wire::{AntDevice, BeeDevice, Controller};
-use swarm_sim::ants::AntSim;
-use swarm_sim::bees::BeeSim;
-use swarm_sim::scalar::SimScalar;
+use swarm_sim::engine::Engine;
 use swarm_sim::scenario::{ScalarType, Scenario};
 
+use crate::Result;
 use crate::client::{Client, ClientOptions};
-use crate::mirror::{
-    BeeGroupsOf, DeviceParams, GroupsOf, MirrorOptions, MirrorReport, device_params,
-    mirror_scenario,
-};
+use crate::mirror::{MirrorOptions, MirrorReport, mirror};
 use crate::soft::{SoftDevice, serve};
 use crate::transport::{FaultSpec, Faulty, Transport, memory_pair};
-use crate::{HilError, Result};
 
 /// The link between the harness and the soft device.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -40,7 +29,7 @@ pub fn with_scalar(sc: &Scenario, scalar: ScalarType) -> Scenario {
     sc
 }
 
-/// Mirrors scenario `sc` (ants or bees) in `scalar` against a soft device over `link`, with
+/// Mirrors scenario `sc` (any model) in `scalar` against a soft device over `link`, with
 /// `faults` injected on the link (both directions, seeded by `fault_seed`).
 pub fn loopback(
     sc: &Scenario,
@@ -52,40 +41,27 @@ pub fn loopback(
     opts: &MirrorOptions,
 ) -> Result<MirrorReport> {
     let sc = with_scalar(sc, scalar);
-    match scalar {
-        ScalarType::F32 => run::<f32>(&sc, link, faults, fault_seed, client, opts),
-        ScalarType::Fixed => run::<Fx>(&sc, link, faults, fault_seed, client, opts),
-    }
+    let engine = swarm_sim::models::engine(&sc, sc.seed)?;
+    loopback_engine(&sc.name, engine, link, faults, fault_seed, client, opts)
 }
 
-fn run<S>(
-    sc: &Scenario,
+/// [`loopback`] of a simulation already built (of any model, e.g. one defined outside this
+/// workspace): its soft device ([`Engine::device`]) on the far end of `link`.
+pub fn loopback_engine(
+    name: &str,
+    engine: Box<dyn Engine>,
     link: LinkKind,
     faults: FaultSpec,
     fault_seed: u64,
     client: ClientOptions,
     opts: &MirrorOptions,
-) -> Result<MirrorReport>
-where
-    S: SimScalar + Serialize + DeserializeOwned + Send + 'static,
-    AntSim: GroupsOf<S>,
-    BeeSim: BeeGroupsOf<S>,
-    AntParams<S>: Controller,
-    BeeParams<S>: Controller,
-{
+) -> Result<MirrorReport> {
     let (device_end, host_end) = open(link)?;
-    let soft: SoftDevice<()> = match device_params::<S>(sc)? {
-        DeviceParams::Ant(p) => {
-            let device = AntDevice::<S>::new(p, "soft-ant").map_err(soft_err)?;
-            SoftDevice::spawn(move |stop| serve(device, device_end, stop).map(|_| ()))
-        }
-        DeviceParams::Bee(p) => {
-            let device = BeeDevice::<S>::new(p, "soft-bee").map_err(soft_err)?;
-            SoftDevice::spawn(move |stop| serve(device, device_end, stop).map(|_| ()))
-        }
-    };
+    let device = engine.device()?.soft;
+    let soft: SoftDevice<()> =
+        SoftDevice::spawn(move |stop| serve(device, device_end, stop).map(|_| ()));
     let mut client = Client::new(Faulty::new(host_end, faults, fault_seed), client);
-    let report = mirror_scenario::<S, _>(sc, &mut client, opts, &mut |_| Ok(()));
+    let report = mirror(name, engine, &mut client, opts, &mut |_| Ok(()));
     soft.stop()?;
     let counts = (!faults.is_clean()).then(|| client.link_mut().counts());
     let add_faults = |r: &mut MirrorReport| r.faults = counts;
@@ -96,10 +72,6 @@ where
         }
         Err(e) => Err(e.with_report(add_faults)),
     }
-}
-
-fn soft_err(e: swarm_core::Error) -> HilError {
-    HilError::Invalid(format!("soft device: {e}"))
 }
 
 fn open(link: LinkKind) -> Result<(Box<dyn Transport>, Box<dyn Transport>)> {
@@ -115,7 +87,7 @@ fn open(link: LinkKind) -> Result<(Box<dyn Transport>, Box<dyn Transport>)> {
         }
         #[cfg(not(unix))]
         LinkKind::Pty => {
-            return Err(HilError::Invalid(
+            return Err(crate::HilError::Invalid(
                 "pseudo-terminals need a Unix host".into(),
             ));
         }

@@ -7,21 +7,11 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
-use serde::de::DeserializeOwned;
-use swarm_core::ant::{self, AntParams, AntPlan};
-use swarm_core::bee::{self, BeeParams, BeeState};
-use swarm_core::wire::{
-    AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, BeeStepReply, BeeStepRequest,
-    Controller, DeviceStats, ErrorReply, Identity, MAX_ANT_FRAME, MAX_BEE_FRAME, Message,
-    params_hash,
-};
-use swarm_core::{Checked, StepCtx};
-use swarm_sim::ants::{AntSim, plan_frame, resolve_frame};
-use swarm_sim::bees::{BeeSim, bee_frame, bee_frame_time};
-use swarm_sim::scalar::{ByScalar, SimScalar};
-use swarm_sim::scenario::{Scenario, World};
+use swarm_core::wire::{DeviceStats, ErrorReply, Identity};
+use swarm_sim::engine::{Engine, Exchange};
+use swarm_sim::scenario::Scenario;
 
-use crate::client::{Client, Partial};
+use crate::client::{Client, Expect, Partial, RawRequest};
 use crate::transport::{FaultCounts, Transport};
 use crate::verdict::{MismatchAt, Verdict};
 use crate::{HilError, Result};
@@ -74,7 +64,7 @@ pub struct Mismatch {
     pub step: u32,
     /// Agent id.
     pub agent: u32,
-    /// Which request: `plan`, `resolve` (ants) or `step` (bees).
+    /// Which phase of the model's tick: `plan`, `resolve` (ants), `step` (bees), ...
     pub phase: &'static str,
     /// The request sent (state and sensor frame).
     pub request: serde_json::Value,
@@ -98,7 +88,7 @@ pub struct ImageSize {
 pub struct MirrorReport {
     /// Scenario name.
     pub scenario: String,
-    /// `ants` or `bees`.
+    /// The model (`ants`, `bees`, ...).
     pub model: String,
     /// The device's identity.
     pub device: String,
@@ -234,66 +224,31 @@ struct Tally {
 }
 
 impl Tally {
-    /// [`Tally::check`] for every chosen agent of one phase of `step` that was answered, in
-    /// order.
-    fn check_all<Q: Serialize, D: Serialize>(
-        &mut self,
-        (step, phase): (u32, &'static str),
-        chosen: &[u32],
-        requests: &[Q],
-        host: &[D],
-        device: &[Option<std::result::Result<D, ErrorReply>>],
-    ) {
-        for ((&id, req), (h, d)) in chosen.iter().zip(requests).zip(host.iter().zip(device)) {
-            if let Some(d) = d {
-                self.check((step, id, phase), req, h, d);
+    /// Compares the device's answer to each exchange that was answered with the engine's
+    /// reply, bit for bit (their postcard bytes).
+    fn check_all(&mut self, step: u32, exchanges: &[Exchange], device: &Decisions) {
+        for (ex, answer) in exchanges.iter().zip(device) {
+            let Some(answer) = answer else { continue };
+            self.decisions += 1;
+            if answer.as_ref().is_ok_and(|d| *d == ex.reply.bytes) {
+                continue;
             }
-        }
-    }
-
-    /// Compares `device` with `host` bit for bit (their postcard bytes).
-    fn check<Q: Serialize, D: Serialize>(
-        &mut self,
-        (step, agent, phase): (u32, u32, &'static str),
-        request: &Q,
-        host: &D,
-        device: &std::result::Result<D, ErrorReply>,
-    ) {
-        self.decisions += 1;
-        let same = match device {
-            Ok(d) => postcard::to_allocvec(d).ok() == postcard::to_allocvec(host).ok(),
-            Err(_) => false,
-        };
-        if same {
-            return;
-        }
-        self.mismatches += 1;
-        self.at.push(MismatchAt { step, agent, phase });
-        if self.first.is_none() {
-            let json = |v: &dyn erased::Json| v.json();
-            self.first = Some(Mismatch {
-                step,
-                agent,
-                phase,
-                request: json(request),
-                host: json(host),
-                device: match device {
-                    Ok(d) => json(d),
-                    Err(e) => serde_json::json!({ "error": e.name(), "code": e.code }),
-                },
-            });
-        }
-    }
-}
-
-/// `serde_json::to_value` behind a trait object (the mismatch keeps any decision type).
-mod erased {
-    pub trait Json {
-        fn json(&self) -> serde_json::Value;
-    }
-    impl<T: serde::Serialize> Json for T {
-        fn json(&self) -> serde_json::Value {
-            serde_json::to_value(self).unwrap_or(serde_json::Value::Null)
+            self.mismatches += 1;
+            let (agent, phase) = (ex.agent, ex.phase);
+            self.at.push(MismatchAt { step, agent, phase });
+            if self.first.is_none() {
+                self.first = Some(Mismatch {
+                    step,
+                    agent,
+                    phase,
+                    request: ex.request.to_json(),
+                    host: ex.reply.to_json(),
+                    device: match answer {
+                        Ok(d) => (ex.reply.json)(d),
+                        Err(e) => serde_json::json!({ "error": e.name(), "code": e.code }),
+                    },
+                });
+            }
         }
     }
 }
@@ -319,61 +274,58 @@ fn bar(show: bool, steps: u32) -> ProgressBar {
     b
 }
 
-fn core_err(e: swarm_core::Error) -> HilError {
-    HilError::Invalid(e.to_string())
-}
-
-/// Mirrors scenario `sc` (ants or bees, every group already in scalar type `S`) on the device
-/// behind `client`, calling `before_step` before each step.
-pub fn mirror_scenario<S, T>(
+/// Mirrors scenario `sc` on the device behind `client`: the scenario's engine
+/// ([`swarm_sim::models::engine`]) runs on the host, and every step each chosen agent's
+/// requests go to the device, calling `before_step` before each step.
+pub fn mirror_scenario<T: Transport>(
     sc: &Scenario,
     client: &mut Client<T>,
     opts: &MirrorOptions,
     before_step: &mut dyn FnMut(u32) -> Result<()>,
-) -> Result<MirrorReport>
-where
-    S: SimScalar + Serialize + DeserializeOwned,
-    T: Transport,
-    AntSim: GroupsOf<S>,
-    BeeSim: BeeGroupsOf<S>,
-{
-    let bad = |e: swarm_sim::SimError| HilError::Invalid(format!("scenario `{}`: {e}", sc.name));
-    match sc.world {
-        World::Ants2D { .. } => {
-            let sim = AntSim::from_scenario(sc, sc.seed).map_err(bad)?;
-            mirror_ants_with::<S, T>(&sc.name, sim, client, opts, before_step)
-        }
-        World::Bees3D { .. } => {
-            let sim = BeeSim::from_scenario(sc, sc.seed).map_err(bad)?;
-            mirror_bees_with::<S, T>(&sc.name, sim, client, opts, before_step)
-        }
-    }
+) -> Result<MirrorReport> {
+    let engine = swarm_sim::models::engine(sc, sc.seed)?;
+    mirror(&sc.name, engine, client, opts, before_step)
 }
 
-/// The parameters a device must run to mirror scenario `sc` in scalar type `S`.
-pub enum DeviceParams<S> {
-    /// An ant device.
-    Ant(AntParams<S>),
-    /// A bee device.
-    Bee(BeeParams<S>),
-}
-
-/// [`DeviceParams`] of scenario `sc` (every group already in scalar type `S`).
-pub fn device_params<S>(sc: &Scenario) -> Result<DeviceParams<S>>
-where
-    S: SimScalar,
-    AntSim: GroupsOf<S>,
-    BeeSim: BeeGroupsOf<S>,
-{
-    let bad = |e: swarm_sim::SimError| HilError::Invalid(format!("scenario `{}`: {e}", sc.name));
-    Ok(match sc.world {
-        World::Ants2D { .. } => DeviceParams::Ant(*GroupsOf::<S>::single_params(
-            &AntSim::from_scenario(sc, sc.seed).map_err(bad)?,
-        )?),
-        World::Bees3D { .. } => DeviceParams::Bee(*BeeGroupsOf::<S>::single_params(
-            &BeeSim::from_scenario(sc, sc.seed).map_err(bad)?,
-        )?),
-    })
+/// Mirrors the simulation `engine` (of any model; its groups must share one parameter set in
+/// one scalar type) on the device behind `client`: handshake, configure, then every step, for
+/// each phase of the model's tick, the chosen agents' requests, whose answers are compared
+/// with the decisions the engine made. `before_step(step)` runs before each step (e.g. to
+/// reset the board mid-run in a test).
+pub fn mirror<T: Transport>(
+    name: &str,
+    mut engine: Box<dyn Engine>,
+    client: &mut Client<T>,
+    opts: &MirrorOptions,
+    before_step: &mut dyn FnMut(u32) -> Result<()>,
+) -> Result<MirrorReport> {
+    let device = engine.device()?;
+    let (session, identity) = Session::open(client, device.expected, device.params_hash, opts)?;
+    let run = Run {
+        session,
+        device: identity,
+        chosen: pick_agents(engine.agents(), opts.agents),
+    };
+    let model = format!("{}s", engine.model());
+    run.finish(
+        name,
+        &model,
+        client,
+        opts,
+        |session, client, tally, chosen| {
+            let step = engine.step();
+            before_step(step)?;
+            for phase in 0..engine.phases().len() {
+                engine.decide(phase)?;
+                let exchanges = engine.exchanges(phase, chosen)?;
+                let (device, failed) = session.ask(client, &exchanges);
+                tally.check_all(step, &exchanges, &device);
+                failed.map_or(Ok(()), Err)?;
+                engine.publish(phase)?;
+            }
+            Ok(())
+        },
+    )
 }
 
 /// An open session with the device, re-opened when the device loses it (a reset).
@@ -388,37 +340,60 @@ struct Session {
     reasked: u64,
 }
 
-/// The postcard bytes of a decision: what "bit for bit" compares.
-fn bytes<D: Serialize>(d: &D) -> Option<Vec<u8>> {
-    postcard::to_allocvec(d).ok()
+/// The device's answers (reply payloads), in request order; `None` where no answer came.
+type Decisions = Vec<Option<std::result::Result<Vec<u8>, ErrorReply>>>;
+
+/// The requests of `exchanges`, to send.
+fn requests<'a>(exchanges: impl IntoIterator<Item = &'a Exchange>) -> Vec<RawRequest> {
+    exchanges
+        .into_iter()
+        .map(|ex| RawRequest {
+            kind: ex.request.kind,
+            payload: ex.request.bytes.clone(),
+            expect: Expect {
+                kind: ex.reply.kind,
+                decodes: ex.reply.decodes,
+            },
+        })
+        .collect()
 }
 
 impl Session {
-    /// Sends `requests` and returns the device's decisions (`decision` of each reply). A
-    /// decision that differs from the host's (`host`) is asked for again, up to twice: a
-    /// device's real divergence repeats. An answer that then equals the host's replaces the
-    /// first (counted in `reasked`: a flaky device, or line damage that passed the CRC);
-    /// otherwise the first stands as the device's decision. When the link fails, the decisions
-    /// that came so far (`None` for the others) come back with the error: a mismatch found
-    /// must be counted before the run stops.
-    fn ask<T, Q, A, D>(
+    /// Handshake and configure (session `opts.session`) with a device expected to be
+    /// `expected`.
+    fn open<T: Transport>(
+        client: &mut Client<T>,
+        expected: Identity,
+        params_hash: u64,
+        opts: &MirrorOptions,
+    ) -> Result<(Self, Identity)> {
+        let device = client.handshake(&expected)?;
+        client.configure(opts.session, params_hash)?;
+        let s = Session {
+            expected,
+            params_hash,
+            id: opts.session,
+            resets: 0,
+            reasked: 0,
+        };
+        Ok((s, device))
+    }
+
+    /// Sends the requests of `exchanges` and returns the device's answers. An answer that
+    /// differs from the engine's is asked for again, up to twice: a device's real divergence
+    /// repeats. An answer that then equals the engine's replaces the first (counted in
+    /// `reasked`: a flaky device, or line damage that passed the CRC); otherwise the first
+    /// stands. When the link fails, the answers that came so far (`None` for the others) come
+    /// back with the error: a mismatch found must be counted before the run stops.
+    fn ask<T: Transport>(
         &mut self,
         client: &mut Client<T>,
-        requests: &[Q],
-        host: &[D],
-        decision: impl Fn(&A) -> D,
-    ) -> (Decisions<D>, Option<HilError>)
-    where
-        T: Transport,
-        Q: Message + Serialize + Clone,
-        A: Message + DeserializeOwned,
-        D: Serialize,
-    {
-        let Partial { replies, error } = self.call_all::<T, Q, A>(client, requests);
-        let mut out: Decisions<D> = replies
-            .into_iter()
-            .map(|r| r.map(|r| r.map(|a| decision(&a))))
-            .collect();
+        exchanges: &[Exchange],
+    ) -> (Decisions, Option<HilError>) {
+        let Partial {
+            replies: mut out,
+            error,
+        } = self.call_all(client, &requests(exchanges));
         if error.is_some() {
             return (out, error);
         }
@@ -427,57 +402,36 @@ impl Session {
                 .filter(|&i| {
                     out[i]
                         .as_ref()
-                        .is_some_and(|d| d.as_ref().ok().and_then(bytes) != bytes(&host[i]))
+                        .is_some_and(|d| d.as_ref().ok() != Some(&exchanges[i].reply.bytes))
                 })
                 .collect();
             if differ.is_empty() {
                 break;
             }
-            let again: Vec<Q> = differ.iter().map(|&i| requests[i].clone()).collect();
-            let answers = self.call_all::<T, Q, A>(client, &again);
-            for (i, a) in differ.into_iter().zip(answers.replies) {
-                if let Some(Ok(a)) = a {
-                    let d = decision(&a);
-                    if bytes(&d) == bytes(&host[i]) {
-                        out[i] = Some(Ok(d));
-                        self.reasked += 1;
-                    }
+            let again = self.call_all(client, &requests(differ.iter().map(|&i| &exchanges[i])));
+            for (i, a) in differ.into_iter().zip(again.replies) {
+                if let Some(Ok(d)) = a
+                    && d == exchanges[i].reply.bytes
+                {
+                    out[i] = Some(Ok(d));
+                    self.reasked += 1;
                 }
             }
-            if answers.error.is_some() {
-                return (out, answers.error);
+            if again.error.is_some() {
+                return (out, again.error);
             }
         }
         (out, None)
     }
 
-    /// Handshake and configure.
-    fn open<T: Transport>(
-        client: &mut Client<T>,
-        expected: Identity,
-        params_hash: u64,
-        id: u32,
-    ) -> Result<(Self, Identity)> {
-        let device = client.handshake(&expected)?;
-        client.configure(id, params_hash)?;
-        let s = Session {
-            expected,
-            params_hash,
-            id,
-            resets: 0,
-            reasked: 0,
-        };
-        Ok((s, device))
-    }
-
-    /// [`Client::call_all_partial`], re-handshaking and sending again the requests a reset
-    /// device refused for want of a session.
-    fn call_all<T: Transport, Q: Message + Serialize + Clone, A: Message + DeserializeOwned>(
+    /// [`Client::call_raw`], re-handshaking and sending again the requests a reset device
+    /// refused for want of a session.
+    fn call_all<T: Transport>(
         &mut self,
         client: &mut Client<T>,
-        requests: &[Q],
-    ) -> Partial<A> {
-        let mut p = client.call_all_partial::<Q, A>(requests);
+        requests: &[RawRequest],
+    ) -> Partial<Vec<u8>> {
+        let mut p = client.call_raw(requests);
         for _ in 0..3 {
             if p.error.is_some() {
                 break;
@@ -501,8 +455,8 @@ impl Session {
                 p.error = Some(e);
                 break;
             }
-            let again: Vec<Q> = lost.iter().map(|&i| requests[i].clone()).collect();
-            let answers = client.call_all_partial::<Q, A>(&again);
+            let again: Vec<RawRequest> = lost.iter().map(|&i| requests[i].clone()).collect();
+            let answers = client.call_raw(&again);
             for (i, a) in lost.into_iter().zip(answers.replies) {
                 p.replies[i] = a;
             }
@@ -510,239 +464,6 @@ impl Session {
         }
         p
     }
-}
-
-/// The device's decisions, in request order; `None` where no answer came.
-type Decisions<D> = Vec<Option<std::result::Result<D, ErrorReply>>>;
-
-/// The error for a frame the host's own controller refused (the harness built it wrong).
-fn host_refused(
-    model: &'static str,
-    id: u32,
-    step: u32,
-) -> impl FnOnce(swarm_core::Error) -> HilError {
-    move |e| HilError::Invalid(format!("the host refused {model} {id} at step {step}: {e}"))
-}
-
-/// Mirrors the ants of `sim` (every group in scalar type `S`) on the device behind `client`:
-/// handshake, configure, then every step a plan request and a resolve request per chosen ant.
-pub fn mirror_ants<S, T>(
-    name: &str,
-    sim: AntSim,
-    client: &mut Client<T>,
-    opts: &MirrorOptions,
-) -> Result<MirrorReport>
-where
-    S: SimScalar + Serialize + DeserializeOwned,
-    T: Transport,
-    AntSim: GroupsOf<S>,
-{
-    mirror_ants_with::<S, T>(name, sim, client, opts, &mut |_| Ok(()))
-}
-
-/// [`mirror_ants`], calling `before_step(step)` before each step (e.g. to reset the board
-/// mid-run in a test).
-pub fn mirror_ants_with<S, T>(
-    name: &str,
-    mut sim: AntSim,
-    client: &mut Client<T>,
-    opts: &MirrorOptions,
-    before_step: &mut dyn FnMut(u32) -> Result<()>,
-) -> Result<MirrorReport>
-where
-    S: SimScalar + Serialize + DeserializeOwned,
-    T: Transport,
-    AntSim: GroupsOf<S>,
-{
-    let params: Checked<AntParams<S>> = sim.single_params()?;
-    let agents = sim.agents();
-    let run = Run::open(client, &*params, MAX_ANT_FRAME, agents, opts)?;
-    run.finish(
-        name,
-        "ants",
-        client,
-        opts,
-        |session, client, tally, chosen| {
-            let step = sim.step;
-            before_step(step)?;
-            sim.plan_phase().map_err(sim_err)?;
-            let slots = slots_by_id(&sim.world.sensed.id);
-            let mut plans = Vec::with_capacity(chosen.len());
-            let mut host_plans = Vec::with_capacity(chosen.len());
-            for &id in chosen {
-                let slot = slots[id as usize];
-                let state = sim.state_of(slot)?;
-                let frame = plan_frame::<S>(&sim.world, slot);
-                let ctx = StepCtx {
-                    seed: sim.seed,
-                    agent: id,
-                    step,
-                };
-                host_plans.push(ant::plan_checked(&state, &frame, &params, ctx));
-                plans.push(AntPlanRequest { state, frame, ctx });
-            }
-            let host_plans = host_plans
-                .into_iter()
-                .zip(chosen)
-                .map(|(h, &id)| h.map_err(host_refused("ant", id, step)))
-                .collect::<Result<Vec<AntPlan<S>>>>()?;
-            let (device, failed) =
-                session.ask(client, &plans, &host_plans, |r: &AntPlanReply<S>| r.plan);
-            tally.check_all((step, "plan"), chosen, &plans, &host_plans, &device);
-            failed.map_or(Ok(()), Err)?;
-            let mut resolves = Vec::with_capacity(chosen.len());
-            let mut host_next = Vec::with_capacity(chosen.len());
-            for (&id, host) in chosen.iter().zip(&host_plans) {
-                let frame = resolve_frame::<S>(&sim.world, slots[id as usize]);
-                let next = ant::resolve_checked(host, &frame, &params)
-                    .map_err(host_refused("ant", id, step))?;
-                host_next.push(next);
-                resolves.push(AntResolveRequest { plan: *host, frame });
-            }
-            let (device, failed) =
-                session.ask(client, &resolves, &host_next, |r: &AntResolveReply<S>| {
-                    r.state
-                });
-            tally.check_all((step, "resolve"), chosen, &resolves, &host_next, &device);
-            failed.map_or(Ok(()), Err)?;
-            sim.resolve_phase().map_err(sim_err)?;
-            Ok(())
-        },
-    )
-}
-
-/// Mirrors the bees of `sim` (every group in scalar type `S`) on the device behind `client`:
-/// handshake, configure, then every step a step request per chosen bee.
-pub fn mirror_bees<S, T>(
-    name: &str,
-    sim: BeeSim,
-    client: &mut Client<T>,
-    opts: &MirrorOptions,
-) -> Result<MirrorReport>
-where
-    S: SimScalar + Serialize + DeserializeOwned,
-    T: Transport,
-    BeeSim: BeeGroupsOf<S>,
-{
-    mirror_bees_with::<S, T>(name, sim, client, opts, &mut |_| Ok(()))
-}
-
-/// [`mirror_bees`], calling `before_step(step)` before each step.
-pub fn mirror_bees_with<S, T>(
-    name: &str,
-    mut sim: BeeSim,
-    client: &mut Client<T>,
-    opts: &MirrorOptions,
-    before_step: &mut dyn FnMut(u32) -> Result<()>,
-) -> Result<MirrorReport>
-where
-    S: SimScalar + Serialize + DeserializeOwned,
-    T: Transport,
-    BeeSim: BeeGroupsOf<S>,
-{
-    let params: Checked<BeeParams<S>> = sim.single_params()?;
-    let agents = sim.agents();
-    let run = Run::open(client, &*params, MAX_BEE_FRAME, agents, opts)?;
-    run.finish(
-        name,
-        "bees",
-        client,
-        opts,
-        |session, client, tally, chosen| {
-            let step = sim.step;
-            before_step(step)?;
-            // The frames of this step, from the world as the step will see it.
-            sim.world.index_positions();
-            let slots = slots_by_id(&sim.world.sensed.id);
-            let dt = params.dt.to_f64();
-            let mut requests = Vec::with_capacity(chosen.len());
-            let mut host = Vec::with_capacity(chosen.len());
-            for &id in chosen {
-                let slot = slots[id as usize];
-                let (state, goal) = sim.bee_of(slot)?;
-                let goal = goal.and_then(|g| sim.world.target_center(g));
-                // The bee's own clock, as the engine gives it.
-                let t = S::from_f64(bee_frame_time(sim.seed, id, step, dt));
-                let frame = bee_frame::<S>(&sim.world, slot, goal, t);
-                host.push(
-                    bee::step_checked(&state, &frame, &params)
-                        .map_err(host_refused("bee", id, step))?,
-                );
-                requests.push(BeeStepRequest { state, frame });
-            }
-            let (device, failed) = session.ask(client, &requests, &host, |r: &BeeStepReply<S>| {
-                (r.decision, r.state)
-            });
-            tally.check_all((step, "step"), chosen, &requests, &host, &device);
-            failed.map_or(Ok(()), Err)?;
-            sim.step().map_err(sim_err)?;
-            Ok(())
-        },
-    )
-}
-
-/// Access to the bee groups of one scalar type.
-pub trait BeeGroupsOf<S> {
-    /// The parameters shared by every group (an error if a group differs or has another
-    /// scalar type).
-    fn single_params(&self) -> Result<Checked<BeeParams<S>>>;
-    /// The state and the goal (target object id) of the bee in world slot `slot`.
-    fn bee_of(&self, slot: usize) -> Result<(BeeState<S>, Option<u16>)>;
-}
-
-macro_rules! bee_groups_of {
-    ($s:ty, $variant:ident) => {
-        impl BeeGroupsOf<$s> for BeeSim {
-            fn single_params(&self) -> Result<Checked<BeeParams<$s>>> {
-                one_params(self.groups.iter().map(|g| match g {
-                    ByScalar::$variant(g) => Some((g.name.as_str(), &g.params)),
-                    _ => None,
-                }))
-            }
-            fn bee_of(&self, slot: usize) -> Result<(BeeState<$s>, Option<u16>)> {
-                self.groups
-                    .iter()
-                    .find_map(|g| match g {
-                        ByScalar::$variant(g)
-                            if (g.first..g.first + g.states.len()).contains(&slot) =>
-                        {
-                            Some((g.states[slot - g.first], g.goal))
-                        }
-                        _ => None,
-                    })
-                    .ok_or_else(|| {
-                        HilError::Invalid(format!("no bee of this scalar type in slot {slot}"))
-                    })
-            }
-        }
-    };
-}
-bee_groups_of!(f32, F32);
-bee_groups_of!(swarm_core::Fx, Fixed);
-
-/// The one parameter set of groups given as `(name, params)`, `None` for a group of another
-/// scalar type.
-fn one_params<'a, P: PartialEq + Clone + 'a>(
-    groups: impl Iterator<Item = Option<(&'a str, &'a Checked<P>)>>,
-) -> Result<Checked<P>> {
-    let mut first: Option<(&str, &Checked<P>)> = None;
-    for g in groups {
-        let (name, params) = g.ok_or_else(|| {
-            HilError::Invalid("every group must have the device's scalar type".into())
-        })?;
-        if let Some((f, fp)) = first
-            && **fp != **params
-        {
-            return Err(HilError::Invalid(format!(
-                "groups `{f}` and `{name}` have different parameters; a device runs one \
-                 parameter set"
-            )));
-        }
-        first.get_or_insert((name, params));
-    }
-    first
-        .map(|(_, p)| p.clone())
-        .ok_or_else(|| HilError::Invalid("the scenario has no agents".into()))
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -803,11 +524,7 @@ fn flaky_beyond_line_damage(reasked: u64, host_drops: u64, device: Option<&Devic
     crate::verdict::flaky(reasked, host_drops + device_drops)
 }
 
-fn sim_err(e: swarm_sim::SimError) -> HilError {
-    HilError::Invalid(format!("simulation: {e}"))
-}
-
-/// The scaffolding both mirrors share: the session, the chosen agents, the tally, the progress
+/// The scaffolding of a mirror run: the session, the chosen agents, the tally, the progress
 /// bar, the clock and the report.
 struct Run {
     session: Session,
@@ -816,25 +533,6 @@ struct Run {
 }
 
 impl Run {
-    /// Handshake and configure for a device running `params` (frames up to `max_frame`), and
-    /// the agents to mirror out of `agents`.
-    fn open<T: Transport, P: Controller>(
-        client: &mut Client<T>,
-        params: &P,
-        max_frame: usize,
-        agents: usize,
-        opts: &MirrorOptions,
-    ) -> Result<Run> {
-        let expected = Identity::of(params, max_frame, "host").map_err(core_err)?;
-        let hash = params_hash(params).map_err(core_err)?;
-        let (session, device) = Session::open(client, expected, hash, opts.session)?;
-        Ok(Run {
-            session,
-            device,
-            chosen: pick_agents(agents, opts.agents),
-        })
-    }
-
     /// Runs `tick` (one simulation step: ask, compare, advance) `opts.steps` times, then asks
     /// for the device's counters and writes the report. When a step fails, the report of what
     /// was compared until then comes back inside [`HilError::Aborted`].
@@ -900,51 +598,3 @@ impl Run {
         }
     }
 }
-
-/// Slot of every agent id, this step (slots move when the simulator reorders them).
-fn slots_by_id(ids: &[u32]) -> Vec<usize> {
-    let mut out = vec![0; ids.len()];
-    for (slot, &id) in ids.iter().enumerate() {
-        out[id as usize] = slot;
-    }
-    out
-}
-
-/// Access to the ant groups of one scalar type.
-pub trait GroupsOf<S> {
-    /// The parameters shared by every group (an error if a group differs or has another
-    /// scalar type).
-    fn single_params(&self) -> Result<Checked<AntParams<S>>>;
-    /// The slot and state of the ant in world slot `slot`.
-    fn state_of(&self, slot: usize) -> Result<swarm_core::ant::AntState<S>>;
-}
-
-macro_rules! groups_of {
-    ($s:ty, $variant:ident) => {
-        impl GroupsOf<$s> for AntSim {
-            fn single_params(&self) -> Result<Checked<AntParams<$s>>> {
-                one_params(self.groups.iter().map(|g| match g {
-                    ByScalar::$variant(g) => Some((g.name.as_str(), &g.params)),
-                    _ => None,
-                }))
-            }
-            fn state_of(&self, slot: usize) -> Result<swarm_core::ant::AntState<$s>> {
-                self.groups
-                    .iter()
-                    .find_map(|g| match g {
-                        ByScalar::$variant(g)
-                            if (g.first..g.first + g.states.len()).contains(&slot) =>
-                        {
-                            Some(g.states[slot - g.first])
-                        }
-                        _ => None,
-                    })
-                    .ok_or_else(|| {
-                        HilError::Invalid(format!("no ant of this scalar type in slot {slot}"))
-                    })
-            }
-        }
-    };
-}
-groups_of!(f32, F32);
-groups_of!(swarm_core::Fx, Fixed);

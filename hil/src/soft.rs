@@ -6,18 +6,18 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::thread::JoinHandle;
 use std::time::Duration;
 
-use swarm_core::wire::{Controller, DeviceEndpoint};
+use swarm_core::wire::Endpoint;
 
 use crate::transport::Transport;
 use crate::{HilError, Result};
 
-/// Serves `device` on `link` until `stop` is set or the link closes; returns the endpoint
-/// (with its counters).
-pub fn serve<C: Controller, const RX: usize, const TX: usize, T: Transport>(
-    mut device: DeviceEndpoint<C, RX, TX>,
+/// Serves `device` (a [`DeviceEndpoint`](swarm_core::wire::DeviceEndpoint) of any model) on
+/// `link` until `stop` is set or the link closes; returns the endpoint (with its counters).
+pub fn serve<E: Endpoint + ?Sized, T: Transport>(
+    mut device: Box<E>,
     mut link: T,
     stop: &AtomicBool,
-) -> Result<DeviceEndpoint<C, RX, TX>> {
+) -> Result<Box<E>> {
     let mut buf = [0u8; 4096];
     while !stop.load(Ordering::Relaxed) {
         let n = match link.recv(&mut buf, Duration::from_millis(20)) {
@@ -26,12 +26,7 @@ pub fn serve<C: Controller, const RX: usize, const TX: usize, T: Transport>(
             Err(e) => return Err(e),
         };
         let mut out = Vec::new();
-        device
-            .serve(&buf[..n], |reply| {
-                out.extend_from_slice(reply);
-                Ok::<(), ()>(())
-            })
-            .ok();
+        device.serve_all(&buf[..n], &mut |reply| out.extend_from_slice(reply));
         if !out.is_empty() {
             match link.send(&out) {
                 Ok(()) => {}

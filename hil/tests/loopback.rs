@@ -7,7 +7,7 @@ use swarm_core::ant::{AntParams, AntPlan};
 use swarm_core::wire::{self, Accumulator, AntDevice, AntPlanReply, Event, kind};
 use swarm_hil::client::{Client, ClientOptions, RtoOptions};
 use swarm_hil::loopback::{LinkKind, loopback, with_scalar};
-use swarm_hil::mirror::{MirrorOptions, mirror_ants, pick_agents};
+use swarm_hil::mirror::{MirrorOptions, mirror, pick_agents};
 use swarm_hil::soft::{SoftDevice, serve};
 use swarm_hil::transport::{FaultSpec, Transport, memory_pair};
 use swarm_hil::{HilError, Result};
@@ -116,9 +116,16 @@ fn a_device_with_other_parameters_is_refused_at_the_handshake() {
     };
     let device = AntDevice::<f32>::new(other, "other-ant").unwrap();
     let (dev_end, host_end) = memory_pair();
-    let soft = SoftDevice::spawn(move |stop| serve(device, dev_end, stop).map(|_| ()));
+    let soft = SoftDevice::spawn(move |stop| serve(Box::new(device), dev_end, stop).map(|_| ()));
     let mut client = Client::new(host_end, ClientOptions::default());
-    let err = mirror_ants::<f32, _>(&sc.name, sim, &mut client, &opts(5, 5)).unwrap_err();
+    let err = mirror(
+        &sc.name,
+        Box::new(sim),
+        &mut client,
+        &opts(5, 5),
+        &mut |_| Ok(()),
+    )
+    .unwrap_err();
     let msg = err.to_string();
     assert!(matches!(err, HilError::Handshake(_)), "{msg}");
     assert!(
@@ -228,7 +235,14 @@ fn a_device_reset_mid_run_is_re_handshaken_and_reported() {
         Ok(())
     });
     let mut client = Client::new(host_end, ClientOptions::default());
-    let r = mirror_ants::<swarm_core::Fx, _>(&sc.name, sim, &mut client, &opts(20, 10)).unwrap();
+    let r = mirror(
+        &sc.name,
+        Box::new(sim),
+        &mut client,
+        &opts(20, 10),
+        &mut |_| Ok(()),
+    )
+    .unwrap();
     soft.stop().unwrap();
     assert_eq!(r.decisions, 400);
     assert_eq!(r.mismatches, 0, "{}", r.human());
@@ -344,9 +358,15 @@ fn scripted(
         silent: false,
         script,
     };
-    let soft = SoftDevice::spawn(move |stop| serve(device, link, stop).map(|_| ()));
+    let soft = SoftDevice::spawn(move |stop| serve(Box::new(device), link, stop).map(|_| ()));
     let mut client = Client::new(host_end, client);
-    let r = mirror_ants::<f32, _>(&sc.name, sim, &mut client, &opts(10, 6));
+    let r = mirror(
+        &sc.name,
+        Box::new(sim),
+        &mut client,
+        &opts(10, 6),
+        &mut |_| Ok(()),
+    );
     soft.stop().unwrap();
     r
 }

@@ -1,12 +1,13 @@
-//! `swarm bench`: agent-steps per second of the engine on a synthetic world, as JSON. What
-//! every model shares is here ([`BenchReport`], the timing loop); each model's folder builds
-//! its own bench world (`ants::bench_ants`, `bees::bench_bees`).
+//! `swarm bench`: agent-steps per second of the engine on a synthetic world, as JSON: the
+//! timing loop over any model's [`Engine`](crate::engine::Engine); each model's folder builds
+//! its own bench world ([`crate::models::bench_engine`]).
 
 use std::time::Instant;
 
 use serde::Serialize;
 
 use crate::Result;
+use crate::scenario::Model;
 
 /// What `swarm bench` measures and prints.
 #[derive(Clone, Debug, Serialize)]
@@ -33,15 +34,19 @@ pub struct BenchReport {
     pub machine: String,
 }
 
-/// Times `steps` calls of `step` on the world `build` makes, inside a pool of `threads`
-/// workers, after one untimed warm-up step: the part every `swarm bench` model shares.
-pub(crate) fn time_steps<W>(
-    model: &str,
+/// Times `steps` ticks of `agents` agents of `model` in its benchmark world
+/// ([`bench_engine`](crate::models::bench_engine)), inside a pool of `threads` workers (`None`:
+/// one per core), after one untimed warm-up tick.
+///
+/// # Errors
+///
+/// [`SimError::Invalid`](crate::SimError::Invalid) for no agents or no steps, the pool's
+/// error, a controller's refusal.
+pub fn bench(
+    model: Model,
     agents: usize,
     steps: u32,
     threads: Option<usize>,
-    build: impl FnOnce() -> W + Send,
-    mut step: impl FnMut(&mut W) -> Result<()> + Send,
 ) -> Result<BenchReport> {
     if agents == 0 || steps == 0 {
         return Err(crate::SimError::Invalid(format!(
@@ -50,15 +55,15 @@ pub(crate) fn time_steps<W>(
     }
     let (pool, threads) = crate::par::pool(threads)?;
     pool.install(|| {
-        let mut world = build();
-        step(&mut world)?;
+        let mut engine = crate::models::bench_engine(model, agents, 1);
+        engine.tick()?;
         let t0 = Instant::now();
         for _ in 0..steps {
-            step(&mut world)?;
+            engine.tick()?;
         }
         let seconds = t0.elapsed().as_secs_f64();
         Ok(BenchReport {
-            model: model.into(),
+            model: format!("{}s", model.as_str()),
             backend: "cpu".into(),
             agents,
             steps,
@@ -101,18 +106,20 @@ pub fn machine() -> String {
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+
     #[test]
     fn a_bench_reports_what_ran_and_refuses_an_empty_one() {
-        let r = crate::ants::bench_ants(500, 2, Some(1)).unwrap();
+        let r = bench(Model::Ant, 500, 2, Some(1)).unwrap();
         assert_eq!(
             (r.model.as_str(), r.agents, r.steps, r.threads),
             ("ants", 500, 2, 1)
         );
         assert!(r.seconds > 0.0 && r.agent_steps_per_s > 0.0);
-        let r = crate::bees::bench_bees(200, 1, Some(2)).unwrap();
+        let r = bench(Model::Bee, 200, 1, Some(2)).unwrap();
         assert_eq!((r.model.as_str(), r.agents, r.threads), ("bees", 200, 2));
         for (agents, steps, threads) in [(0, 5, Some(1)), (10, 0, Some(1)), (10, 5, Some(0))] {
-            let e = crate::ants::bench_ants(agents, steps, threads)
+            let e = bench(Model::Ant, agents, steps, threads)
                 .unwrap_err()
                 .to_string();
             assert!(e.contains("at least"), "{e}");

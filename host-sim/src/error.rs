@@ -20,6 +20,38 @@ pub enum SimError {
         /// The controller's error.
         source: swarm_core::Error,
     },
+    /// The groups of a simulation mirrored on one device compute in different scalar types.
+    #[error("groups `{first}` and `{other}` have different scalar types; a device runs one")]
+    MixedScalars {
+        /// The first group.
+        first: String,
+        /// A group of another scalar type.
+        other: String,
+    },
+    /// The groups of a simulation mirrored on one device have different parameters.
+    #[error(
+        "groups `{first}` and `{other}` have different parameters; a device runs one parameter set"
+    )]
+    DifferentParams {
+        /// The first group.
+        first: String,
+        /// A group with other parameters.
+        other: String,
+    },
+    /// The simulation has no agents.
+    #[error("the simulation has no agents")]
+    NoAgents,
+    /// An agent id the simulation does not have.
+    #[error("no agent {id} (the simulation has {agents})")]
+    NoAgent {
+        /// The id asked for.
+        id: u32,
+        /// How many agents there are.
+        agents: usize,
+    },
+    /// A device for the simulation's parameters could not be made.
+    #[error("device: {0}")]
+    Device(swarm_core::Error),
     /// The scenario cannot run (its message says why).
     #[error("{0}")]
     Invalid(String),
@@ -47,12 +79,8 @@ pub enum SimError {
 }
 
 impl SimError {
-    pub(crate) fn controller(
-        phase: &'static str,
-        step: u32,
-        agent: u32,
-        e: swarm_core::Error,
-    ) -> Self {
+    /// A controller's refusal of agent `agent`'s frame in `phase` at `step`.
+    pub fn controller(phase: &'static str, step: u32, agent: u32, e: swarm_core::Error) -> Self {
         SimError::Controller {
             phase,
             step,

@@ -1,25 +1,18 @@
 //! `swarm run`: a scenario from its first tick to its last, with a progress bar, a run log
 //! and every output written whole into one folder.
 
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
-use swarm_core::ant::AntState;
 
-use crate::ants::{AntEvent, AntSim, AnyAntGroup};
-use crate::bees::{BeeSim, bee_frame_samples};
+use crate::engine::Engine;
 use crate::output::{
-    self, AgentSample, Frame, RenderOptions, RunLog, Scene, Shape, ShapeKind, Summary,
+    self, Frame, RenderOptions, RunLog, Scene, Shape, ShapeKind, Summary,
     summary::{GroupSummary, pair_stats, state_counts_of},
 };
-use crate::scalar::SimScalar;
-use crate::scenario::{Action, Model, ObjectKind, Scenario, ScenarioWarning, World};
+use crate::scenario::{Action, ObjectKind, Scenario, ScenarioWarning, World};
 use crate::{Result, SimError};
-
-/// Ants closer than this (body lengths) count as a collision in the summary.
-pub const ANT_COLLISION_DISTANCE: f32 = 0.5;
 
 /// How to run a scenario.
 #[derive(Clone, Debug)]
@@ -59,6 +52,16 @@ pub struct RunReport {
 /// folder is touched; a run that fails leaves `opts.out` as it was and reports where its log
 /// went ([`SimError::RunFailed`]).
 pub fn run(scenario: &Scenario, opts: &RunOptions) -> Result<RunReport> {
+    run_with(scenario, opts, crate::models::engine)
+}
+
+/// [`run`] with the engine `engine(scenario, seed)` builds: any model's, also one defined
+/// outside this crate.
+pub fn run_with(
+    scenario: &Scenario,
+    opts: &RunOptions,
+    engine: impl FnOnce(&Scenario, u32) -> Result<Box<dyn Engine>> + Send,
+) -> Result<RunReport> {
     let mut sc = scenario.clone();
     if let Some(steps) = opts.steps {
         sc.set_steps(steps);
@@ -85,10 +88,11 @@ pub fn run(scenario: &Scenario, opts: &RunOptions) -> Result<RunReport> {
                 log.line(w)?;
             }
             let dir = stage.path();
-            match sc.world.model() {
-                Model::Ant => pool.install(|| run_ants(&sc, seed, threads, opts, dir, &mut log)),
-                Model::Bee => pool.install(|| run_bees(&sc, seed, threads, opts, dir, &mut log)),
-            }
+            pool.install(|| {
+                let engine = engine(&sc, seed)?;
+                let summary = summary_for(&sc, seed, threads, &*engine);
+                run_loop(&sc, engine, summary, opts, dir, &mut log)
+            })
         });
     let (stage, error) = match result {
         Ok(report) => match stage.commit() {
@@ -116,158 +120,29 @@ fn failed(opts: &RunOptions, log: Option<PathBuf>, error: SimError) -> SimError 
 }
 
 /// The summary fields every run shares.
-fn summary_for(sc: &Scenario, seed: u32, threads: usize, agents: usize, collision: f32) -> Summary {
-    Summary {
+fn summary_for(sc: &Scenario, seed: u32, threads: usize, engine: &dyn Engine) -> Summary {
+    let mut summary = Summary {
         scenario: sc.name.clone(),
         seed: seed as u64,
         steps: sc.steps,
-        agents: agents as u32,
+        agents: engine.agents() as u32,
         groups: sc
             .groups
             .iter()
             .map(|g| GroupSummary {
                 name: g.name.clone(),
-                model: g.model.as_str().into(),
+                model: engine.model().into(),
                 count: g.count,
                 scalar: format!("{:?}", g.scalar.kind()),
             })
             .collect(),
         backend: "cpu".into(),
         threads: threads as u32,
-        collision_distance: collision,
+        collision_distance: engine.collision_distance(),
         ..Summary::default()
-    }
-}
-
-/// What the run loop needs from an engine.
-trait Engine {
-    fn agents(&self) -> usize;
-    fn apply(&mut self, object: u16, action: &Action);
-    /// One tick; model-specific counters go into `summary`.
-    fn tick(&mut self, summary: &mut Summary) -> Result<()>;
-    /// Every agent, in id order.
-    fn frame(&self) -> Frame;
-    /// Called at each recorded step, after [`Engine::frame`].
-    fn on_record(&self, _summary: &mut Summary, _step: u32) {}
-    /// The closing line of the run log (after the timing).
-    fn closing(&self, summary: &mut Summary) -> String;
-}
-
-struct Ants {
-    sim: AntSim,
-    nest_names: BTreeMap<u16, String>,
-    delivered: u64,
-}
-
-impl Engine for Ants {
-    fn agents(&self) -> usize {
-        self.sim.agents()
-    }
-    fn apply(&mut self, object: u16, action: &Action) {
-        self.sim.apply(object, action);
-    }
-    fn tick(&mut self, summary: &mut Summary) -> Result<()> {
-        for e in self.sim.step()? {
-            if let AntEvent::Delivered { nest, .. } = e {
-                self.delivered += 1;
-                if let Some(name) = self.nest_names.get(&nest) {
-                    *summary.deliveries_per_nest.entry(name.clone()).or_default() += 1;
-                }
-            }
-        }
-        Ok(())
-    }
-    fn frame(&self) -> Frame {
-        ant_frame(&self.sim)
-    }
-    fn on_record(&self, summary: &mut Summary, step: u32) {
-        if step > 0 {
-            summary.deliveries_over_time.push((step, self.delivered));
-        }
-    }
-    fn closing(&self, summary: &mut Summary) -> String {
-        let moved = self.sim.moved_out;
-        summary
-            .extra
-            .insert("ants_moved_out_of_obstacles".into(), moved.into());
-        format!(
-            "{} deliveries, {moved} ants moved out of obstacles placed on them",
-            self.delivered
-        )
-    }
-}
-
-impl Engine for BeeSim {
-    fn agents(&self) -> usize {
-        BeeSim::agents(self)
-    }
-    fn apply(&mut self, object: u16, action: &Action) {
-        BeeSim::apply(self, object, action);
-    }
-    fn tick(&mut self, _summary: &mut Summary) -> Result<()> {
-        self.step().map(|_| ())
-    }
-    fn frame(&self) -> Frame {
-        bee_frame_samples(self)
-    }
-    fn closing(&self, summary: &mut Summary) -> String {
-        let c = self.contacts;
-        summary
-            .extra
-            .insert("world_contacts_obstacle".into(), c.obstacle.into());
-        summary
-            .extra
-            .insert("world_contacts_bounds".into(), c.bounds.into());
-        format!(
-            "the world kept bees out of obstacles {} times and inside the bounds {} times",
-            c.obstacle, c.bounds
-        )
-    }
-}
-
-fn run_ants(
-    sc: &Scenario,
-    seed: u32,
-    threads: usize,
-    opts: &RunOptions,
-    dir: &Path,
-    log: &mut RunLog,
-) -> Result<RunReport> {
-    let sim = AntSim::from_scenario(sc, seed)?;
-    let nest_names: BTreeMap<u16, String> = sc
-        .objects
-        .iter()
-        .enumerate()
-        .filter(|(_, o)| matches!(o.kind, ObjectKind::Nest { .. }))
-        .map(|(i, o)| (i as u16, o.name.clone()))
-        .collect();
-    let mut summary = summary_for(sc, seed, threads, sim.agents(), ANT_COLLISION_DISTANCE);
-    summary.deliveries_per_nest = nest_names.values().map(|n| (n.clone(), 0)).collect();
-    let engine = Ants {
-        sim,
-        nest_names,
-        delivered: 0,
     };
-    run_loop(sc, engine, summary, opts, dir, log)
-}
-
-fn run_bees(
-    sc: &Scenario,
-    seed: u32,
-    threads: usize,
-    opts: &RunOptions,
-    dir: &Path,
-    log: &mut RunLog,
-) -> Result<RunReport> {
-    let sim = BeeSim::from_scenario(sc, seed)?;
-    // Two capsules (radius r) touch when their centres are 2r apart.
-    let radius = sc
-        .groups
-        .iter()
-        .map(|g| g.bee_params().radius)
-        .fold(0.0, f32::max);
-    let summary = summary_for(sc, seed, threads, sim.agents(), 2.0 * radius);
-    run_loop(sc, sim, summary, opts, dir, log)
+    engine.begin_summary(&mut summary);
+    summary
 }
 
 /// The run loop every model shares: events before each tick, the tick, recording every
@@ -276,7 +151,7 @@ fn run_bees(
 /// pictures need stay in memory.
 fn run_loop(
     sc: &Scenario,
-    mut engine: impl Engine,
+    mut engine: Box<dyn Engine>,
     mut summary: Summary,
     opts: &RunOptions,
     dir: &Path,
@@ -298,7 +173,8 @@ fn run_loop(
                 log.line(format_args!("step {step}: {verb} {object}"))?;
             }
         }
-        engine.tick(&mut summary)?;
+        engine.tick()?;
+        engine.after_tick(&mut summary);
         let done = step + 1;
         if done % every == 0 || done == sc.steps {
             let f = engine.frame();
@@ -456,34 +332,6 @@ fn progress_bar(show: bool, len: u64) -> ProgressBar {
         .progress_chars("=> "),
     );
     bar
-}
-
-/// Every ant of the simulation, in id order, as recorded samples.
-pub fn ant_frame(sim: &AntSim) -> Frame {
-    fn push<S: SimScalar>(out: &mut Vec<AgentSample>, group: u16, states: Vec<(u32, AntState<S>)>) {
-        out.extend(states.into_iter().map(|(id, s)| AgentSample {
-            id,
-            pos: [s.pos.x.to_f32(), s.pos.y.to_f32(), 0.0],
-            heading: [s.heading.x.to_f32(), s.heading.y.to_f32(), 0.0],
-            group,
-            label: s.label as u8,
-            motion: s.motion as u8,
-            roll: 0.0,
-            pitch: 0.0,
-        }));
-    }
-    let mut agents = Vec::with_capacity(sim.agents());
-    for (k, g) in sim.groups.iter().enumerate() {
-        match g {
-            AnyAntGroup::F32(g) => push(&mut agents, k as u16, g.states_by_id()),
-            AnyAntGroup::Fixed(g) => push(&mut agents, k as u16, g.states_by_id()),
-        }
-    }
-    agents.sort_unstable_by_key(|a| a.id);
-    Frame {
-        step: sim.step,
-        agents,
-    }
 }
 
 /// The scene of a scenario: every object, with the steps it is visible (events included).

@@ -6,8 +6,11 @@
 
 use swarm_core::{Fx, Scalar, Vec2, Vec3};
 
-/// A [`Scalar`] the simulator can run: exact conversions to and from `f64`.
-pub trait SimScalar: Scalar {
+/// A [`Scalar`] the simulator can run: exact conversions to and from `f64`, and the wire
+/// encoding its messages need.
+pub trait SimScalar:
+    Scalar + serde::Serialize + serde::de::DeserializeOwned + Send + Sync + 'static
+{
     /// The value as `f64` (exact).
     fn to_f64(self) -> f64;
     /// The nearest value to `v` (exact for values that came from `to_f64`).

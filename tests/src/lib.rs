@@ -24,3 +24,5 @@ pub fn seed(scenario_seed: u32) -> u32 {
         Err(_) => scenario_seed,
     }
 }
+
+pub mod walker;

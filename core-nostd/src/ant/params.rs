@@ -1,7 +1,8 @@
 //! Ant controller parameters (xiang2018 §4), defaulting to the paper's values where it gives
 //! them.
 
-use crate::model::{ModelParams, Range, model_params};
+use crate::model::{ModelParams, Range};
+use crate::model_params;
 use crate::{Result, Scalar};
 
 wire_type! {

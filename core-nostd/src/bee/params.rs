@@ -2,7 +2,8 @@
 //! Γ = {κ1, κ2, κ3, L, ε, h}), and documented choices of ours for the constants the paper leaves
 //! open.
 
-use crate::model::{ModelParams, Range, model_params};
+use crate::model::{ModelParams, Range};
+use crate::model_params;
 use crate::{Error, Result, Scalar};
 
 /// Largest magnitude accepted for any input number or parameter (positions, velocities,

@@ -23,7 +23,6 @@
 mod params;
 mod phase;
 
-pub(crate) use params::model_params;
 pub use params::{ModelParams, ParamSpec, ParamValue, Range};
 pub use phase::{Phase, Phases};
 

@@ -160,6 +160,26 @@ pub trait ModelParams: Sized {
 /// `field: kind = range, "unit";` lines, where kind is `real` (a field of type `S`) or
 /// `int(T)` (an integer field of type `T`), and optionally `together method`, the struct's
 /// method that checks the rules between fields.
+///
+/// ```
+/// use swarm_core::model::{ModelParams, Range};
+///
+/// #[derive(Clone, PartialEq)]
+/// pub struct WalkParams<S> {
+///     pub speed: S,
+///     pub turns: u8,
+/// }
+/// swarm_core::model_params! {
+///     WalkParams {
+///         speed: real = Range::above(0.0, 10.0), "units/tick";
+///         turns: int(u8) = Range::int(1, 8), "";
+///     }
+/// }
+/// let p = WalkParams { speed: 1.0f32, turns: 4 };
+/// assert!(p.validate().is_ok());
+/// assert_eq!(WalkParams::<f32>::SPECS[1].name, "turns");
+/// ```
+#[macro_export]
 macro_rules! model_params {
     (
         $ty:ident { $($field:ident: $kind:ident $(($int:ty))? = $range:expr, $unit:literal;)* }
@@ -175,7 +195,7 @@ macro_rules! model_params {
                 let mut i = 0;
                 $(
                     if index == i {
-                        return Some(model_params!(@get self.$field, $kind));
+                        return Some($crate::model_params!(@get self.$field, $kind));
                     }
                     i += 1;
                 )*
@@ -187,7 +207,7 @@ macro_rules! model_params {
                 let mut i = 0;
                 $(
                     if index == i {
-                        return model_params!(@set self.$field, $kind $(($int))?, value);
+                        return $crate::model_params!(@set self.$field, $kind $(($int))?, value);
                     }
                     i += 1;
                 )*
@@ -205,7 +225,7 @@ macro_rules! model_params {
             fn validate(&self) -> $crate::Result<()> {
                 $({
                     const RANGE: $crate::model::Range = $range;
-                    if !RANGE.contains::<S>(model_params!(@get self.$field, $kind)) {
+                    if !RANGE.contains::<S>($crate::model_params!(@get self.$field, $kind)) {
                         return Err($crate::Error::BadParam { field: stringify!($field) });
                     }
                 })*
@@ -237,7 +257,6 @@ macro_rules! model_params {
         }
     };
 }
-pub(crate) use model_params;
 
 #[cfg(test)]
 mod tests {

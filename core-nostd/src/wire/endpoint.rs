@@ -391,3 +391,35 @@ impl<C: Controller, const RX: usize, const TX: usize> DeviceEndpoint<C, RX, TX> 
         self.core.counters = Counters::default();
     }
 }
+
+/// A [`DeviceEndpoint`] of any controller and buffer sizes, as a trait object: what a host
+/// holds when it serves a model it knows only at run time (a soft device, a test).
+pub trait Endpoint {
+    /// Feeds `input` whole and hands every reply, in order, to `tx` (see
+    /// [`DeviceEndpoint::serve`]).
+    fn serve_all(&mut self, input: &[u8], tx: &mut dyn FnMut(&[u8]));
+    /// What the device answers to `Hello`.
+    fn identity(&self) -> Identity;
+    /// The counters, as a `StatsRequest` would report them now.
+    fn stats(&self) -> DeviceStats;
+    /// Back to power-up (see [`DeviceEndpoint::reset`]).
+    fn reset(&mut self);
+}
+
+impl<C: Controller, const RX: usize, const TX: usize> Endpoint for DeviceEndpoint<C, RX, TX> {
+    fn serve_all(&mut self, input: &[u8], tx: &mut dyn FnMut(&[u8])) {
+        let _ = self.serve(input, |reply| {
+            tx(reply);
+            Ok::<(), core::convert::Infallible>(())
+        });
+    }
+    fn identity(&self) -> Identity {
+        DeviceEndpoint::identity(self)
+    }
+    fn stats(&self) -> DeviceStats {
+        DeviceEndpoint::stats(self)
+    }
+    fn reset(&mut self) {
+        DeviceEndpoint::reset(self);
+    }
+}

@@ -92,7 +92,7 @@ mod session;
 mod tests;
 
 pub use accumulator::{Accumulator, Event, Stats};
-pub use endpoint::{DeviceEndpoint, SessionState};
+pub use endpoint::{DeviceEndpoint, Endpoint, SessionState};
 pub use frame::{
     CRC_LEN, CRC16, CrcImpl, Frame, MIN_RAW_LEN, decode_frame, decode_payload, encode_frame,
     max_frame_len,

@@ -7,22 +7,12 @@ use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
 use clap::{Parser, Subcommand, ValueEnum};
-use swarm_core::Fx;
-use swarm_core::ant::AntParams;
-use swarm_core::bee::BeeParams;
-use swarm_core::wire::{AntDevice, BeeDevice};
 use swarm_hil::client::{Client, ClientOptions, RtoOptions};
 use swarm_hil::loopback::{LinkKind, loopback, with_scalar};
-use swarm_hil::mirror::{
-    BeeGroupsOf, DeviceParams, GroupsOf, MirrorOptions, MirrorReport, device_params,
-    mirror_scenario,
-};
+use swarm_hil::mirror::{MirrorOptions, MirrorReport, mirror_scenario};
 use swarm_hil::qemu::{QemuRun, mirror_in_qemu};
 use swarm_hil::transport::{FaultSpec, Faulty, SerialTransport, TcpTransport, Transport};
 use swarm_hil::{HilError, Verdict};
-use swarm_sim::ants::AntSim;
-use swarm_sim::bees::BeeSim;
-use swarm_sim::scalar::SimScalar;
 use swarm_sim::scenario::{ScalarType, Scenario};
 
 #[derive(Parser)]
@@ -326,33 +316,16 @@ fn run(cli: Cli) -> Result<Verdict, Stop> {
                 sc.name
             );
             let stop = AtomicBool::new(false);
-            match scalar {
-                Scalar::F32 => serve::<f32>(&sc, link, &stop)?,
-                Scalar::Fixed => serve::<Fx>(&sc, link, &stop)?,
-            }
+            serve(&sc, link, &stop)?;
             Ok(Verdict::default())
         }
     }
 }
 
-fn serve<S>(sc: &Scenario, link: SerialTransport, stop: &AtomicBool) -> Result<(), AnyError>
-where
-    S: SimScalar + serde::Serialize + serde::de::DeserializeOwned,
-    AntSim: GroupsOf<S>,
-    BeeSim: BeeGroupsOf<S>,
-    AntParams<S>: swarm_core::wire::Controller,
-    BeeParams<S>: swarm_core::wire::Controller,
-{
-    match device_params::<S>(sc)? {
-        DeviceParams::Ant(p) => {
-            let device = AntDevice::<S>::new(p, "soft-ant").map_err(|e| e.to_string())?;
-            swarm_hil::soft::serve(device, link, stop)?;
-        }
-        DeviceParams::Bee(p) => {
-            let device = BeeDevice::<S>::new(p, "soft-bee").map_err(|e| e.to_string())?;
-            swarm_hil::soft::serve(device, link, stop)?;
-        }
-    }
+/// Serves a soft device running `sc`'s parameters on `link` until the link closes.
+fn serve(sc: &Scenario, link: SerialTransport, stop: &AtomicBool) -> Result<(), AnyError> {
+    let device = swarm_sim::models::engine(sc, sc.seed)?.device()?.soft;
+    swarm_hil::soft::serve(device, link, stop)?;
     Ok(())
 }
 
@@ -363,11 +336,7 @@ fn mirror<T: Transport>(
     run: &Run,
     hook: &mut dyn FnMut(u32) -> swarm_hil::Result<()>,
 ) -> swarm_hil::Result<MirrorReport> {
-    let o = mirror_options(run);
-    match run.scalar {
-        Scalar::F32 => mirror_scenario::<f32, T>(sc, client, &o, hook),
-        Scalar::Fixed => mirror_scenario::<Fx, T>(sc, client, &o, hook),
-    }
+    mirror_scenario(sc, client, &mirror_options(run), hook)
 }
 
 fn scenario(name: &str) -> Result<Scenario, AnyError> {

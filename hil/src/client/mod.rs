@@ -155,27 +155,72 @@ impl<T: Transport> Client<T> {
         &mut self,
         requests: &[Q],
     ) -> Partial<A> {
-        let mut replies: Vec<Option<std::result::Result<A, ErrorReply>>> =
+        let mut raw = Vec::with_capacity(requests.len());
+        for q in requests {
+            match postcard::to_allocvec(q) {
+                Ok(payload) => raw.push(RawRequest {
+                    kind: Q::KIND,
+                    payload,
+                    expect: Expect::reply::<A>(),
+                }),
+                Err(_) => {
+                    return Partial {
+                        replies: (0..requests.len()).map(|_| None).collect(),
+                        error: Some(HilError::Encode {
+                            message: kind_name(Q::KIND),
+                            source: swarm_core::Error::Payload,
+                        }),
+                    };
+                }
+            }
+        }
+        let Partial { replies, mut error } = self.call_raw(&raw);
+        let replies = replies
+            .into_iter()
+            .map(|r| {
+                r.and_then(|r| match r {
+                    Ok(p) => match decode_payload::<A>(&p) {
+                        Ok(a) => Some(Ok(a)),
+                        // Unreachable: the machine answers only payloads that decode.
+                        Err(source) => {
+                            error.get_or_insert(HilError::Decode {
+                                reply: kind_name(A::KIND),
+                                request: kind_name(Q::KIND),
+                                source,
+                            });
+                            None
+                        }
+                    },
+                    Err(e) => Some(Err(e)),
+                })
+            })
+            .collect();
+        Partial { replies, error }
+    }
+
+    /// Sends every request already encoded, at most [`ClientOptions::window`] in flight, and
+    /// returns the reply payloads (each checked to decode as its [`Expect`]) in request order,
+    /// keeping the answers that came before a failure. The [`Machine`] decides what goes
+    /// when (see its module for the retransmission rules); this loop only moves bytes and
+    /// time.
+    pub fn call_raw(&mut self, requests: &[RawRequest]) -> Partial<Vec<u8>> {
+        let mut replies: Vec<Option<std::result::Result<Vec<u8>, ErrorReply>>> =
             (0..requests.len()).map(|_| None).collect();
-        let error = self.drive::<Q, A>(requests, &mut replies).err();
+        let error = self.drive(requests, &mut replies).err();
         if error.is_some() {
             self.machine.abort();
         }
         Partial { replies, error }
     }
 
-    fn drive<Q: Message + Serialize, A: Message + DeserializeOwned>(
+    fn drive(
         &mut self,
-        requests: &[Q],
-        replies: &mut [Option<std::result::Result<A, ErrorReply>>],
+        requests: &[RawRequest],
+        replies: &mut [Option<std::result::Result<Vec<u8>, ErrorReply>>],
     ) -> Result<()> {
         let mut jobs = Vec::with_capacity(requests.len());
         for q in requests {
-            let payload = postcard::to_allocvec(q).map_err(|_| HilError::Encode {
-                message: kind_name(Q::KIND),
-                source: swarm_core::Error::Payload,
-            })?;
-            jobs.push(self.machine.submit(Q::KIND, payload, Expect::reply::<A>()));
+            jobs.push(self.machine.submit(q.kind, q.payload.clone(), q.expect));
         }
         let first = jobs.first().map_or(0, |j| j.0);
         let mut done = 0;
@@ -197,13 +242,7 @@ impl<T: Transport> Client<T> {
                     done += 1;
                 }
                 *slot = Some(match c.answer {
-                    Answer::Reply(p) => {
-                        Ok(decode_payload::<A>(&p).map_err(|source| HilError::Decode {
-                            reply: kind_name(A::KIND),
-                            request: kind_name(Q::KIND),
-                            source,
-                        })?)
-                    }
+                    Answer::Reply(p) => Ok(p),
                     Answer::Error(e) => Err(e),
                 });
             }
@@ -226,6 +265,17 @@ impl<T: Transport> Client<T> {
     fn now(&self) -> Duration {
         self.epoch.elapsed()
     }
+}
+
+/// A request already encoded: its kind, its payload and the reply it expects.
+#[derive(Clone, Debug)]
+pub struct RawRequest {
+    /// The request's kind.
+    pub kind: u8,
+    /// Its postcard payload.
+    pub payload: Vec<u8>,
+    /// The reply it expects.
+    pub expect: Expect,
 }
 
 /// The answers of [`Client::call_all_partial`]: in request order, `None` for a request not

@@ -4,8 +4,6 @@ use swarm_core::Vec2;
 use swarm_core::ant::{AntParams, AntState};
 
 use super::{AntGroup, AntObjectDef, AntObjectKind, AntSim, AntWorld, Shape2};
-use crate::Result;
-use crate::bench::{BenchReport, time_steps};
 
 /// Ants per unit² in the bench world (the density of xiang2018's 500-ant scenes).
 const DENSITY: f32 = 0.02;
@@ -58,18 +56,5 @@ pub fn bench_ant_world(n: usize, seed: u32) -> AntSim {
         w,
         vec![AntGroup::new("bench".into(), 0, params, states).into()],
         seed,
-    )
-}
-
-/// Times `steps` ant ticks of `agents` ants ([`bench_ant_world`]) on `threads` threads
-/// (`None`: one per core), after one untimed warm-up tick.
-pub fn bench_ants(agents: usize, steps: u32, threads: Option<usize>) -> Result<BenchReport> {
-    time_steps(
-        "ants",
-        agents,
-        steps,
-        threads,
-        || bench_ant_world(agents, 1),
-        |sim| sim.step().map(drop),
     )
 }

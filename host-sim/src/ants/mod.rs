@@ -2,11 +2,13 @@
 
 mod bench;
 mod build;
+mod engine;
 mod sense;
 mod sim;
 mod world;
 
-pub use bench::{bench_ant_world, bench_ants};
+pub use bench::bench_ant_world;
+pub use engine::ANT_COLLISION_DISTANCE;
 pub use sense::{AntPlanFrame, AntResolveFrame, N, O, plan_frame, resolve_frame};
 pub use sim::{AntEvent, AntGroup, AntSim, AnyAntGroup};
 pub use world::{AntObjectDef, AntObjectKind, AntWorld, Sensed, Shape2};

@@ -220,6 +220,17 @@ impl<S: SimScalar> AntGroup<S> {
         moved
     }
 
+    /// This tick's plans, by slot (after the plan phase).
+    pub(super) fn plans(&self) -> &[AntPlan<S>] {
+        &self.plans
+    }
+
+    /// This tick's resolved states, by slot (after the resolve phase, before they are
+    /// published).
+    pub(super) fn resolved(&self) -> &[AntState<S>] {
+        &self.next
+    }
+
     /// The states in id order.
     pub fn states_by_id(&self) -> Vec<(u32, AntState<S>)> {
         let mut v: Vec<(u32, AntState<S>)> = self
@@ -333,6 +344,10 @@ pub struct AntSim {
     pub reorder_every: u32,
     /// Ants moved out of obstacles so far ([`AntSim::move_out_of_obstacles`]).
     pub moved_out: u64,
+    /// What happened in the last tick, in agent order.
+    pub events: Vec<AntEvent>,
+    /// Food deliveries counted so far by [`Engine::after_tick`](crate::engine::Engine).
+    pub delivered: u64,
     /// Whether this tick's predictions stayed within the step bound the plan queries assumed
     /// (then the resolve frames come from the noted ants).
     noted: bool,
@@ -360,6 +375,8 @@ impl AntSim {
             step: 0,
             reorder_every: 16,
             moved_out: 0,
+            events: Vec::new(),
+            delivered: 0,
             noted: false,
         };
         sim.move_out_of_obstacles();
@@ -407,52 +424,86 @@ impl AntSim {
         self.resolve_phase()
     }
 
-    /// The first half of a tick: every ant plans from the sensed world, and the predictions
-    /// p*(t+1) are published in [`AntWorld::predicted`]. Between the halves the world holds
-    /// both frames of every ant ([`plan_frame`](super::plan_frame) and
-    /// [`resolve_frame`](super::resolve_frame)): what the HIL harness sends to a device.
+    /// The first half of a tick: every ant plans from the sensed world ([`AntSim::plan_all`]),
+    /// and the predictions p*(t+1) are published in [`AntWorld::predicted`]
+    /// ([`AntSim::publish_plans`]). Between the halves the world holds both frames of every
+    /// ant ([`plan_frame`](super::plan_frame) and [`resolve_frame`](super::resolve_frame)):
+    /// what the HIL harness sends to a device.
     pub fn plan_phase(&mut self) -> Result<()> {
+        self.plan_all()?;
+        self.publish_plans();
+        Ok(())
+    }
+
+    /// The longest step an ant can predict, over every group.
+    fn step_bound(&self) -> f32 {
+        self.groups
+            .iter()
+            .map(|g| by_scalar!(g, g => g.step_bound()))
+            .fold(0.0, f32::max)
+    }
+
+    /// Every ant plans from the sensed world (the decisions of the plan phase; nothing is
+    /// published).
+    pub fn plan_all(&mut self) -> Result<()> {
         let (seed, step) = (self.seed, self.step);
         self.world.index_positions();
         // Two ants' predictions within the collision range of each other are sensed within
         // the collision range plus both steps: each plan query notes those ants.
-        let bound = self
-            .groups
-            .iter()
-            .map(|g| by_scalar!(g, g => g.step_bound()))
-            .fold(0.0, f32::max);
-        let reach = self.world.collision_range + 2.0 * bound + self.world.rounding_margin();
+        let reach =
+            self.world.collision_range + 2.0 * self.step_bound() + self.world.rounding_margin();
         for g in &mut self.groups {
             by_scalar!(g, g => g.plan(&self.world, seed, step, reach))?;
         }
+        Ok(())
+    }
+
+    /// Publishes the plans' predictions p*(t+1) in [`AntWorld::predicted`].
+    pub fn publish_plans(&mut self) {
         let mut shift = 0.0f32;
         for g in &self.groups {
             shift = shift.max(by_scalar!(g, g => g.write_predictions(&mut self.world)));
         }
         self.world.max_shift = shift;
-        self.noted = shift <= bound;
-        Ok(())
+        self.noted = shift <= self.step_bound();
     }
 
     /// The second half of a tick (after [`AntSim::plan_phase`]): every ant resolves, the
-    /// states advance, the tick counter moves on.
+    /// states advance, the tick counter moves on. Returns what happened (also kept in
+    /// [`AntSim::events`]).
     pub fn resolve_phase(&mut self) -> Result<Vec<AntEvent>> {
-        let (seed, step) = (self.seed, self.step);
-        let noted = self.noted;
+        self.resolve_all()?;
+        self.publish_states();
+        Ok(self.events.clone())
+    }
+
+    /// Every ant resolves its plan against the published predictions (the decisions of the
+    /// resolve phase; nothing is published).
+    pub fn resolve_all(&mut self) -> Result<()> {
+        let (step, noted) = (self.step, self.noted);
         for g in &mut self.groups {
             by_scalar!(g, g => g.resolve(&self.world, step, noted))?;
         }
-        let mut events = Vec::new();
+        Ok(())
+    }
+
+    /// Makes the resolved states current (what happened goes to [`AntSim::events`]), accounts
+    /// the food, and moves the tick counter on.
+    pub fn publish_states(&mut self) {
+        let (seed, step) = (self.seed, self.step);
+        self.events.clear();
         for g in &mut self.groups {
-            events.extend(by_scalar!(g, g => g.commit(&mut self.world, seed, step)));
+            let events = by_scalar!(g, g => g.commit(&mut self.world, seed, step));
+            self.events.extend(events);
         }
         if self.reorder_every > 0 && (step + 1) % self.reorder_every == 0 {
             self.reorder();
         }
+        let events = std::mem::take(&mut self.events);
         self.consume_food(&events);
+        self.events = events;
         self.noted = false;
         self.step += 1;
-        Ok(events)
     }
 
     /// Food sources with an amount lose one unit per collection and disappear when empty.

@@ -6,7 +6,6 @@ use swarm_core::{Fx, Vec3};
 
 use super::sim::{AnyBeeGroup, BeeGroup, BeeSim};
 use super::world::{BeeObstacle, BeeTarget, BeeWorld, Shape3};
-use crate::bench::BenchReport;
 use crate::by_scalar;
 use crate::output::{AgentSample, Frame};
 use crate::scalar::{AgentGroup, SimScalar};
@@ -57,6 +56,8 @@ impl BeeSim {
             }
         }
 
+        // The scenario's own radius, not its conversion to a fixed-point group's scalar.
+        let radius = params.iter().map(|p| p.radius).fold(0.0, f32::max);
         let mut groups = Vec::new();
         let mut first = 0usize;
         for (g, p) in scenario.groups.iter().zip(params) {
@@ -73,7 +74,9 @@ impl BeeSim {
             first += any.len();
             groups.push(any);
         }
-        Ok(BeeSim::new(world, groups, seed))
+        let mut sim = BeeSim::new(world, groups, seed);
+        sim.collision_distance = 2.0 * radius;
+        Ok(sim)
     }
 
     /// Applies a timed event of the scenario (`Action` on the object with id `object`):
@@ -259,17 +262,4 @@ pub fn bench_bee_world(n: usize, seed: u32) -> BeeSim {
     let params = params.checked().expect("Table I parameters are valid");
     let group = BeeGroup::new("bench".into(), 0, params, Some(5), states);
     BeeSim::new(w, vec![group.into()], seed)
-}
-
-/// Times `steps` bee steps of `agents` bees ([`bench_bee_world`]) on `threads` threads
-/// (`None`: one per core), after one untimed warm-up step.
-pub fn bench_bees(agents: usize, steps: u32, threads: Option<usize>) -> Result<BenchReport> {
-    crate::bench::time_steps(
-        "bees",
-        agents,
-        steps,
-        threads,
-        || bench_bee_world(agents, 1),
-        |sim| sim.step().map(drop),
-    )
 }

@@ -9,6 +9,7 @@
 //! time it has to ([`Contacts`]: none in 2000 steps of `bees-fig14-shafts`).
 
 mod build;
+mod engine;
 mod sense;
 mod sim;
 mod world;
@@ -16,7 +17,7 @@ mod world;
 #[cfg(test)]
 mod tests;
 
-pub use build::{FIG11_DENSITY, bee_frame_samples, bench_bee_world, bench_bees};
+pub use build::{FIG11_DENSITY, bee_frame_samples, bench_bee_world};
 pub use sense::{BeeSimFrame, N, P, bee_frame, neighbour_slots};
 pub use sim::{AnyBeeGroup, BeeGroup, BeeSim, Contacts, bee_frame_time, frame_time};
 pub use world::{

@@ -116,7 +116,8 @@ impl<S: SimScalar> BeeGroup<S> {
         }
     }
 
-    /// Runs every bee's controller on its frame and keeps the result physical.
+    /// Runs every bee's controller on its frame: the decisions and the next states as the
+    /// controller gave them (not yet kept physical: [`BeeGroup::confine`]).
     fn decide(&mut self, w: &BeeWorld, seed: u32, step: u32) -> Result<()> {
         let (first, params) = (self.first, &self.params);
         let goal = self.goal.and_then(|g| w.target_center(g));
@@ -125,22 +126,28 @@ impl<S: SimScalar> BeeGroup<S> {
             self.next
                 .par_iter_mut()
                 .zip(self.decisions.par_iter_mut())
-                .zip(self.corrected.par_iter_mut())
                 .zip(self.states.par_iter().zip(self.ids.par_iter())),
             || (BlockCache::default(), BeeFrame::new(S::ZERO)),
-            |(cache, frame), k, (((out, dec), fix), (s, &id))| {
+            |(cache, frame), k, ((out, dec), (s, &id))| {
                 // Each bee's own clock (its phase of eq. 3-4), hence its own constants.
                 let t = S::from_f64(bee_frame_time(seed, id, step, dt));
                 fill_frame::<S>(w, first + k, goal, t, cache, frame);
                 let consts = bee::StepConsts::new(params, t);
-                let (d, mut next) = bee::step_with(s, frame, params, &consts)
+                let (d, next) = bee::step_with(s, frame, params, &consts)
                     .map_err(|e| SimError::controller("bee step", step, id, e))?;
-                *fix = w.confine(&mut next);
                 *dec = d;
                 *out = next;
                 Ok(())
             },
         )
+    }
+
+    /// Keeps the next states physical (see [`BeeWorld::confine`]), noting each correction.
+    fn confine(&mut self, w: &BeeWorld) {
+        self.next
+            .par_iter_mut()
+            .zip(self.corrected.par_iter_mut())
+            .for_each(|(next, fix)| *fix = w.confine(next));
     }
 
     /// Makes the new states current, writes the sensed world and counts the corrections.
@@ -167,6 +174,12 @@ impl<S: SimScalar> BeeGroup<S> {
         self.corrected = permuted(&self.corrected, &perm);
         self.ids = permuted(&self.ids, &perm);
         w.sensed.write(self.first, &self.ids, &self.states);
+    }
+
+    /// This step's next states as the controller gave them, by slot (after
+    /// [`BeeSim::decide_all`], before [`BeeSim::publish`]).
+    pub(super) fn decided(&self) -> &[BeeState<S>] {
+        &self.next
     }
 
     /// The states in id order, with their last decisions.
@@ -224,6 +237,9 @@ pub struct BeeSim {
     pub last_contacts: Contacts,
     /// Corrections made since the start.
     pub contacts: Contacts,
+    /// Bees closer than this count as a collision in the summary: two capsules of radius r
+    /// touch when their centres are 2r apart (the largest r of the groups).
+    pub collision_distance: f32,
 }
 
 impl BeeSim {
@@ -246,7 +262,13 @@ impl BeeSim {
             reorder_every: 16,
             last_contacts: Contacts::default(),
             contacts: Contacts::default(),
+            collision_distance: 0.0,
         };
+        sim.collision_distance = sim
+            .groups
+            .iter()
+            .map(|g| by_scalar!(g, g => 2.0 * g.params.radius.to_f32()))
+            .fold(0.0, f32::max);
         // Spatial slot order from the start (changes no result).
         sim.reorder();
         sim
@@ -267,16 +289,33 @@ impl BeeSim {
     /// One step: every bee runs `bee::step_checked` on its frame (built from the previous
     /// step's sensed world), the world confines the new states (see [`BeeWorld::confine`]),
     /// then the sensed world takes them (positions, velocities, densities broadcast). Returns
-    /// the corrections of this step (also added to [`BeeSim::contacts`]).
+    /// the corrections of this step (also added to [`BeeSim::contacts`]). The same as
+    /// [`BeeSim::decide_all`] then [`BeeSim::publish`].
     pub fn step(&mut self) -> Result<Contacts> {
+        self.decide_all()?;
+        Ok(self.publish())
+    }
+
+    /// Every bee decides from the previous step's sensed world (nothing is published).
+    pub fn decide_all(&mut self) -> Result<()> {
         let step = self.step;
         self.world.index_positions();
         for g in &mut self.groups {
             by_scalar!(g, g => g.decide(&self.world, self.seed, step))?;
         }
+        Ok(())
+    }
+
+    /// Confines the decided states, makes them current and moves the step on; returns the
+    /// corrections made.
+    pub fn publish(&mut self) -> Contacts {
+        let step = self.step;
         let mut c = Contacts::default();
         for g in &mut self.groups {
-            c += by_scalar!(g, g => g.commit(&mut self.world));
+            c += by_scalar!(g, g => {
+                g.confine(&self.world);
+                g.commit(&mut self.world)
+            });
         }
         self.last_contacts = c;
         self.contacts += c;
@@ -284,7 +323,7 @@ impl BeeSim {
             self.reorder();
         }
         self.step += 1;
-        Ok(c)
+        c
     }
 
     /// Every bee's position, in id order.

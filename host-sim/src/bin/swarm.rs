@@ -4,6 +4,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
+use swarm_sim::scenario::Model as SimModel;
 
 /// Insect-swarm simulator: ant colonies (xiang2018) and bee swarms (chen) driven through the
 /// swarm-core controllers.
@@ -164,8 +165,8 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 return Err(format!("--json: no folder {}", dir.display()).into());
             }
             let report = match model {
-                Model::Ants => swarm_sim::ants::bench_ants(agents, steps, threads)?,
-                Model::Bees => swarm_sim::bees::bench_bees(agents, steps, threads)?,
+                Model::Ants => swarm_sim::bench::bench(SimModel::Ant, agents, steps, threads)?,
+                Model::Bees => swarm_sim::bench::bench(SimModel::Bee, agents, steps, threads)?,
             };
             let text = serde_json::to_string_pretty(&report)?;
             println!("{text}");

@@ -1,0 +1,204 @@
+//! The test-only walker model (`swarm_tests::walker`) plugs into everything generic by
+//! implementing the traits, with no edit to a generic file: the device endpoint serves it, the
+//! run loop writes its outputs, the soft device and the HIL mirror check it, 0 mismatches.
+
+use swarm_core::model::{ModelParams, Phase};
+use swarm_core::wire::{
+    self, Accumulator, Configure, Controller, DeviceEndpoint, Event, Hello, Identity, params_hash,
+};
+use swarm_core::{Fx, Scalar, StepCtx, Vec2};
+use swarm_hil::HilError;
+use swarm_hil::client::{Client, ClientOptions};
+use swarm_hil::loopback::{LinkKind, loopback_engine};
+use swarm_hil::mirror::{MirrorOptions, mirror};
+use swarm_hil::soft::{SoftDevice, serve};
+use swarm_hil::transport::{FaultSpec, memory_pair};
+use swarm_sim::engine::Engine;
+use swarm_sim::run::{RunOptions, run_with};
+use swarm_sim::scalar::SimScalar;
+use swarm_sim::scenario::Scenario;
+use swarm_tests::walker::{Walk, WalkParams, WalkReply, WalkRequest, WalkSim, WalkState};
+
+fn sim<S: SimScalar>(n: usize, seed: u32) -> WalkSim<S> {
+    WalkSim::new(WalkParams::default().checked().unwrap(), n, seed)
+}
+
+#[test]
+fn walkers_stay_between_the_walls_and_bounce_off_them() {
+    let mut s = sim::<Fx>(40, 3);
+    for _ in 0..2000 {
+        s.tick().unwrap();
+    }
+    let w = WalkParams::<Fx>::default().half_width;
+    assert!(
+        s.states()
+            .iter()
+            .all(|st| st.pos.x.abs() <= w && st.pos.y.abs() <= w)
+    );
+    assert!(s.states().iter().map(|st| st.bounces).sum::<u32>() > 10);
+}
+
+#[test]
+fn the_device_endpoint_serves_the_walker_without_knowing_it() {
+    let params = WalkParams::<f32>::default();
+    let mut device = DeviceEndpoint::<WalkParams<f32>, 128, 128>::new(params, "walker").unwrap();
+    let request = WalkRequest {
+        state: WalkState {
+            pos: Vec2::new(19.9, 0.0),
+            heading: Vec2::new(1.0, 0.0),
+            bounces: 0,
+        },
+        ctx: StepCtx {
+            seed: 1,
+            agent: 2,
+            step: 3,
+        },
+    };
+    let configure = Configure {
+        session: 1,
+        params_hash: params_hash(&params).unwrap(),
+        reset_stats: false,
+    };
+    let mut line = [0u8; 256];
+    let mut n = wire::encode_message(1, &Hello, &mut line).unwrap();
+    n += wire::encode_message(2, &configure, &mut line[n..]).unwrap();
+    n += wire::encode_message(3, &request, &mut line[n..]).unwrap();
+    let mut rx = Accumulator::<256>::new();
+    let mut replies = Vec::new();
+    device
+        .serve(&line[..n], |r| {
+            let mut input = r;
+            while let Some((Event::Frame(f), rest)) = rx.feed(input) {
+                replies.push((f.header.kind, f.payload.to_vec()));
+                input = rest;
+            }
+            Ok::<_, ()>(())
+        })
+        .unwrap();
+    assert_eq!(replies.len(), 3);
+    let identity: Identity = wire::decode_payload(&replies[0].1).unwrap();
+    assert_eq!(identity.controller, <WalkParams<f32> as Controller>::KIND);
+    let expected = Walk::run(&params.checked().unwrap(), &request).unwrap();
+    assert_eq!(replies[2].0, 0x81);
+    let got: WalkReply<f32> = wire::decode_payload(&replies[2].1).unwrap();
+    assert_eq!(got, expected);
+}
+
+/// A 2D scenario file for the walkers' run: its world, steps and outputs are what the run loop
+/// reads; the walkers are built from it by the test.
+fn scenario() -> Scenario {
+    Scenario::from_str(
+        r#"
+        name = "walkers"
+        steps = 300
+        world = { dim = 2, min = [-20, -20], max = [20, 20] }
+        [[groups]]
+        name = "walkers"
+        model = "ant"
+        count = 30
+        nest = "middle"
+        spawn = { at = "middle", radius = 5 }
+        [[objects]]
+        name = "middle"
+        kind = "nest"
+        center = [0, 0]
+        radius = 2
+        [outputs]
+        every = 10
+        render = false
+        gif = false
+        "#,
+        "walkers.toml",
+    )
+    .unwrap()
+}
+
+#[test]
+fn the_run_loop_writes_the_walkers_outputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let opts = RunOptions {
+        out: dir.path().join("run"),
+        steps: None,
+        seed: None,
+        threads: Some(1),
+        progress: false,
+        warnings: Vec::new(),
+    };
+    let sc = scenario();
+    let report = run_with(&sc, &opts, |sc, seed| {
+        Ok(Box::new(sim::<f32>(sc.agent_count() as usize, seed)) as Box<dyn Engine>)
+    })
+    .unwrap();
+    assert_eq!(report.summary.agents, 30);
+    assert_eq!(report.summary.groups[0].model, "walker");
+    assert!(report.summary.extra.contains_key("walker_bounces"));
+    for f in [
+        "positions.npy",
+        "summary.json",
+        "trajectories.csv",
+        "run.log",
+    ] {
+        assert!(opts.out.join(f).is_file(), "{f}");
+    }
+}
+
+#[test]
+fn the_mirror_checks_the_walkers_on_their_soft_device_with_no_mismatch() {
+    for link in [LinkKind::Memory, LinkKind::Pty] {
+        let opts = MirrorOptions {
+            agents: Some(12),
+            steps: 40,
+            session: 5,
+            progress: false,
+        };
+        let r = loopback_engine(
+            "walkers",
+            Box::new(sim::<Fx>(50, 9)),
+            link,
+            FaultSpec::default(),
+            1,
+            ClientOptions::default(),
+            &opts,
+        )
+        .unwrap();
+        assert_eq!(r.decisions, 12 * 40, "{link:?}");
+        assert_eq!(r.mismatches, 0, "{}", r.human());
+        assert_eq!(r.model, "walkers");
+        assert!(r.passed(), "{}", r.human());
+    }
+}
+
+#[test]
+fn the_mirror_refuses_a_device_with_other_walls() {
+    let other = WalkSim::<f32>::new(
+        WalkParams {
+            half_width: 10.0,
+            ..WalkParams::default()
+        }
+        .checked()
+        .unwrap(),
+        8,
+        1,
+    );
+    let device = other.device().unwrap().soft;
+    let (dev_end, host_end) = memory_pair();
+    let soft = SoftDevice::spawn(move |stop| serve(device, dev_end, stop).map(|_| ()));
+    let mut client = Client::new(host_end, ClientOptions::default());
+    let opts = MirrorOptions {
+        agents: Some(4),
+        steps: 5,
+        session: 5,
+        progress: false,
+    };
+    let err = mirror(
+        "walkers",
+        Box::new(sim::<f32>(8, 1)),
+        &mut client,
+        &opts,
+        &mut |_| Ok(()),
+    )
+    .unwrap_err();
+    assert!(matches!(err, HilError::Handshake(_)), "{err}");
+    assert!(err.to_string().contains("params hash"), "{err}");
+    soft.stop().unwrap();
+}
