@@ -3,7 +3,7 @@
 
 use std::time::Duration;
 
-use swarm_core::ant::{AntParams, AntPlan};
+use swarm_core::ant::AntParams;
 use swarm_core::wire::{self, Accumulator, AntDevice, AntPlanReply, Event, kind};
 use swarm_hil::client::{Client, ClientOptions, RtoOptions};
 use swarm_hil::loopback::{LinkKind, loopback, with_scalar};
@@ -192,9 +192,12 @@ fn a_planted_wrong_decision_is_reported_with_its_step_and_agent() {
     );
     let m = r.first_mismatch.unwrap();
     assert_eq!((m.step, m.agent, m.phase), (3, chosen[7], "plan"));
-    let host: AntPlan<f32> = serde_json::from_value(m.host).unwrap();
-    let dev: AntPlan<f32> = serde_json::from_value(m.device).unwrap();
-    assert_eq!(dev.predicted.x.to_bits(), host.predicted.x.to_bits() + 1);
+    let host: AntPlanReply<f32> = serde_json::from_value(m.host).unwrap();
+    let dev: AntPlanReply<f32> = serde_json::from_value(m.device).unwrap();
+    assert_eq!(
+        dev.plan.predicted.x.to_bits(),
+        host.plan.predicted.x.to_bits() + 1
+    );
     assert!(
         m.request.get("frame").is_some(),
         "the sensor frame is in the report"
