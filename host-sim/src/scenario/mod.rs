@@ -42,7 +42,10 @@
 mod builtin;
 mod error;
 mod load;
+mod locate;
+mod problem;
 mod raw;
+mod rules;
 mod sanity;
 mod types;
 mod warning;

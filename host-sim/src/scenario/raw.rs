@@ -5,61 +5,13 @@
 //! exact key, and the conversion here reports a field that does not fit its form by name (a
 //! path relative to the converted value, prefixed by the caller).
 
-use std::fmt;
-
 use serde::{Deserialize, Serialize};
 
+use super::problem::Problem;
 use super::types::{
     Action, AntParamsOverride, BeeParamsOverride, Event, Group, Model, Object, ObjectKind, Outputs,
     ScalarType, Scenario, Spawn, SpawnRegion, World,
 };
-
-/// A problem at a field path (`groups[1].spawn.radius`, or relative while converting).
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub(crate) struct Problem {
-    /// Path of the field; empty for the value itself.
-    pub path: String,
-    /// What was wrong and what was expected.
-    pub message: String,
-}
-
-impl Problem {
-    pub(crate) fn new(path: impl Into<String>, message: impl Into<String>) -> Self {
-        Problem {
-            path: path.into(),
-            message: message.into(),
-        }
-    }
-
-    /// The same problem seen from the parent: `prefix` is prepended to the path.
-    pub(crate) fn under(mut self, prefix: &str) -> Self {
-        self.path = join(prefix, &self.path);
-        self
-    }
-}
-
-/// `prefix` + `path` with a dot where needed (`a` + `b` = `a.b`, `a` + `[1]` = `a[1]`).
-pub(crate) fn join(prefix: &str, path: &str) -> String {
-    if prefix.is_empty() {
-        path.to_owned()
-    } else if path.is_empty() {
-        prefix.to_owned()
-    } else if path.starts_with('[') {
-        format!("{prefix}{path}")
-    } else {
-        format!("{prefix}.{path}")
-    }
-}
-
-impl fmt::Display for Problem {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.path.is_empty() {
-            write!(f, "{}", self.message)
-        } else {
-            write!(f, "`{}`: {}", self.path, self.message)
-        }
-    }
-}
 
 /// The whole file.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -127,7 +79,7 @@ impl TryFrom<RawScenario> for Scenario {
     /// adds the line numbers).
     fn try_from(raw: RawScenario) -> Result<Self, Problem> {
         let scenario = raw.convert("scenario")?;
-        super::load::validate(&scenario)?;
+        super::rules::validate(&scenario)?;
         Ok(scenario)
     }
 }

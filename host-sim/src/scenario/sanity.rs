@@ -1,4 +1,4 @@
-//! Sanity checks of a scenario's layout, after the rules of `load.rs` have passed: what cannot
+//! Sanity checks of a scenario's layout, after the rules of `rules/` have passed: what cannot
 //! work is refused (a food source, way point or target wholly inside an obstacle, at the start
 //! or moved or added there by an event), what probably is a mistake is a warning (a nest in or
 //! on an obstacle, a food source partly in one, a spawn region partly inside obstacles, a nest
@@ -11,7 +11,7 @@
 
 use crate::ants::{AntObjectDef, AntObjectKind, Shape2};
 
-use super::raw::Problem;
+use super::problem::Problem;
 use super::types::{Action, Object, ObjectKind, Scenario, SpawnRegion};
 use super::warning::WarningKind;
 
