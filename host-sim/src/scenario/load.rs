@@ -5,12 +5,15 @@
 //! 1. TOML syntax (the parser's own position);
 //! 2. shape: serde into the flat `raw` structs (unknown fields, wrong types, missing fields) and
 //!    their conversion into the typed model (fields that do not fit an object's `kind`, ...);
-//! 3. rules: [`validate`](super::rules) on the typed scenario.
+//! 3. rules: the checks of `rules/` on the typed scenario.
+//!
+//! Stages 2 and 3 are `build.rs`'s [`build`].
 //!
 //! `locate.rs` places each problem in the text (file, line, column, field path).
 
 use std::path::Path;
 
+use super::build::build;
 use super::error::{DiagnosticKind, Result, ScenarioError};
 use super::locate::{Document, invalid, unlocated};
 use super::raw::RawScenario;
@@ -110,10 +113,8 @@ pub(crate) fn load(
 ) -> Result<(Scenario, Vec<ScenarioWarning>)> {
     let doc = Document::parse(text, origin)?;
     let raw: RawScenario = doc.deserialize()?;
-    let scenario = raw
-        .convert(default_name)
-        .map_err(|p| invalid(doc.locate(DiagnosticKind::Shape, p)))?;
-    let findings = validate(&scenario).map_err(|p| invalid(doc.locate(DiagnosticKind::Rule, p)))?;
+    let (scenario, findings) =
+        build(raw, default_name).map_err(|(kind, p)| invalid(doc.locate(kind, p)))?;
     let warnings = findings
         .into_iter()
         .map(|f| ScenarioWarning {

@@ -39,6 +39,7 @@
 //! every = 10                          # and trajectories, npy, render, gif (all default true)
 //! ```
 
+mod build;
 mod builtin;
 mod error;
 mod load;

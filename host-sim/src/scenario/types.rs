@@ -1,7 +1,7 @@
 //! The scenario data model: what a scenario file says, checked and typed.
 //!
-//! Every type serializes to (and deserializes from) the TOML schema of the scenario files; the
-//! untyped serde shapes live in `raw.rs`. Coordinates are `f32`: ant worlds are 2D `[x, y]` in
+//! Every type serializes to (and deserializes from) the TOML schema of the scenario files,
+//! through the untyped serde shapes of `raw.rs` (the conversions: `build.rs`). Coordinates are `f32`: ant worlds are 2D `[x, y]` in
 //! ant body lengths, bee worlds 3D `[x, y, z]` in the bee model's units with y up.
 
 use std::path::PathBuf;
@@ -9,8 +9,6 @@ use std::path::PathBuf;
 use serde::{Deserialize, Serialize};
 use swarm_core::ant::AntParams;
 use swarm_core::bee::BeeParams;
-
-use super::raw::{RawEvent, RawGroup, RawObject, RawScenario, RawSpawn, RawWorld};
 
 /// Largest number of agents in one group, and in a whole scenario.
 pub const MAX_AGENTS: u32 = 10_000_000;
@@ -27,8 +25,7 @@ pub const MAX_TARGET_PARTICLES: u32 = 100_000;
 /// A `Scenario` obtained from [`Scenario::from_path`], [`Scenario::from_str`],
 /// [`builtin`](super::builtin) or serde deserialization has been validated: names resolve,
 /// regions lie inside the world, parameters pass the controllers' `validate()`.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "RawScenario", into = "RawScenario")]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Scenario {
     /// Short name (`name` in the file; defaults to the file stem).
     pub name: String,
@@ -91,8 +88,7 @@ impl Scenario {
 }
 
 /// World bounds, tagged by `dim` in the file.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "RawWorld", into = "RawWorld")]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum World {
     /// `{ dim = 2, min = [x, y], max = [x, y] }`: a 2D ant arena, in ant body lengths.
     Ants2D {
@@ -194,8 +190,7 @@ impl ScalarType {
 }
 
 /// A group of agents of one model, sharing spawn region, parameters and scalar type.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "RawGroup", into = "RawGroup")]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Group {
     /// Name, unique in the scenario.
     pub name: String,
@@ -234,8 +229,7 @@ impl Group {
 }
 
 /// Where a group's agents start, and their initial heading.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "RawSpawn", into = "RawSpawn")]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Spawn {
     /// The region sampled uniformly.
     pub region: SpawnRegion,
@@ -265,8 +259,7 @@ pub enum SpawnRegion {
 }
 
 /// A named object of the world; its id is its index in [`Scenario::objects`].
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "RawObject", into = "RawObject")]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Object {
     /// Name, unique in the scenario.
     pub name: String,
@@ -516,8 +509,7 @@ impl Object {
 }
 
 /// A timed change of the world, applied before step `step` runs.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "RawEvent", into = "RawEvent")]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Event {
     /// The step at which it happens (`< steps`).
     pub step: u32,
