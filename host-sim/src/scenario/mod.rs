@@ -44,6 +44,7 @@ mod builtin;
 mod error;
 mod load;
 mod locate;
+mod params;
 mod problem;
 mod raw;
 mod rules;
@@ -57,9 +58,9 @@ mod tests;
 pub use builtin::{BUILTINS, Builtin, builtin, builtin_names, resolve, resolve_with_warnings};
 pub use error::{Diagnostic, DiagnosticKind, Result, ScenarioError};
 pub use load::check_steps;
+pub use params::{AntParamsOverride, BeeParamsOverride, BeePreset, ParamsOverride};
 pub use types::{
-    Action, AntParamsOverride, BeeParamsOverride, BeePreset, Event, Group, MAX_AGENTS, MAX_COORD,
-    MAX_TARGET_PARTICLES, Model, Object, ObjectKind, Outputs, ScalarType, Scenario, Spawn,
-    SpawnRegion, World,
+    Action, Event, Group, MAX_AGENTS, MAX_COORD, MAX_TARGET_PARTICLES, Model, Object, ObjectKind,
+    Outputs, ScalarType, Scenario, Spawn, SpawnRegion, World,
 };
 pub use warning::{ScenarioWarning, WarningKind};

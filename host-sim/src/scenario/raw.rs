@@ -7,7 +7,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::types::{AntParamsOverride, BeeParamsOverride, Model, Outputs, ScalarType};
+use super::params::{AntParamsOverride, BeeParamsOverride};
+use super::types::{Model, Outputs, ScalarType};
 
 /// The whole file.
 #[derive(Clone, Debug, Serialize, Deserialize)]

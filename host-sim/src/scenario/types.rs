@@ -10,6 +10,8 @@ use serde::{Deserialize, Serialize};
 use swarm_core::ant::AntParams;
 use swarm_core::bee::BeeParams;
 
+use super::params::{AntParamsOverride, BeeParamsOverride};
+
 /// Largest number of agents in one group, and in a whole scenario.
 pub const MAX_AGENTS: u32 = 10_000_000;
 
@@ -583,125 +585,6 @@ impl Default for Outputs {
             npy: true,
             render: true,
             gif: true,
-        }
-    }
-}
-
-/// Declares a parameter-override struct: every field of the parameter struct as an `Option`,
-/// with `apply` and the list of field names.
-macro_rules! overrides {
-    (
-        $(#[$meta:meta])*
-        $name:ident for $params:ident { $($field:ident: $ty:ty,)* }
-        $(extra { $($(#[$xmeta:meta])* $xfield:ident: $xty:ty,)* })?
-    ) => {
-        $(#[$meta])*
-        #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-        #[serde(deny_unknown_fields)]
-        pub struct $name {
-            $($(
-                $(#[$xmeta])*
-                #[serde(default, skip_serializing_if = "Option::is_none")]
-                pub $xfield: Option<$xty>,
-            )*)?
-            $(
-                #[doc = concat!("Overrides `", stringify!($params), "::", stringify!($field), "`.")]
-                #[serde(default, skip_serializing_if = "Option::is_none")]
-                pub $field: Option<$ty>,
-            )*
-        }
-
-        impl $name {
-            /// The parameter names an override may set (as in the file).
-            pub const FIELDS: &'static [&'static str] = &[$(stringify!($field)),*];
-
-            /// `base` with every field given here replaced.
-            pub fn apply(&self, base: $params<f32>) -> $params<f32> {
-                let mut p = base;
-                $(
-                    if let Some(v) = self.$field {
-                        p.$field = v;
-                    }
-                )*
-                p
-            }
-        }
-    };
-}
-
-overrides! {
-    /// `[groups.ant]`: any of the `AntParams` fields (xiang2018), on top of the defaults.
-    AntParamsOverride for AntParams {
-        speed: f32,
-        dt: f32,
-        theta: f32,
-        p_stop: f32,
-        casual_stop_ticks: u16,
-        collect_ticks: u16,
-        drop_ticks: u16,
-        contact_range: f32,
-        avoid_range: f32,
-        collision_range: f32,
-        w0: f32,
-        c: f32,
-        k: u8,
-    }
-}
-
-overrides! {
-    /// `[groups.bee]`: a Table I preset plus any of the `BeeParams` fields (chen).
-    BeeParamsOverride for BeeParams {
-        h: f32,
-        grid_edge: f32,
-        kappa1: f32,
-        kappa2: f32,
-        kappa3: f32,
-        epsilon: f32,
-        mass: f32,
-        gravity: f32,
-        air_density: f32,
-        wing_area: f32,
-        radius: f32,
-        d0: f32,
-        dt: f32,
-        stiffness: f32,
-        rest_density: f32,
-        max_speed: f32,
-        damping: f32,
-    }
-    extra {
-        /// The base the fields apply to (default `optimized`).
-        preset: BeePreset,
-    }
-}
-
-impl BeeParamsOverride {
-    /// The preset's parameters with the overrides applied.
-    pub fn params(&self) -> BeeParams<f32> {
-        self.apply(self.preset.unwrap_or_default().params())
-    }
-}
-
-/// A column of chen's Table I.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum BeePreset {
-    /// `"optimized"`: `BeeParams::default()` (h 3, L 2.7, κ 1.4/2.3/1.2, ε 1.7).
-    #[default]
-    Optimized,
-    /// `"grassland"`: `BeeParams::grassland()` (L 2.2, κ 1.5/5/0.9, ε 2).
-    Grassland,
-    /// `"around_nest"`: `BeeParams::around_nest()` (L 2.2, κ 1/2.5/1.7, ε 2).
-    AroundNest,
-}
-
-impl BeePreset {
-    /// The preset's parameters.
-    pub fn params(&self) -> BeeParams<f32> {
-        match self {
-            BeePreset::Optimized => BeeParams::default(),
-            BeePreset::Grassland => BeeParams::grassland(),
-            BeePreset::AroundNest => BeeParams::around_nest(),
         }
     }
 }
