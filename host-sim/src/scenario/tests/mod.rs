@@ -9,6 +9,8 @@ use swarm_core::model::ParamValue;
 
 use super::*;
 
+mod sanity;
+
 /// A small valid ant scenario; the error tests break one thing at a time.
 const ANTS: &str = r#"
 name = "test"
