@@ -236,22 +236,26 @@ fn path_at(root: &Spanned<DeTable<'_>>, offset: usize) -> String {
                 best = found;
             }
         };
-        if let Some(table) = value.as_table() {
-            for (key, child) in table.iter() {
-                let child_path = join(path, key.get_ref());
-                if contains(&key.span(), offset) || contains(&child.span(), offset) {
-                    consider((depth + 1, child_path.clone()));
-                }
-                consider(visit(child.get_ref(), &child_path, depth + 1, offset));
-            }
+        // Each child: its path, the span of its key (none in an array) and its value.
+        let children = if let Some(table) = value.as_table() {
+            table
+                .iter()
+                .map(|(key, child)| (join(path, key.get_ref()), Some(key.span()), child))
+                .collect::<Vec<_>>()
         } else if let Some(array) = value.as_array() {
-            for (i, child) in array.iter().enumerate() {
-                let child_path = format!("{path}[{i}]");
-                if contains(&child.span(), offset) {
-                    consider((depth + 1, child_path.clone()));
-                }
-                consider(visit(child.get_ref(), &child_path, depth + 1, offset));
+            array
+                .iter()
+                .enumerate()
+                .map(|(i, child)| (format!("{path}[{i}]"), None, child))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        for (child_path, key, child) in children {
+            if key.is_some_and(|k| contains(&k, offset)) || contains(&child.span(), offset) {
+                consider((depth + 1, child_path.clone()));
             }
+            consider(visit(child.get_ref(), &child_path, depth + 1, offset));
         }
         best
     }

@@ -397,19 +397,19 @@ mod tests {
         ticks: u16,
     }
 
+    const fn spec(name: &'static str, range: Range) -> ParamSpec {
+        ParamSpec {
+            name,
+            range,
+            unit: "",
+        }
+    }
+
     impl ModelParams for Toy {
         type Scalar = f32;
         const SPECS: &'static [ParamSpec] = &[
-            ParamSpec {
-                name: "gain",
-                range: Range::closed(0.0, 2.0),
-                unit: "",
-            },
-            ParamSpec {
-                name: "ticks",
-                range: Range::int(1, 100),
-                unit: "ticks",
-            },
+            spec("gain", Range::closed(0.0, 2.0)),
+            spec("ticks", Range::int(1, 100)),
         ];
 
         fn get(&self, index: usize) -> Option<ParamValue<f32>> {

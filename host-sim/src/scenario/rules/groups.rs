@@ -7,9 +7,7 @@ use swarm_core::Fx;
 use swarm_core::model::ModelParams;
 
 use super::{Problem, finite_all, inside, lookup, positive, show, world_text};
-use crate::scenario::types::{
-    Group, MAX_AGENTS, Model, ObjectKind, ScalarType, Scenario, SpawnRegion,
-};
+use crate::scenario::types::{Group, MAX_AGENTS, Model, ScalarType, Scenario, SpawnRegion};
 
 pub(super) fn validate_groups(s: &Scenario, objects: &HashMap<&str, usize>) -> Result<(), Problem> {
     if s.groups.is_empty() {
@@ -90,28 +88,17 @@ fn validate_ant_group(
              kind `nest`)",
         ));
     };
-    let (_, o) = lookup(s, objects, nest, &field("nest"))?;
-    if !matches!(o.kind, ObjectKind::Nest { .. }) {
-        return Err(Problem::new(
-            field("nest"),
-            format!(
-                "`{nest}` is a `{}`, expected an object of kind `nest`",
-                o.kind.tag()
-            ),
-        ));
-    }
-    if g.goal.is_some() {
-        return Err(Problem::new(
-            field("goal"),
-            "`goal` is for bee groups; ants forage between their `nest` and the food sources",
-        ));
-    }
-    if g.bee.is_some() {
-        return Err(Problem::new(
-            field("bee"),
-            "bee parameters in an ant group; use `[groups.ant]` for ant parameters",
-        ));
-    }
+    object_of_kind(s, objects, nest, &field("nest"), "nest")?;
+    not_given(
+        g.goal.is_some(),
+        field("goal"),
+        "`goal` is for bee groups; ants forage between their `nest` and the food sources",
+    )?;
+    not_given(
+        g.bee.is_some(),
+        field("bee"),
+        "bee parameters in an ant group; use `[groups.ant]` for ant parameters",
+    )?;
     let params = g.ant_params();
     check_params(
         &params,
@@ -120,6 +107,65 @@ fn validate_ant_group(
         path,
         "ant",
     )
+}
+
+fn validate_bee_group(
+    s: &Scenario,
+    objects: &HashMap<&str, usize>,
+    g: &Group,
+    path: &str,
+) -> Result<(), Problem> {
+    let field = |f: &str| format!("{path}.{f}");
+    not_given(
+        g.nest.is_some(),
+        field("nest"),
+        "`nest` is for ant groups; bees fly toward a `goal` (an object of kind `target`)",
+    )?;
+    if let Some(goal) = &g.goal {
+        object_of_kind(s, objects, goal, &field("goal"), "target")?;
+    }
+    not_given(
+        g.ant.is_some(),
+        field("ant"),
+        "ant parameters in a bee group; use `[groups.bee]` for bee parameters",
+    )?;
+    let params = g.bee_params();
+    check_params(
+        &params,
+        || params.cast::<Fx>().validate(),
+        g.scalar,
+        path,
+        "bee",
+    )
+}
+
+/// The object `name` (named at `path`) exists and is of kind `kind`.
+fn object_of_kind(
+    s: &Scenario,
+    objects: &HashMap<&str, usize>,
+    name: &str,
+    path: &str,
+    kind: &str,
+) -> Result<(), Problem> {
+    let (_, o) = lookup(s, objects, name, path)?;
+    if o.kind.tag() != kind {
+        return Err(Problem::new(
+            path,
+            format!(
+                "`{name}` is a `{}`, expected an object of kind `{kind}`",
+                o.kind.tag()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// A field of the other model's groups (`given`: it is there) is refused with `message`.
+fn not_given(given: bool, path: String, message: &str) -> Result<(), Problem> {
+    if given {
+        return Err(Problem::new(path, message));
+    }
+    Ok(())
 }
 
 /// Checks a group's parameters, and for a fixed-point group also `in_fixed` (the same
@@ -151,47 +197,6 @@ fn check_params<P: ModelParams>(
         format!("{path}.{model}.{field}"),
         format!("invalid {model} parameter `{field}`: expected {takes}"),
     ))
-}
-
-fn validate_bee_group(
-    s: &Scenario,
-    objects: &HashMap<&str, usize>,
-    g: &Group,
-    path: &str,
-) -> Result<(), Problem> {
-    let field = |f: &str| format!("{path}.{f}");
-    if g.nest.is_some() {
-        return Err(Problem::new(
-            field("nest"),
-            "`nest` is for ant groups; bees fly toward a `goal` (an object of kind `target`)",
-        ));
-    }
-    if let Some(goal) = &g.goal {
-        let (_, o) = lookup(s, objects, goal, &field("goal"))?;
-        if !matches!(o.kind, ObjectKind::Target { .. }) {
-            return Err(Problem::new(
-                field("goal"),
-                format!(
-                    "`{goal}` is a `{}`, expected an object of kind `target`",
-                    o.kind.tag()
-                ),
-            ));
-        }
-    }
-    if g.ant.is_some() {
-        return Err(Problem::new(
-            field("ant"),
-            "ant parameters in a bee group; use `[groups.bee]` for bee parameters",
-        ));
-    }
-    let params = g.bee_params();
-    check_params(
-        &params,
-        || params.cast::<Fx>().validate(),
-        g.scalar,
-        path,
-        "bee",
-    )
 }
 
 fn validate_spawn(

@@ -66,21 +66,18 @@ pub(super) fn validate_objects(s: &Scenario) -> Result<HashMap<&str, usize>, Pro
 
 pub(super) fn validate_geometry(world: &World, o: &Object, path: &str) -> Result<(), Problem> {
     let field = |f: &str| format!("{path}.{f}");
+    // The round kinds with a centre point: the centre inside the world, a positive radius.
+    if let (Some(center), Some(radius)) = (o.kind.point(), o.kind.radius()) {
+        inside(world, center, &field("center"), "the centre")?;
+        positive(radius, &field("radius"))?;
+    }
     match &o.kind {
-        ObjectKind::Nest { center, radius }
-        | ObjectKind::Rock { center, radius }
-        | ObjectKind::Disturbance { center, radius }
-        | ObjectKind::Waypoint { center, radius, .. } => {
-            inside(world, center, &field("center"), "the centre")?;
-            positive(*radius, &field("radius"))
-        }
-        ObjectKind::Food {
-            center,
-            radius,
-            amount,
-        } => {
-            inside(world, center, &field("center"), "the centre")?;
-            positive(*radius, &field("radius"))?;
+        ObjectKind::Nest { .. }
+        | ObjectKind::Rock { .. }
+        | ObjectKind::Disturbance { .. }
+        | ObjectKind::Waypoint { .. }
+        | ObjectKind::Sphere { .. } => Ok(()),
+        ObjectKind::Food { amount, .. } => {
             if *amount == Some(0) {
                 return Err(Problem::new(
                     field("amount"),
@@ -89,17 +86,7 @@ pub(super) fn validate_geometry(world: &World, o: &Object, path: &str) -> Result
             }
             Ok(())
         }
-        ObjectKind::Sphere { center, radius } => {
-            inside(world, center, &field("center"), "the centre")?;
-            positive(*radius, &field("radius"))
-        }
-        ObjectKind::Target {
-            center,
-            radius,
-            particles,
-        } => {
-            inside(world, center, &field("center"), "the centre")?;
-            positive(*radius, &field("radius"))?;
+        ObjectKind::Target { particles, .. } => {
             if !(1..=MAX_TARGET_PARTICLES).contains(particles) {
                 return Err(Problem::new(
                     field("particles"),
