@@ -268,24 +268,19 @@ mod tests {
 
     #[test]
     fn path_segments() {
-        assert_eq!(
-            segments("groups[1].spawn.radius"),
-            vec![
-                Seg::Key("groups"),
-                Seg::Index(1),
-                Seg::Key("spawn"),
-                Seg::Key("radius")
-            ]
-        );
-        assert_eq!(
-            segments("objects[2].points[3]"),
-            vec![
-                Seg::Key("objects"),
-                Seg::Index(2),
-                Seg::Key("points"),
-                Seg::Index(3)
-            ]
-        );
+        use Seg::{Index, Key};
+        for (path, segs) in [
+            (
+                "groups[1].spawn.radius",
+                vec![Key("groups"), Index(1), Key("spawn"), Key("radius")],
+            ),
+            (
+                "objects[2].points[3]",
+                vec![Key("objects"), Index(2), Key("points"), Index(3)],
+            ),
+        ] {
+            assert_eq!(segments(path), segs);
+        }
         assert!(segments("").is_empty());
     }
 }

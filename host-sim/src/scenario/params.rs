@@ -462,22 +462,23 @@ mod tests {
 
     #[test]
     fn what_the_table_does_not_allow_is_refused() {
-        assert_eq!(
-            read("gian = 1").unwrap_err(),
-            "unknown field `gian`, expected `gain` or `ticks`"
-        );
-        assert_eq!(
-            read("ticks = 1.5").unwrap_err(),
-            "invalid type: floating point `1.5`, expected u16"
-        );
-        assert_eq!(
-            read("ticks = 70000").unwrap_err(),
-            "invalid value: integer `70000`, expected u16"
-        );
-        assert_eq!(
-            read("gain = \"x\"").unwrap_err(),
-            "invalid type: string \"x\", expected f32"
-        );
+        for (text, message) in [
+            (
+                "gian = 1",
+                "unknown field `gian`, expected `gain` or `ticks`",
+            ),
+            (
+                "ticks = 1.5",
+                "invalid type: floating point `1.5`, expected u16",
+            ),
+            (
+                "ticks = 70000",
+                "invalid value: integer `70000`, expected u16",
+            ),
+            ("gain = \"x\"", "invalid type: string \"x\", expected f32"),
+        ] {
+            assert_eq!(read(text).unwrap_err(), message);
+        }
         assert!(
             toml::from_str::<BTreeMap<String, ParamsOverride<Toy>>>("t = 5")
                 .unwrap_err()

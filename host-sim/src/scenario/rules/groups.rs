@@ -4,6 +4,8 @@
 use std::collections::HashMap;
 
 use swarm_core::Fx;
+use swarm_core::ant::AntParams;
+use swarm_core::bee::BeeParams;
 use swarm_core::model::ModelParams;
 
 use super::{Problem, finite_all, inside, lookup, positive, show, world_text};
@@ -65,78 +67,62 @@ pub(super) fn validate_groups(s: &Scenario, objects: &HashMap<&str, usize>) -> R
                 ),
             ));
         }
-        match g.model {
-            Model::Ant => validate_ant_group(s, objects, g, &path)?,
-            Model::Bee => validate_bee_group(s, objects, g, &path)?,
-        }
+        validate_model_fields(s, objects, g, &path)?;
         validate_spawn(s, objects, g, &path)?;
     }
     Ok(())
 }
 
-fn validate_ant_group(
+/// The fields that depend on the group's model: the object it names (an ant group's nest, a
+/// bee group's goal), none of the other model's fields, valid parameters.
+fn validate_model_fields(
     s: &Scenario,
     objects: &HashMap<&str, usize>,
     g: &Group,
     path: &str,
 ) -> Result<(), Problem> {
     let field = |f: &str| format!("{path}.{f}");
-    let Some(nest) = &g.nest else {
-        return Err(Problem::new(
-            field("nest"),
-            "missing field `nest`: an ant group needs the name of its home nest (an object of \
-             kind `nest`)",
-        ));
-    };
-    object_of_kind(s, objects, nest, &field("nest"), "nest")?;
-    not_given(
-        g.goal.is_some(),
-        field("goal"),
-        "`goal` is for bee groups; ants forage between their `nest` and the food sources",
-    )?;
-    not_given(
-        g.bee.is_some(),
-        field("bee"),
-        "bee parameters in an ant group; use `[groups.ant]` for ant parameters",
-    )?;
-    let params = g.ant_params();
-    check_params(
-        &params,
-        || params.cast::<Fx>().validate(),
-        g.scalar,
-        path,
-        "ant",
-    )
-}
-
-fn validate_bee_group(
-    s: &Scenario,
-    objects: &HashMap<&str, usize>,
-    g: &Group,
-    path: &str,
-) -> Result<(), Problem> {
-    let field = |f: &str| format!("{path}.{f}");
-    not_given(
-        g.nest.is_some(),
-        field("nest"),
-        "`nest` is for ant groups; bees fly toward a `goal` (an object of kind `target`)",
-    )?;
-    if let Some(goal) = &g.goal {
-        object_of_kind(s, objects, goal, &field("goal"), "target")?;
+    match g.model {
+        Model::Ant => {
+            let Some(nest) = &g.nest else {
+                return Err(Problem::new(
+                    field("nest"),
+                    "missing field `nest`: an ant group needs the name of its home nest (an \
+                     object of kind `nest`)",
+                ));
+            };
+            object_of_kind(s, objects, nest, &field("nest"), "nest")?;
+            not_given(
+                g.goal.is_some(),
+                field("goal"),
+                "`goal` is for bee groups; ants forage between their `nest` and the food sources",
+            )?;
+            not_given(
+                g.bee.is_some(),
+                field("bee"),
+                "bee parameters in an ant group; use `[groups.ant]` for ant parameters",
+            )?;
+            let fixed = |p: &AntParams<f32>| p.cast::<Fx>().validate();
+            check_params(&g.ant_params(), fixed, g.scalar, path, "ant")
+        }
+        Model::Bee => {
+            not_given(
+                g.nest.is_some(),
+                field("nest"),
+                "`nest` is for ant groups; bees fly toward a `goal` (an object of kind `target`)",
+            )?;
+            if let Some(goal) = &g.goal {
+                object_of_kind(s, objects, goal, &field("goal"), "target")?;
+            }
+            not_given(
+                g.ant.is_some(),
+                field("ant"),
+                "ant parameters in a bee group; use `[groups.bee]` for bee parameters",
+            )?;
+            let fixed = |p: &BeeParams<f32>| p.cast::<Fx>().validate();
+            check_params(&g.bee_params(), fixed, g.scalar, path, "bee")
+        }
     }
-    not_given(
-        g.ant.is_some(),
-        field("ant"),
-        "ant parameters in a bee group; use `[groups.bee]` for bee parameters",
-    )?;
-    let params = g.bee_params();
-    check_params(
-        &params,
-        || params.cast::<Fx>().validate(),
-        g.scalar,
-        path,
-        "bee",
-    )
 }
 
 /// The object `name` (named at `path`) exists and is of kind `kind`.
@@ -168,18 +154,18 @@ fn not_given(given: bool, path: String, message: &str) -> Result<(), Problem> {
     Ok(())
 }
 
-/// Checks a group's parameters, and for a fixed-point group also `in_fixed` (the same
-/// parameters converted to `Fx`); the problem names the first bad one and what it takes (from
+/// Checks a group's parameters, and for a fixed-point group also `in_fixed` of them (their
+/// check once converted to `Fx`); the problem names the first bad one and what it takes (from
 /// the model's parameter table in swarm-core).
 fn check_params<P: ModelParams>(
     params: &P,
-    in_fixed: impl FnOnce() -> swarm_core::Result<()>,
+    in_fixed: impl FnOnce(&P) -> swarm_core::Result<()>,
     scalar: ScalarType,
     path: &str,
     model: &str,
 ) -> Result<(), Problem> {
     let checked = params.validate().and_then(|()| match scalar {
-        ScalarType::Fixed => in_fixed(),
+        ScalarType::Fixed => in_fixed(params),
         ScalarType::F32 => Ok(()),
     });
     let Err(e) = checked else {
