@@ -1,7 +1,7 @@
 //! Tests of the sanity checks of a layout (`sanity/`): what is refused, what is a warning,
 //! where each is reported.
 
-use super::{edit, line_of};
+use super::{edit, expect_error, line_of};
 use crate::scenario::{
     BUILTINS, DiagnosticKind, Scenario, ScenarioError, ScenarioWarning, WarningKind,
     resolve_with_warnings,
@@ -82,27 +82,18 @@ fn warnings(text: &str) -> Vec<ScenarioWarning> {
         .1
 }
 
-/// Loads `text`, expects it refused at `line` / `field`, with a message naming `names`.
+/// Loads `text`, expects it refused by a rule at `line` / `field`, with a message naming
+/// `names`; the serde path refuses it too.
 #[track_caller]
 fn refused(text: &str, line: usize, field: &str, names: &[&str]) {
-    let err = Scenario::from_str(text, "t.toml").expect_err("should be refused");
-    let shown = err.to_string();
-    let Some(d) = err.diagnostic() else {
-        panic!("not a diagnostic: {shown}")
-    };
-    assert_eq!(
-        (d.kind, d.line, d.field.as_str()),
-        (DiagnosticKind::Rule, Some(line), field),
-        "{shown}"
-    );
+    let d = expect_error(text, line, field, "");
+    assert_eq!(d.kind, DiagnosticKind::Rule, "{d}");
     for n in names {
         assert!(
             d.message.contains(&format!("`{n}`")),
-            "should name `{n}`: {shown}"
+            "should name `{n}`: {d}"
         );
     }
-    assert!(shown.contains(&format!("t.toml:{line}:")), "{shown}");
-    // The serde path refuses it too.
     assert!(toml::from_str::<Scenario>(text).is_err());
 }
 
