@@ -39,6 +39,11 @@
 //! every = 10                          # and trajectories, npy, render, gif (all default true)
 //! ```
 
+// The way a file goes: `load` (entry points) parses it into a `locate::Document`, serde reads
+// the `raw` shapes (plain data), `build` converts them into the `types` and runs the `rules`
+// (then the `sanity` checks); every check reports a `problem::Problem` at a field path, which
+// `locate` places in the text. `params` are the parameter overrides, read by name from each
+// model's parameter table. `types` imports none of `raw`, `build` or `load`.
 mod build;
 mod builtin;
 mod error;
