@@ -10,6 +10,7 @@
 //! with `<scene>` one of `drift` (Fig. 14 without its shafts), `fig14`, `fig15`, `grass`, or
 //! `curl` (samples the largest curl-noise force of two Table I columns).
 
+use swarm_core::model::ParamValue;
 use swarm_sim::bees::BeeSim;
 use swarm_sim::scenario::{self, ObjectKind, Scenario};
 
@@ -18,22 +19,19 @@ fn env(name: &str) -> Option<f32> {
 }
 
 fn tune(sc: &mut Scenario) {
+    let knobs = [
+        ("BEE_K", "stiffness"),
+        ("BEE_RHO0", "rest_density"),
+        ("BEE_H", "h"),
+        ("BEE_KAPPA2", "kappa2"),
+        ("BEE_DT", "dt"),
+    ];
     for g in &mut sc.groups {
         let mut o = g.bee.clone().unwrap_or_default();
-        if let Some(k) = env("BEE_K") {
-            o.stiffness = Some(k);
-        }
-        if let Some(k) = env("BEE_RHO0") {
-            o.rest_density = Some(k);
-        }
-        if let Some(k) = env("BEE_H") {
-            o.h = Some(k);
-        }
-        if let Some(k) = env("BEE_KAPPA2") {
-            o.kappa2 = Some(k);
-        }
-        if let Some(k) = env("BEE_DT") {
-            o.dt = Some(k);
+        for (var, param) in knobs {
+            if let Some(v) = env(var) {
+                assert!(o.overrides.set(param, ParamValue::Real(v)), "{param}");
+            }
         }
         g.bee = Some(o);
     }

@@ -39,10 +39,20 @@
 //! every = 10                          # and trajectories, npy, render, gif (all default true)
 //! ```
 
+// The way a file goes: `load` (entry points) parses it into a `locate::Document`, serde reads
+// the `raw` shapes (plain data), `build` converts them into the `types` and runs the `rules`
+// (then the `sanity` checks); every check reports a `problem::Problem` at a field path, which
+// `locate` places in the text. `params` are the parameter overrides, read by name from each
+// model's parameter table. `types` imports none of `raw`, `build` or `load`.
+mod build;
 mod builtin;
 mod error;
 mod load;
+mod locate;
+mod params;
+mod problem;
 mod raw;
+mod rules;
 mod sanity;
 mod types;
 mod warning;
@@ -53,9 +63,9 @@ mod tests;
 pub use builtin::{BUILTINS, Builtin, builtin, builtin_names, resolve, resolve_with_warnings};
 pub use error::{Diagnostic, DiagnosticKind, Result, ScenarioError};
 pub use load::check_steps;
+pub use params::{AntParamsOverride, BeeParamsOverride, BeePreset, ParamsOverride};
 pub use types::{
-    Action, AntParamsOverride, BeeParamsOverride, BeePreset, Event, Group, MAX_AGENTS, MAX_COORD,
-    MAX_TARGET_PARTICLES, Model, Object, ObjectKind, Outputs, ScalarType, Scenario, Spawn,
-    SpawnRegion, World,
+    Action, Event, Group, MAX_AGENTS, MAX_COORD, MAX_TARGET_PARTICLES, Model, Object, ObjectKind,
+    Outputs, ScalarType, Scenario, Spawn, SpawnRegion, World,
 };
 pub use warning::{ScenarioWarning, WarningKind};

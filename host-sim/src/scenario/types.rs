@@ -1,7 +1,7 @@
 //! The scenario data model: what a scenario file says, checked and typed.
 //!
-//! Every type serializes to (and deserializes from) the TOML schema of the scenario files; the
-//! untyped serde shapes live in `raw.rs`. Coordinates are `f32`: ant worlds are 2D `[x, y]` in
+//! Every type serializes to (and deserializes from) the TOML schema of the scenario files,
+//! through the untyped serde shapes of `raw.rs` (the conversions: `build.rs`). Coordinates are `f32`: ant worlds are 2D `[x, y]` in
 //! ant body lengths, bee worlds 3D `[x, y, z]` in the bee model's units with y up.
 
 use std::path::PathBuf;
@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 use swarm_core::ant::AntParams;
 use swarm_core::bee::BeeParams;
 
-use super::raw::{RawEvent, RawGroup, RawObject, RawScenario, RawSpawn, RawWorld};
+use super::params::{AntParamsOverride, BeeParamsOverride};
 
 /// Largest number of agents in one group, and in a whole scenario.
 pub const MAX_AGENTS: u32 = 10_000_000;
@@ -27,8 +27,7 @@ pub const MAX_TARGET_PARTICLES: u32 = 100_000;
 /// A `Scenario` obtained from [`Scenario::from_path`], [`Scenario::from_str`],
 /// [`builtin`](super::builtin) or serde deserialization has been validated: names resolve,
 /// regions lie inside the world, parameters pass the controllers' `validate()`.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "RawScenario", into = "RawScenario")]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Scenario {
     /// Short name (`name` in the file; defaults to the file stem).
     pub name: String,
@@ -91,8 +90,7 @@ impl Scenario {
 }
 
 /// World bounds, tagged by `dim` in the file.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "RawWorld", into = "RawWorld")]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum World {
     /// `{ dim = 2, min = [x, y], max = [x, y] }`: a 2D ant arena, in ant body lengths.
     Ants2D {
@@ -194,8 +192,7 @@ impl ScalarType {
 }
 
 /// A group of agents of one model, sharing spawn region, parameters and scalar type.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "RawGroup", into = "RawGroup")]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Group {
     /// Name, unique in the scenario.
     pub name: String,
@@ -234,8 +231,7 @@ impl Group {
 }
 
 /// Where a group's agents start, and their initial heading.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "RawSpawn", into = "RawSpawn")]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Spawn {
     /// The region sampled uniformly.
     pub region: SpawnRegion,
@@ -265,8 +261,7 @@ pub enum SpawnRegion {
 }
 
 /// A named object of the world; its id is its index in [`Scenario::objects`].
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "RawObject", into = "RawObject")]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Object {
     /// Name, unique in the scenario.
     pub name: String,
@@ -516,8 +511,7 @@ impl Object {
 }
 
 /// A timed change of the world, applied before step `step` runs.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "RawEvent", into = "RawEvent")]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Event {
     /// The step at which it happens (`< steps`).
     pub step: u32,
@@ -591,125 +585,6 @@ impl Default for Outputs {
             npy: true,
             render: true,
             gif: true,
-        }
-    }
-}
-
-/// Declares a parameter-override struct: every field of the parameter struct as an `Option`,
-/// with `apply` and the list of field names.
-macro_rules! overrides {
-    (
-        $(#[$meta:meta])*
-        $name:ident for $params:ident { $($field:ident: $ty:ty,)* }
-        $(extra { $($(#[$xmeta:meta])* $xfield:ident: $xty:ty,)* })?
-    ) => {
-        $(#[$meta])*
-        #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-        #[serde(deny_unknown_fields)]
-        pub struct $name {
-            $($(
-                $(#[$xmeta])*
-                #[serde(default, skip_serializing_if = "Option::is_none")]
-                pub $xfield: Option<$xty>,
-            )*)?
-            $(
-                #[doc = concat!("Overrides `", stringify!($params), "::", stringify!($field), "`.")]
-                #[serde(default, skip_serializing_if = "Option::is_none")]
-                pub $field: Option<$ty>,
-            )*
-        }
-
-        impl $name {
-            /// The parameter names an override may set (as in the file).
-            pub const FIELDS: &'static [&'static str] = &[$(stringify!($field)),*];
-
-            /// `base` with every field given here replaced.
-            pub fn apply(&self, base: $params<f32>) -> $params<f32> {
-                let mut p = base;
-                $(
-                    if let Some(v) = self.$field {
-                        p.$field = v;
-                    }
-                )*
-                p
-            }
-        }
-    };
-}
-
-overrides! {
-    /// `[groups.ant]`: any of the `AntParams` fields (xiang2018), on top of the defaults.
-    AntParamsOverride for AntParams {
-        speed: f32,
-        dt: f32,
-        theta: f32,
-        p_stop: f32,
-        casual_stop_ticks: u16,
-        collect_ticks: u16,
-        drop_ticks: u16,
-        contact_range: f32,
-        avoid_range: f32,
-        collision_range: f32,
-        w0: f32,
-        c: f32,
-        k: u8,
-    }
-}
-
-overrides! {
-    /// `[groups.bee]`: a Table I preset plus any of the `BeeParams` fields (chen).
-    BeeParamsOverride for BeeParams {
-        h: f32,
-        grid_edge: f32,
-        kappa1: f32,
-        kappa2: f32,
-        kappa3: f32,
-        epsilon: f32,
-        mass: f32,
-        gravity: f32,
-        air_density: f32,
-        wing_area: f32,
-        radius: f32,
-        d0: f32,
-        dt: f32,
-        stiffness: f32,
-        rest_density: f32,
-        max_speed: f32,
-        damping: f32,
-    }
-    extra {
-        /// The base the fields apply to (default `optimized`).
-        preset: BeePreset,
-    }
-}
-
-impl BeeParamsOverride {
-    /// The preset's parameters with the overrides applied.
-    pub fn params(&self) -> BeeParams<f32> {
-        self.apply(self.preset.unwrap_or_default().params())
-    }
-}
-
-/// A column of chen's Table I.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum BeePreset {
-    /// `"optimized"`: `BeeParams::default()` (h 3, L 2.7, κ 1.4/2.3/1.2, ε 1.7).
-    #[default]
-    Optimized,
-    /// `"grassland"`: `BeeParams::grassland()` (L 2.2, κ 1.5/5/0.9, ε 2).
-    Grassland,
-    /// `"around_nest"`: `BeeParams::around_nest()` (L 2.2, κ 1/2.5/1.7, ε 2).
-    AroundNest,
-}
-
-impl BeePreset {
-    /// The preset's parameters.
-    pub fn params(&self) -> BeeParams<f32> {
-        match self {
-            BeePreset::Optimized => BeeParams::default(),
-            BeePreset::Grassland => BeeParams::grassland(),
-            BeePreset::AroundNest => BeeParams::around_nest(),
         }
     }
 }

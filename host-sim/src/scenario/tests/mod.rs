@@ -5,8 +5,11 @@ use std::path::Path;
 
 use swarm_core::ant::AntParams;
 use swarm_core::bee::BeeParams;
+use swarm_core::model::ParamValue;
 
 use super::*;
+
+mod sanity;
 
 /// A small valid ant scenario; the error tests break one thing at a time.
 const ANTS: &str = r#"
@@ -968,25 +971,23 @@ fn set_steps_drops_late_events() {
 
 #[test]
 fn overrides_apply_on_their_base() {
-    let o = AntParamsOverride {
-        speed: Some(2.0),
-        k: Some(3),
-        ..Default::default()
-    };
+    let mut o = AntParamsOverride::default();
+    assert!(o.set("speed", ParamValue::Real(2.0)));
+    assert!(o.set("k", ParamValue::Int(3)));
     let p = o.apply(AntParams::default());
     assert_eq!((p.speed, p.k), (2.0, 3));
     assert_eq!(p.theta, AntParams::<f32>::default().theta);
-    assert_eq!(AntParamsOverride::FIELDS.len(), 13);
-    let b = BeeParamsOverride {
+    assert_eq!(AntParamsOverride::names().count(), 13);
+    let mut b = BeeParamsOverride {
         preset: Some(BeePreset::Grassland),
-        h: Some(2.5),
         ..Default::default()
     };
+    assert!(b.overrides.set("h", ParamValue::Real(2.5)));
     let p = b.params();
     assert_eq!(p.h, 2.5);
     assert_eq!(p.kappa2, BeeParams::<f32>::grassland().kappa2);
     assert_eq!(BeeParamsOverride::default().params(), BeeParams::default());
-    assert_eq!(BeeParamsOverride::FIELDS.len(), 17);
+    assert_eq!(ParamsOverride::<BeeParams<f32>>::names().count(), 17);
 }
 
 #[test]
