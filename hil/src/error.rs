@@ -116,9 +116,35 @@ pub enum HilError {
     /// The soft device could not be made.
     #[error("soft device: {0}")]
     SoftDevice(swarm_core::Error),
-    /// A bad argument (the message says which and why).
+    /// A `--inject` fault specification that does not parse.
+    #[error("--inject `{spec}`: {problem}")]
+    FaultSpec {
+        /// The specification given.
+        spec: String,
+        /// What is wrong with it.
+        problem: String,
+    },
+    /// A firmware image that is not there, or not an ELF file.
+    #[error("{}: {problem}", path.display())]
+    Image {
+        /// The image.
+        path: std::path::PathBuf,
+        /// What is wrong with it.
+        problem: String,
+    },
+    /// A firmware name no board is known for.
+    #[error("unknown firmware `{0}` (ant-node, ant-node-fixed, bee-node, bee-node-fixed)")]
+    UnknownFirmware(String),
+    /// QEMU did not start the board as expected.
+    #[error("qemu-system-arm did not open a pseudo-terminal; it said: {0}")]
+    Qemu(String),
+    /// A link this host cannot open (pseudo-terminals on a non-Unix host, a pseudo-terminal
+    /// without a path, an address that resolves to nothing).
     #[error("{0}")]
-    Invalid(String),
+    Unsupported(String),
+    /// The soft device's thread panicked.
+    #[error("the soft device thread panicked")]
+    SoftDevicePanicked,
 }
 
 impl HilError {

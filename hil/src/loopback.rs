@@ -87,7 +87,7 @@ fn open(link: LinkKind) -> Result<(Box<dyn Transport>, Box<dyn Transport>)> {
         }
         #[cfg(not(unix))]
         LinkKind::Pty => {
-            return Err(crate::HilError::Invalid(
+            return Err(crate::HilError::Unsupported(
                 "pseudo-terminals need a Unix host".into(),
             ));
         }

@@ -51,8 +51,10 @@ pub fn board_of(image: &str) -> Option<Board> {
 pub fn image_size(path: &Path) -> Result<ImageSize> {
     let bytes =
         std::fs::read(path).map_err(|e| HilError::io(&path.display().to_string(), "reading", e))?;
-    let elf = object::File::parse(&*bytes)
-        .map_err(|e| HilError::Invalid(format!("{}: not an ELF file: {e}", path.display())))?;
+    let elf = object::File::parse(&*bytes).map_err(|e| HilError::Image {
+        path: path.to_path_buf(),
+        problem: format!("not an ELF file: {e}"),
+    })?;
     let size = |name: &str| elf.section_by_name(name).map_or(0, |s| s.size());
     Ok(ImageSize {
         flash: size(".vector_table") + size(".text") + size(".rodata") + size(".data"),
@@ -74,10 +76,10 @@ impl Qemu {
     /// socket; returns once QEMU has said which terminal it is.
     pub fn start(elf: &Path, board: &Board) -> Result<Qemu> {
         if !elf.is_file() {
-            return Err(HilError::Invalid(format!(
-                "{}: no such image (build it with firmware-examples/build.sh)",
-                elf.display()
-            )));
+            return Err(HilError::Image {
+                path: elf.to_path_buf(),
+                problem: "no such image (build it with firmware-examples/build.sh)".into(),
+            });
         }
         let dir = tempfile::tempdir().map_err(|e| HilError::io("qemu", "making a folder", e))?;
         let monitor = dir.path().join("monitor.sock");
@@ -152,10 +154,7 @@ impl Qemu {
                 Err(_) => {
                     let _ = child.kill();
                     let _ = child.wait();
-                    return Err(HilError::Invalid(format!(
-                        "qemu-system-arm did not open a pseudo-terminal; it said: {}",
-                        seen.join(" | ")
-                    )));
+                    return Err(HilError::Qemu(seen.join(" | ")));
                 }
             }
         };
@@ -256,12 +255,7 @@ pub fn mirror_in_qemu(
     ) -> Result<crate::mirror::MirrorReport>,
 ) -> Result<crate::mirror::MirrorReport> {
     use crate::Transport;
-    let board = board_of(&run.image).ok_or_else(|| {
-        HilError::Invalid(format!(
-            "unknown firmware `{}` (ant-node, ant-node-fixed, bee-node, bee-node-fixed)",
-            run.image
-        ))
-    })?;
+    let board = board_of(&run.image).ok_or_else(|| HilError::UnknownFirmware(run.image.clone()))?;
     let size = image_size(&run.elf)?;
     let qemu = Qemu::start(&run.elf, &board)?;
     let mut link = crate::transport::SerialTransport::open(&qemu.pty, 115_200)?;

@@ -61,7 +61,7 @@ impl<E: Send + 'static> SoftDevice<E> {
         self.stop.store(true, Ordering::Relaxed);
         match self.thread.take().map(JoinHandle::join) {
             Some(Ok(r)) => r,
-            _ => Err(HilError::Invalid("the soft device thread panicked".into())),
+            _ => Err(HilError::SoftDevicePanicked),
         }
     }
 }

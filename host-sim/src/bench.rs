@@ -40,7 +40,7 @@ pub struct BenchReport {
 ///
 /// # Errors
 ///
-/// [`SimError::Invalid`](crate::SimError::Invalid) for no agents or no steps, the pool's
+/// [`SimError::EmptyBench`](crate::SimError::EmptyBench) for no agents or no steps, the pool's
 /// error, a controller's refusal.
 pub fn bench(
     model: Model,
@@ -49,9 +49,7 @@ pub fn bench(
     threads: Option<usize>,
 ) -> Result<BenchReport> {
     if agents == 0 || steps == 0 {
-        return Err(crate::SimError::Invalid(format!(
-            "bench: needs at least one agent and one step (got {agents} agents, {steps} steps)"
-        )));
+        return Err(crate::SimError::EmptyBench { agents, steps });
     }
     let (pool, threads) = crate::par::pool(threads)?;
     pool.install(|| {

@@ -52,9 +52,49 @@ pub enum SimError {
     /// A device for the simulation's parameters could not be made.
     #[error("device: {0}")]
     Device(swarm_core::Error),
-    /// The scenario cannot run (its message says why).
-    #[error("{0}")]
-    Invalid(String),
+    /// A scenario given to a model that does not live in its world (an ant simulation of a
+    /// 3D world, ...).
+    #[error("scenario `{scenario}` is not a {dim}D world: the {model} model cannot run it")]
+    WrongWorld {
+        /// The scenario.
+        scenario: String,
+        /// The model.
+        model: &'static str,
+        /// The dimension the model needs.
+        dim: usize,
+    },
+    /// A group names an object the scenario does not have (or of the wrong kind).
+    #[error("group `{group}`: no {what} `{name}`")]
+    NoObject {
+        /// The group.
+        group: String,
+        /// What it names (`nest`, `goal`).
+        what: &'static str,
+        /// The name (empty if none was given).
+        name: String,
+    },
+    /// A group's parameters, converted to its scalar type, fail the controller's validation.
+    #[error("group `{group}`: {source}")]
+    GroupParams {
+        /// The group.
+        group: String,
+        /// The controller's complaint (which parameter).
+        source: swarm_core::Error,
+    },
+    /// A worker-thread count that cannot be used.
+    #[error("threads: {problem}")]
+    Threads {
+        /// Why (`must be at least 1`, the pool's own error).
+        problem: String,
+    },
+    /// A benchmark with nothing to time.
+    #[error("bench: needs at least one agent and one step (got {agents} agents, {steps} steps)")]
+    EmptyBench {
+        /// Agents asked for.
+        agents: usize,
+        /// Steps asked for.
+        steps: u32,
+    },
     /// A scenario file could not be read or is invalid (file, line, field in the message).
     #[error(transparent)]
     Scenario(#[from] crate::scenario::ScenarioError),

@@ -13,12 +13,16 @@ pub(crate) fn pool(threads: Option<usize>) -> Result<(rayon::ThreadPool, usize)>
     let threads =
         threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     if threads == 0 {
-        return Err(SimError::Invalid("threads: must be at least 1".into()));
+        return Err(SimError::Threads {
+            problem: "must be at least 1".into(),
+        });
     }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
-        .map_err(|e| SimError::Invalid(format!("cannot start {threads} threads: {e}")))?;
+        .map_err(|e| SimError::Threads {
+            problem: format!("cannot start {threads} threads: {e}"),
+        })?;
     Ok((pool, threads))
 }
 
@@ -78,7 +82,10 @@ mod tests {
                     |_, k, o| {
                         *o = k as u32;
                         if k % 997 == 996 {
-                            Err(SimError::Invalid(format!("agent {k}")))
+                            Err(SimError::NoAgent {
+                                id: k as u32,
+                                agents: 0,
+                            })
                         } else {
                             Ok(())
                         }
@@ -87,7 +94,7 @@ mod tests {
             });
             assert_eq!(
                 r.unwrap_err().to_string(),
-                SimError::Invalid("agent 996".into()).to_string()
+                SimError::NoAgent { id: 996, agents: 0 }.to_string()
             );
             assert!(out.iter().enumerate().all(|(k, &o)| o == k as u32));
         }

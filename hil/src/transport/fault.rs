@@ -41,7 +41,10 @@ impl FromStr for FaultSpec {
     /// `drop=R,flip=R,insert=R,garbage=R,delay=MS@R` (any subset; rates in [0, 1]).
     fn from_str(s: &str) -> Result<Self> {
         let mut spec = FaultSpec::default();
-        let bad = |m: String| HilError::Invalid(format!("--inject `{s}`: {m}"));
+        let bad = |problem: String| HilError::FaultSpec {
+            spec: s.to_string(),
+            problem,
+        };
         let rate = |k: &str, v: &str| -> Result<f64> {
             match v.parse::<f64>() {
                 Ok(r) if (0.0..=1.0).contains(&r) => Ok(r),

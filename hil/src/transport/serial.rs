@@ -112,7 +112,7 @@ pub fn pty_pair(baud: u32) -> Result<(SerialTransport, SerialTransport)> {
     })?;
     let path = slave
         .name()
-        .ok_or_else(|| HilError::Invalid("the pseudo-terminal has no path".into()))?;
+        .ok_or_else(|| HilError::Unsupported("the pseudo-terminal has no path".into()))?;
     // The pair's own terminal handle holds an exclusive lock: close it, then open the terminal
     // by its path (the master keeps it alive).
     drop(slave);

@@ -22,7 +22,7 @@ impl TcpTransport {
             .to_socket_addrs()
             .map_err(|e| io("resolving", e))?
             .next()
-            .ok_or_else(|| HilError::Invalid(format!("{addr}: no address")))?;
+            .ok_or_else(|| HilError::Unsupported(format!("{addr}: no address")))?;
         let stream = TcpStream::connect_timeout(&sock, timeout).map_err(|e| io("connecting", e))?;
         stream.set_nodelay(true).map_err(|e| io("setting up", e))?;
         Ok(TcpTransport {

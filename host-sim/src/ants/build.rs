@@ -14,10 +14,11 @@ impl AntSim {
     /// The ant simulation of `scenario` (a 2D world), with seed `seed`.
     pub fn from_scenario(scenario: &Scenario, seed: u32) -> Result<AntSim> {
         let World::Ants2D { min, max } = scenario.world else {
-            return Err(SimError::Invalid(format!(
-                "scenario `{}` is not a 2D ant world",
-                scenario.name
-            )));
+            return Err(SimError::WrongWorld {
+                scenario: scenario.name.clone(),
+                model: "ant",
+                dim: 2,
+            });
         };
         let params: Vec<AntParams<f32>> = scenario.groups.iter().map(Group::ant_params).collect();
         let contact = params.iter().map(|p| p.contact_range).fold(0.0, f32::max);
@@ -38,7 +39,11 @@ impl AntSim {
                 .nest
                 .as_deref()
                 .and_then(|n| scenario.object_id(n))
-                .ok_or_else(|| SimError::Invalid(format!("group `{}` has no nest", g.name)))?;
+                .ok_or_else(|| SimError::NoObject {
+                    group: g.name.clone(),
+                    what: "nest",
+                    name: g.nest.clone().unwrap_or_default(),
+                })?;
             let any: AnyAntGroup = match g.scalar {
                 ScalarType::F32 => spawn::<f32>(scenario, g, p, nest, first, seed)?.into(),
                 ScalarType::Fixed => spawn::<Fx>(scenario, g, p, nest, first, seed)?.into(),
@@ -127,7 +132,10 @@ fn spawn<S: SimScalar>(
     let params = params
         .cast::<S>()
         .checked()
-        .map_err(|e| SimError::Invalid(format!("group `{}`: {e}", g.name)))?;
+        .map_err(|source| SimError::GroupParams {
+            group: g.name.clone(),
+            source,
+        })?;
     let at_nest = matches!(&g.spawn.region, SpawnRegion::Around { at, .. }
         if g.nest.as_deref() == Some(at.as_str()));
     let states = (0..g.count)

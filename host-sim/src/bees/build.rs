@@ -22,10 +22,11 @@ impl BeeSim {
     /// The bee simulation of `scenario` (a 3D world), with seed `seed`.
     pub fn from_scenario(scenario: &Scenario, seed: u32) -> Result<BeeSim> {
         let World::Bees3D { min, max } = scenario.world else {
-            return Err(SimError::Invalid(format!(
-                "scenario `{}` is not a 3D bee world",
-                scenario.name
-            )));
+            return Err(SimError::WrongWorld {
+                scenario: scenario.name.clone(),
+                model: "bee",
+                dim: 3,
+            });
         };
         let params: Vec<BeeParams<f32>> = scenario.groups.iter().map(Group::bee_params).collect();
         let (range, sense) = params
@@ -62,8 +63,10 @@ impl BeeSim {
         let mut first = 0usize;
         for (g, p) in scenario.groups.iter().zip(params) {
             let goal = match g.goal.as_deref() {
-                Some(name) => Some(scenario.object_id(name).ok_or_else(|| {
-                    SimError::Invalid(format!("group `{}`: no goal `{name}`", g.name))
+                Some(name) => Some(scenario.object_id(name).ok_or_else(|| SimError::NoObject {
+                    group: g.name.clone(),
+                    what: "goal",
+                    name: name.to_string(),
                 })?),
                 None => None,
             };
@@ -121,7 +124,10 @@ fn spawn<S: SimScalar>(
     let checked = params
         .cast::<S>()
         .checked()
-        .map_err(|e| SimError::Invalid(format!("group `{}`: {e}", g.name)))?;
+        .map_err(|source| SimError::GroupParams {
+            group: g.name.clone(),
+            source,
+        })?;
     let velocity = match g.spawn.heading.as_deref() {
         Some(&[x, y, z]) => {
             let len = (x * x + y * y + z * z).sqrt();
