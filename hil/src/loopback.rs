@@ -29,41 +29,63 @@ pub fn with_scalar(sc: &Scenario, scalar: ScalarType) -> Scenario {
     sc
 }
 
-/// Mirrors scenario `sc` (any model) in `scalar` against a soft device over `link`, with
-/// `faults` injected on the link (both directions, seeded by `fault_seed`).
+/// The line of a loopback run: the link, the faults injected on it (both directions, seeded
+/// by `fault_seed`) and the client's pacing.
+#[derive(Clone, Copy, Debug)]
+pub struct Line {
+    /// The link.
+    pub link: LinkKind,
+    /// What to damage.
+    pub faults: FaultSpec,
+    /// The seed of the damage.
+    pub fault_seed: u64,
+    /// The client's window, timeouts and retries.
+    pub client: ClientOptions,
+}
+
+impl Line {
+    /// `link` without faults, the default client.
+    pub fn clean(link: LinkKind) -> Line {
+        Line {
+            link,
+            faults: FaultSpec::default(),
+            fault_seed: 1,
+            client: ClientOptions::default(),
+        }
+    }
+}
+
+/// Mirrors scenario `sc` (any model) in `scalar` against a soft device over `line`.
 pub fn loopback(
     sc: &Scenario,
     scalar: ScalarType,
-    link: LinkKind,
-    faults: FaultSpec,
-    fault_seed: u64,
-    client: ClientOptions,
+    line: Line,
     opts: &MirrorOptions,
 ) -> Result<MirrorReport> {
     let sc = with_scalar(sc, scalar);
     let engine = swarm_sim::models::engine(&sc, sc.seed)?;
-    loopback_engine(&sc.name, engine, link, faults, fault_seed, client, opts)
+    loopback_engine(&sc.name, engine, line, opts)
 }
 
 /// [`loopback`] of a simulation already built (of any model, e.g. one defined outside this
-/// workspace): its soft device ([`Engine::device`]) on the far end of `link`.
+/// workspace): its soft device ([`Engine::device`]) on the far end of the line.
 pub fn loopback_engine(
     name: &str,
     engine: Box<dyn Engine>,
-    link: LinkKind,
-    faults: FaultSpec,
-    fault_seed: u64,
-    client: ClientOptions,
+    line: Line,
     opts: &MirrorOptions,
 ) -> Result<MirrorReport> {
-    let (device_end, host_end) = open(link)?;
+    let (device_end, host_end) = open(line.link)?;
     let device = engine.device()?.soft;
     let soft: SoftDevice<()> =
         SoftDevice::spawn(move |stop| serve(device, device_end, stop).map(|_| ()));
-    let mut client = Client::new(Faulty::new(host_end, faults, fault_seed), client);
+    let mut client = Client::new(
+        Faulty::new(host_end, line.faults, line.fault_seed),
+        line.client,
+    );
     let report = mirror(name, engine, &mut client, opts, &mut |_| Ok(()));
     soft.stop()?;
-    let counts = (!faults.is_clean()).then(|| client.link_mut().counts());
+    let counts = (!line.faults.is_clean()).then(|| client.link_mut().counts());
     let add_faults = |r: &mut MirrorReport| r.faults = counts;
     match report {
         Ok(mut r) => {
@@ -111,16 +133,7 @@ mod tests {
     fn memory_loopback_mirrors_ants_without_a_mismatch() {
         let sc = swarm_sim::scenario::builtin("ants-fig7a-single-colony").unwrap();
         for scalar in [ScalarType::F32, ScalarType::Fixed] {
-            let r = loopback(
-                &sc,
-                scalar,
-                LinkKind::Memory,
-                FaultSpec::default(),
-                1,
-                ClientOptions::default(),
-                &opts(20, 20),
-            )
-            .unwrap();
+            let r = loopback(&sc, scalar, Line::clean(LinkKind::Memory), &opts(20, 20)).unwrap();
             assert_eq!(r.decisions, 800, "{scalar:?}");
             assert_eq!(r.mismatches, 0, "{}", r.human());
         }

@@ -6,7 +6,7 @@ use std::time::Duration;
 use swarm_core::ant::AntParams;
 use swarm_core::wire::{self, Accumulator, AntDevice, AntPlanReply, Event, kind};
 use swarm_hil::client::{Client, ClientOptions, RtoOptions};
-use swarm_hil::loopback::{LinkKind, loopback, with_scalar};
+use swarm_hil::loopback::{Line, LinkKind, loopback, with_scalar};
 use swarm_hil::mirror::{MirrorOptions, mirror, pick_agents};
 use swarm_hil::soft::{SoftDevice, serve};
 use swarm_hil::transport::{FaultSpec, Transport, memory_pair};
@@ -47,16 +47,11 @@ fn ten_thousand_decisions_of_ants_and_of_bees_match_in_memory_and_over_a_pty_in_
         for link in [LinkKind::Memory, LinkKind::Pty] {
             for scalar in [ScalarType::F32, ScalarType::Fixed] {
                 let what = format!("{} {link:?} {scalar:?}", sc.name);
-                let r = loopback(
-                    sc,
-                    scalar,
-                    link,
-                    FaultSpec::default(),
-                    1,
-                    clean_line,
-                    &opts(*agents, 100),
-                )
-                .unwrap();
+                let line = Line {
+                    client: clean_line,
+                    ..Line::clean(link)
+                };
+                let r = loopback(sc, scalar, line, &opts(*agents, 100)).unwrap();
                 assert_eq!(r.decisions, 10_000, "{what}");
                 assert_eq!(r.mismatches, 0, "{what}: {}", r.human());
                 // The timeout follows the measured round trips (tens of µs here, floor 50 ms):
@@ -90,7 +85,13 @@ fn faults_on_the_line_are_survived_and_reported() {
         (LinkKind::Memory, ScalarType::Fixed),
         (LinkKind::Pty, ScalarType::F32),
     ] {
-        let r = loopback(&fig7a(), scalar, link, spec, 3, client, &opts(20, 50)).unwrap();
+        let line = Line {
+            link,
+            faults: spec,
+            fault_seed: 3,
+            client,
+        };
+        let r = loopback(&fig7a(), scalar, line, &opts(20, 50)).unwrap();
         assert_eq!(r.decisions, 2_000, "every decision accounted for");
         assert_eq!(r.mismatches, 0, "{}", r.human());
         let f = r.faults.expect("fault counts");

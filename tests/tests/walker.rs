@@ -9,10 +9,10 @@ use swarm_core::wire::{
 use swarm_core::{Fx, Scalar, StepCtx, Vec2};
 use swarm_hil::HilError;
 use swarm_hil::client::{Client, ClientOptions};
-use swarm_hil::loopback::{LinkKind, loopback_engine};
+use swarm_hil::loopback::{Line, LinkKind, loopback_engine};
 use swarm_hil::mirror::{MirrorOptions, mirror};
 use swarm_hil::soft::{SoftDevice, serve};
-use swarm_hil::transport::{FaultSpec, memory_pair};
+use swarm_hil::transport::memory_pair;
 use swarm_sim::engine::Engine;
 use swarm_sim::run::{RunOptions, run_with};
 use swarm_sim::scalar::SimScalar;
@@ -154,10 +154,7 @@ fn the_mirror_checks_the_walkers_on_their_soft_device_with_no_mismatch() {
         let r = loopback_engine(
             "walkers",
             Box::new(sim::<Fx>(50, 9)),
-            link,
-            FaultSpec::default(),
-            1,
-            ClientOptions::default(),
+            Line::clean(link),
             &opts,
         )
         .unwrap();

@@ -8,7 +8,7 @@ use std::time::Duration;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use swarm_hil::client::{Client, ClientOptions, RtoOptions};
-use swarm_hil::loopback::{LinkKind, loopback, with_scalar};
+use swarm_hil::loopback::{Line, LinkKind, loopback, with_scalar};
 use swarm_hil::mirror::{MirrorOptions, MirrorReport, mirror_scenario};
 use swarm_hil::qemu::{QemuRun, mirror_in_qemu};
 use swarm_hil::transport::{FaultSpec, Faulty, SerialTransport, TcpTransport, Transport};
@@ -229,15 +229,13 @@ fn run(cli: Cli) -> Result<Verdict, Stop> {
                 Link::Memory => LinkKind::Memory,
                 Link::Pty => LinkKind::Pty,
             };
-            let report = loopback(
-                &sc,
-                run.scalar.into(),
+            let line = Line {
                 link,
                 faults,
-                run.fault_seed,
-                client_options(&run)?,
-                &mirror_options(&run),
-            );
+                fault_seed: run.fault_seed,
+                client: client_options(&run)?,
+            };
+            let report = loopback(&sc, run.scalar.into(), line, &mirror_options(&run));
             finish(report, run.json.as_deref())
         }
         Command::Mirror {
