@@ -3,14 +3,14 @@
 use std::io;
 use std::path::Path;
 
+use super::RenderOptions;
 use super::canvas::{CLEAR, Canvas, compose, stack};
 use super::draw::{
-    auto_radius, draw_agents, draw_base, draw_objects, draw_trails, side_canvas, trail_stride,
+    AgentStyle, auto_radius, draw_agents, draw_base, draw_objects, draw_trails, frame_canvas,
 };
 use super::legend::draw_step;
-use super::palette::{I_BG, palette, resolve_color_by};
+use super::palette::{I_BG, palette};
 use super::view::View;
-use super::{RenderOptions, check_inputs};
 use crate::output::atomic::write_atomic;
 use crate::output::error::{OutputError, Result};
 use crate::output::frames::Frame;
@@ -27,17 +27,13 @@ pub fn gif_frame_indices(n: usize, max: usize) -> Vec<usize> {
     }
 }
 
-/// Writes an animated, looping GIF of the run: at most `opts.gif_max_frames` frames, each with
-/// the objects visible at its step, short fading trails, the agents and the step number. Uses
-/// the renderer's fixed palette (no quantisation). Whole or not at all.
-pub fn render_gif(
+/// Writes the GIF of [`render_gif`](super::render_gif) (inputs checked), whole or not at all.
+pub(super) fn write_gif(
     scene: &Scene,
     frames: &[Frame],
-    path: impl AsRef<Path>,
+    path: &Path,
     opts: &RenderOptions,
 ) -> Result<()> {
-    let path = path.as_ref();
-    check_inputs(scene, frames, path)?;
     let view = View::new(scene, opts.gif_width);
     let side = (scene.dim == 3).then(|| View::side(scene, &view));
     let total_h = view.h + side.as_ref().map_or(0, |s| s.h);
@@ -47,15 +43,14 @@ pub fn render_gif(
             format!("GIF size {}x{} is too large", view.w, total_h),
         ));
     }
-    let by = resolve_color_by(opts.color_by, scene);
     let shown = gif_frame_indices(frames.len(), opts.gif_max_frames);
     let n = frames[0].agents.len();
-    let stride = trail_stride(n, opts.max_trail_agents);
     let r = opts
         .agent_radius_px
         .map(|r| r * view.w as f32 / opts.width.max(1) as f32)
         .unwrap_or_else(|| auto_radius(n, view.w))
         .max(0.5);
+    let style = AgentStyle::new(opts, scene, n, r);
     let text_scale = (view.w as i64 / 320).max(1);
     let flat_palette: Vec<u8> = palette().into_iter().flatten().collect();
 
@@ -91,14 +86,14 @@ pub fn render_gif(
                 idx.push(from);
             }
             idx.reverse();
-            draw_trails(&mut canvas, &view, scene, frames, &idx, stride, by);
+            draw_trails(&mut canvas, &view, scene, frames, &idx, style);
             compose(&mut canvas, &objects);
-            draw_agents(&mut canvas, &view, scene, frame, r, by);
+            draw_agents(&mut canvas, &view, scene, frame, style);
             draw_step(&mut canvas, frame.step, text_scale);
             let both;
             let pixels = match &side {
                 Some(sv) => {
-                    let panel = side_canvas(sv, scene, frames, &idx, stride, frame, r, by);
+                    let panel = frame_canvas(sv, scene, frames, &idx, frame, style);
                     let top = Canvas {
                         w: canvas.w,
                         h: canvas.h,

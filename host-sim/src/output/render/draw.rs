@@ -1,11 +1,13 @@
 //! Drawing a frame of a scene: the world, its objects, the agents' trails and dots, and the
 //! side panel of a 3D scene.
 
-use super::ColorBy;
 use super::canvas::{CLEAR, Canvas, compose};
-use super::palette::{I_BG, I_BORDER, I_INK, I_OUTSIDE, SHADES, agent_index, kind_index};
+use super::palette::{
+    I_BG, I_BORDER, I_INK, I_OUTSIDE, SHADES, agent_index, kind_index, resolve_color_by,
+};
 use super::view::View;
-use crate::output::frames::Frame;
+use super::{ColorBy, RenderOptions};
+use crate::output::frames::{AgentSample, Frame};
 use crate::output::scene::{Geometry, Scene, Shape, ShapeKind};
 
 /// The world area and its border on the outside colour.
@@ -94,6 +96,26 @@ fn draw_shape(canvas: &mut Canvas, view: &View, scene: &Scene, s: &Shape) {
     }
 }
 
+/// How agents are drawn: their colours, their dot radius in pixels, and which of them get trails
+/// (every `stride`-th by id).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct AgentStyle {
+    pub(super) by: ColorBy,
+    pub(super) r: f32,
+    pub(super) stride: usize,
+}
+
+impl AgentStyle {
+    /// The style for `agents` agents drawn as dots of radius `r` with `opts`' colours and trails.
+    pub(super) fn new(opts: &RenderOptions, scene: &Scene, agents: usize, r: f32) -> Self {
+        Self {
+            by: resolve_color_by(opts.color_by, scene),
+            r,
+            stride: trail_stride(agents, opts.max_trail_agents),
+        }
+    }
+}
+
 /// Draws the trails through `frames[idx]` for the agents `0, stride, 2·stride, ...`, oldest
 /// segments first and most faded.
 pub(super) fn draw_trails(
@@ -102,8 +124,7 @@ pub(super) fn draw_trails(
     scene: &Scene,
     frames: &[Frame],
     idx: &[usize],
-    agent_stride: usize,
-    by: ColorBy,
+    style: AgentStyle,
 ) {
     if idx.len() < 2 {
         return;
@@ -116,7 +137,7 @@ pub(super) fn draw_trails(
         let age = segs - 1 - s;
         let shade = 1 + age * (SHADES - 1) / segs;
         let (fa, fb) = (&frames[idx[s]], &frames[idx[s + 1]]);
-        for a in (0..n).step_by(agent_stride) {
+        for a in (0..n).step_by(style.stride) {
             let (p, q) = (&fa.agents[a], &fb.agents[a]);
             let (x0, y0) = view.world(scene, p.pos);
             let (x1, y1) = view.world(scene, q.pos);
@@ -126,96 +147,96 @@ pub(super) fn draw_trails(
             if (x1 - x0).abs() > max_jump || (y1 - y0).abs() > max_jump {
                 continue;
             }
-            canvas.line(x0, y0, x1, y1, agent_index(by, q.label, q.group, shade));
+            canvas.line(
+                x0,
+                y0,
+                x1,
+                y1,
+                agent_index(style.by, q.label, q.group, shade),
+            );
         }
     }
 }
 
+/// The agents of `frame` as `view` shows them: dots in a plan or top view; in the side view of a
+/// 3D scene, bees with heading and wings ([`draw_bee_side`]).
 pub(super) fn draw_agents(
     canvas: &mut Canvas,
     view: &View,
     scene: &Scene,
     frame: &Frame,
-    r: f32,
-    by: ColorBy,
+    style: AgentStyle,
 ) {
-    for a in &frame.agents {
-        let (x, y) = view.world(scene, a.pos);
-        if x.is_finite() && y.is_finite() {
-            canvas.disc(x, y, r, agent_index(by, a.label, a.group, 0));
-        }
-    }
-}
-
-/// The side view's bees: each a dot, its body as a line along its heading and its wings as a
-/// dark bar along the rolled wing axis, projected on (x, y) (see the module docs).
-pub(super) fn draw_bees_side(
-    canvas: &mut Canvas,
-    view: &View,
-    scene: &Scene,
-    frame: &Frame,
-    r: f32,
-    by: ColorBy,
-) {
-    let body = (3.0 * r).max(5.0);
-    let wing = 0.7 * body;
     for a in &frame.agents {
         let (x, y) = view.world(scene, a.pos);
         if !(x.is_finite() && y.is_finite()) {
             continue;
         }
-        let c = agent_index(by, a.label, a.group, 0);
-        let h = a.heading;
-        // Screen y grows downward: a world direction (u, v) is (u, −v) on screen.
-        canvas.line(x, y, x + body * h[0], y - body * h[1], c);
-        // s = heading × up = (−h.z, 0, h.x), normalized; wing axis cos·s − sin·up.
-        let len = h[0].hypot(h[2]);
-        let (sx, _sz) = if len > 1e-6 {
-            (-h[2] / len, h[0] / len)
+        let c = agent_index(style.by, a.label, a.group, 0);
+        if view.side {
+            draw_bee_side(canvas, a, (x, y), style.r, c);
         } else {
-            (0.0, 1.0)
-        };
-        let (sin, cos) = a.roll.to_radians().sin_cos();
-        let (wx, wy) = (cos * sx, -sin);
-        canvas.line(
-            x - wing * wx,
-            y + wing * wy,
-            x + wing * wx,
-            y - wing * wy,
-            I_INK,
-        );
-        canvas.disc(x, y, (0.6 * r).max(0.5), c);
+            canvas.disc(x, y, style.r, c);
+        }
     }
 }
 
-/// The side panel of a 3D scene at `frame`: world, shafts and objects, trails through
-/// `frames[idx]`, the bees with heading and wings, and a title.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn side_canvas(
+/// A bee in the side view at pixel `(x, y)`: a dot of colour `c`, its body as a line along its
+/// heading and its wings as a dark bar along the rolled wing axis, projected on (x, y) (see the
+/// module docs).
+fn draw_bee_side(canvas: &mut Canvas, a: &AgentSample, (x, y): (f32, f32), r: f32, c: u8) {
+    let body = (3.0 * r).max(5.0);
+    let wing = 0.7 * body;
+    let h = a.heading;
+    // Screen y grows downward: a world direction (u, v) is (u, −v) on screen.
+    canvas.line(x, y, x + body * h[0], y - body * h[1], c);
+    // s = heading × up = (−h.z, 0, h.x), normalized; wing axis cos·s − sin·up.
+    let len = h[0].hypot(h[2]);
+    let (sx, _sz) = if len > 1e-6 {
+        (-h[2] / len, h[0] / len)
+    } else {
+        (0.0, 1.0)
+    };
+    let (sin, cos) = a.roll.to_radians().sin_cos();
+    let (wx, wy) = (cos * sx, -sin);
+    canvas.line(
+        x - wing * wx,
+        y + wing * wy,
+        x + wing * wx,
+        y - wing * wy,
+        I_INK,
+    );
+    canvas.disc(x, y, (0.6 * r).max(0.5), c);
+}
+
+/// `frame` as `view` shows it: the world, the trails through `frames[idx]`, the objects visible
+/// at its step and the agents; the side view of a 3D scene (shafts full height, bees with heading
+/// and wings) with its title.
+pub(super) fn frame_canvas(
     view: &View,
     scene: &Scene,
     frames: &[Frame],
     idx: &[usize],
-    stride: usize,
     frame: &Frame,
-    r: f32,
-    by: ColorBy,
+    style: AgentStyle,
 ) -> Canvas {
     let mut canvas = Canvas::new(view.w, view.h, I_BG);
     draw_base(&mut canvas, view, scene);
-    draw_trails(&mut canvas, view, scene, frames, idx, stride, by);
+    draw_trails(&mut canvas, view, scene, frames, idx, style);
     let mut objects = Canvas::new(view.w, view.h, CLEAR);
     draw_objects(&mut objects, view, scene, frame.step);
     compose(&mut canvas, &objects);
-    draw_bees_side(&mut canvas, view, scene, frame, r, by);
-    let scale = (view.w as i64 / 400).max(1);
-    canvas.text(
-        view.ox as i64,
-        2 * scale,
-        "side view - x right / y up - line: heading - bar: wings at the roll",
-        scale,
-        I_INK,
-    );
+    draw_agents(&mut canvas, view, scene, frame, style);
+    if view.side {
+        let scale = (view.w as i64 / 400).max(1);
+        canvas.text(
+            view.ox as i64,
+            2 * scale,
+            "side view - x right / y up - line: heading - bar: wings at the roll",
+            scale,
+            I_INK,
+        );
+    }
     canvas
 }
 
@@ -229,6 +250,6 @@ pub(super) fn auto_radius(agents: usize, width: usize) -> f32 {
     (base * width as f32 / 1024.0).max(0.5)
 }
 
-pub(super) fn trail_stride(agents: usize, max: usize) -> usize {
+fn trail_stride(agents: usize, max: usize) -> usize {
     agents.div_ceil(max.max(1)).max(1)
 }

@@ -7,76 +7,50 @@ use std::path::Path;
 use image::ImageEncoder;
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 
-use super::canvas::{CLEAR, Canvas, compose, stack};
-use super::draw::{
-    auto_radius, draw_agents, draw_base, draw_objects, draw_trails, side_canvas, trail_stride,
-};
+use super::RenderOptions;
+use super::canvas::{Canvas, stack};
+use super::draw::{AgentStyle, auto_radius, frame_canvas};
 use super::legend::draw_legend;
-use super::palette::{I_BG, palette, resolve_color_by};
+use super::palette::palette;
 use super::view::View;
-use super::{RenderOptions, check_inputs};
 use crate::output::atomic::write_atomic;
 use crate::output::error::Result;
 use crate::output::frames::Frame;
 use crate::output::scene::Scene;
 
-/// Draws the last frame with trails; returns the canvas.
-fn snapshot_canvas(scene: &Scene, frames: &[Frame], opts: &RenderOptions) -> (Canvas, View) {
+/// Draws the last frame with trails, the legend and, for a 3D scene, the side view below.
+fn snapshot_canvas(scene: &Scene, frames: &[Frame], opts: &RenderOptions) -> Canvas {
     let view = View::new(scene, opts.width);
-    let mut canvas = Canvas::new(view.w, view.h, I_BG);
     let last = frames.len() - 1;
     let frame = &frames[last];
-    let by = resolve_color_by(opts.color_by, scene);
-    draw_base(&mut canvas, &view, scene);
-    let first = last.saturating_sub(opts.trail);
-    let idx: Vec<usize> = (first..=last).collect();
     let n = frame.agents.len();
-    draw_trails(
-        &mut canvas,
-        &view,
-        scene,
-        frames,
-        &idx,
-        trail_stride(n, opts.max_trail_agents),
-        by,
-    );
-    let mut objects = Canvas::new(view.w, view.h, CLEAR);
-    draw_objects(&mut objects, &view, scene, frame.step);
-    compose(&mut canvas, &objects);
     let r = opts
         .agent_radius_px
         .unwrap_or_else(|| auto_radius(n, view.w));
-    draw_agents(&mut canvas, &view, scene, frame, r, by);
+    let style = AgentStyle::new(opts, scene, n, r);
+    let idx: Vec<usize> = (last.saturating_sub(opts.trail)..=last).collect();
+    let mut canvas = frame_canvas(&view, scene, frames, &idx, frame, style);
     if opts.legend {
         let scale = (view.w as i64 / 400).max(1);
-        draw_legend(&mut canvas, scene, frame, by, scale);
+        draw_legend(&mut canvas, scene, frame, style.by, scale);
     }
     if scene.dim == 3 {
         let side = View::side(scene, &view);
-        let panel = side_canvas(
-            &side,
-            scene,
-            frames,
-            &idx,
-            trail_stride(n, opts.max_trail_agents),
-            frame,
-            r,
-            by,
+        canvas = stack(
+            canvas,
+            &frame_canvas(&side, scene, frames, &idx, frame, style),
         );
-        canvas = stack(canvas, &panel);
     }
-    (canvas, view)
+    canvas
 }
 
-/// Renders the PNG image (RGB) of the last frame in memory, without writing it.
-pub fn snapshot_image(
+/// The RGB image of the last frame (see [`snapshot_canvas`]).
+pub(super) fn snapshot_rgb(
     scene: &Scene,
     frames: &[Frame],
     opts: &RenderOptions,
-) -> Result<image::RgbImage> {
-    check_inputs(scene, frames, Path::new("<snapshot>"))?;
-    let (canvas, _) = snapshot_canvas(scene, frames, opts);
-    Ok(to_rgb(&canvas))
+) -> image::RgbImage {
+    to_rgb(&snapshot_canvas(scene, frames, opts))
 }
 
 fn to_rgb(canvas: &Canvas) -> image::RgbImage {
@@ -88,19 +62,8 @@ fn to_rgb(canvas: &Canvas) -> image::RgbImage {
     image::RgbImage::from_raw(canvas.w as u32, canvas.h as u32, rgb).expect("buffer size matches")
 }
 
-/// Writes a PNG snapshot of the last frame: objects visible at its step, fading trails of the last
-/// `opts.trail` frames (for at most `opts.max_trail_agents` agents), every agent as a dot
-/// coloured by label or group, and a legend. Whole or not at all.
-pub fn render_png(
-    scene: &Scene,
-    frames: &[Frame],
-    path: impl AsRef<Path>,
-    opts: &RenderOptions,
-) -> Result<()> {
-    let path = path.as_ref();
-    check_inputs(scene, frames, path)?;
-    let (canvas, _) = snapshot_canvas(scene, frames, opts);
-    let img = to_rgb(&canvas);
+/// Writes `img` as a PNG file, whole or not at all.
+pub(super) fn write_png(img: &image::RgbImage, path: &Path) -> Result<()> {
     write_atomic(path, |w| {
         PngEncoder::new_with_quality(w, CompressionType::Default, FilterType::Adaptive)
             .write_image(

@@ -37,9 +37,8 @@ use super::error::{OutputError, Result};
 use super::frames::{Frame, check_frames};
 use super::scene::Scene;
 
-pub use animation::{gif_frame_indices, render_gif};
+pub use animation::gif_frame_indices;
 pub use palette::{agent_color, kind_color};
-pub use snapshot::{render_png, snapshot_image};
 
 /// How agents are coloured.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -106,4 +105,42 @@ fn check_inputs(scene: &Scene, frames: &[Frame], path: &Path) -> Result<()> {
     }
     check_frames(frames, path)?;
     Ok(())
+}
+
+/// Renders the PNG image (RGB) of the last frame in memory, without writing it.
+pub fn snapshot_image(
+    scene: &Scene,
+    frames: &[Frame],
+    opts: &RenderOptions,
+) -> Result<image::RgbImage> {
+    check_inputs(scene, frames, Path::new("<snapshot>"))?;
+    Ok(snapshot::snapshot_rgb(scene, frames, opts))
+}
+
+/// Writes a PNG snapshot of the last frame: objects visible at its step, fading trails of the last
+/// `opts.trail` frames (for at most `opts.max_trail_agents` agents), every agent as a dot
+/// coloured by label or group, and a legend. Whole or not at all.
+pub fn render_png(
+    scene: &Scene,
+    frames: &[Frame],
+    path: impl AsRef<Path>,
+    opts: &RenderOptions,
+) -> Result<()> {
+    let path = path.as_ref();
+    check_inputs(scene, frames, path)?;
+    snapshot::write_png(&snapshot::snapshot_rgb(scene, frames, opts), path)
+}
+
+/// Writes an animated, looping GIF of the run: at most `opts.gif_max_frames` frames, each with
+/// the objects visible at its step, short fading trails, the agents and the step number. Uses
+/// the renderer's fixed palette (no quantisation). Whole or not at all.
+pub fn render_gif(
+    scene: &Scene,
+    frames: &[Frame],
+    path: impl AsRef<Path>,
+    opts: &RenderOptions,
+) -> Result<()> {
+    let path = path.as_ref();
+    check_inputs(scene, frames, path)?;
+    animation::write_gif(scene, frames, path, opts)
 }
