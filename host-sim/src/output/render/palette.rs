@@ -9,48 +9,50 @@ pub(super) const SHADES: usize = 5;
 /// How far each shade is blended towards the background, in percent.
 const SHADE_MIX: [u32; SHADES] = [0, 35, 55, 72, 86];
 
-const BG: [u8; 3] = [0xf7, 0xf5, 0xef];
-const OUTSIDE: [u8; 3] = [0xe4, 0xe1, 0xd8];
-const BORDER: [u8; 3] = [0xa8, 0xa4, 0x98];
-pub(super) const INK: [u8; 3] = [0x20, 0x20, 0x20];
-const PAPER: [u8; 3] = [0xff, 0xff, 0xff];
+/// `0xRRGGBB` as RGB bytes.
+const fn rgb(hex: u32) -> [u8; 3] {
+    [(hex >> 16) as u8, (hex >> 8) as u8, hex as u8]
+}
+
+/// Each `0xRRGGBB` as RGB bytes.
+const fn rgbs<const N: usize>(hex: [u32; N]) -> [[u8; 3]; N] {
+    let mut out = [[0; 3]; N];
+    let mut i = 0;
+    while i < N {
+        out[i] = rgb(hex[i]);
+        i += 1;
+    }
+    out
+}
+
+const BG: [u8; 3] = rgb(0xf7f5ef);
+const OUTSIDE: [u8; 3] = rgb(0xe4e1d8);
+const BORDER: [u8; 3] = rgb(0xa8a498);
+pub(super) const INK: [u8; 3] = rgb(0x202020);
+const PAPER: [u8; 3] = rgb(0xffffff);
 
 /// Agent colours by label: 0 nothing grey, 1 food green, 2 nest blue, then others.
-const LABEL_COLORS: [[u8; 3]; 8] = [
-    [0x70, 0x70, 0x70],
-    [0x1a, 0x9a, 0x2c],
-    [0x1f, 0x5f, 0xd0],
-    [0xd6, 0x27, 0x28],
-    [0x94, 0x67, 0xbd],
-    [0x17, 0xbe, 0xcf],
-    [0xbc, 0xbd, 0x22],
-    [0xe3, 0x77, 0xc2],
-];
+const LABEL_COLORS: [[u8; 3]; 8] = rgbs([
+    0x707070, 0x1a9a2c, 0x1f5fd0, 0xd62728, 0x9467bd, 0x17becf, 0xbcbd22, 0xe377c2,
+]);
 
 /// Agent colours by group.
 /// (No orange, green or red: those are targets, food and disturbances.)
-const GROUP_COLORS: [[u8; 3]; 8] = [
-    [0x1f, 0x77, 0xb4],
-    [0xc0, 0x3a, 0xa8],
-    [0x17, 0xa8, 0xb8],
-    [0x8c, 0x56, 0x4b],
-    [0x6a, 0x4c, 0xc4],
-    [0x9a, 0x9b, 0x1a],
-    [0x39, 0x3b, 0x79],
-    [0xe3, 0x77, 0xc2],
-];
+const GROUP_COLORS: [[u8; 3]; 8] = rgbs([
+    0x1f77b4, 0xc03aa8, 0x17a8b8, 0x8c564b, 0x6a4cc4, 0x9a9b1a, 0x393b79, 0xe377c2,
+]);
 
 /// Object colours, in [`ShapeKind::ALL`] order.
-const KIND_COLORS: [[u8; 3]; 8] = [
-    [0x5c, 0x3a, 0x1e], // nest: dark brown
-    [0x6c, 0xc0, 0x5a], // food: green
-    [0x8c, 0x8c, 0x8c], // rock: grey
-    [0xd6, 0x27, 0x28], // disturbance: red (ring)
-    [0x94, 0x67, 0xbd], // waypoint: purple (ring)
-    [0xff, 0x8c, 0x00], // target: orange
-    [0x40, 0x40, 0x40], // shaft: dark grey
-    [0x6c, 0x7a, 0x89], // sphere: slate
-];
+const KIND_COLORS: [[u8; 3]; 8] = rgbs([
+    0x5c3a1e, // nest: dark brown
+    0x6cc05a, // food: green
+    0x8c8c8c, // rock: grey
+    0xd62728, // disturbance: red (ring)
+    0x9467bd, // waypoint: purple (ring)
+    0xff8c00, // target: orange
+    0x404040, // shaft: dark grey
+    0x6c7a89, // sphere: slate
+]);
 
 // Palette indices.
 pub(super) const I_BG: u8 = 0;
