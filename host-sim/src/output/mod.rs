@@ -21,6 +21,7 @@ pub mod atomic;
 pub mod csv;
 pub mod error;
 pub mod frames;
+mod json;
 pub mod npy;
 pub mod read;
 pub mod render;

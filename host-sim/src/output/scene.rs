@@ -25,8 +25,8 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use super::atomic::write_atomic;
 use super::error::{OutputError, Result};
+use super::json::{read_json, write_json};
 
 /// What an object is (decides its colour).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -246,21 +246,13 @@ impl Scene {
     pub fn write(&self, path: impl AsRef<Path>) -> Result<()> {
         let path = path.as_ref();
         self.validate(path)?;
-        let text = serde_json::to_string_pretty(self).map_err(|source| OutputError::Json {
-            op: "serialising",
-            path: path.to_path_buf(),
-            source,
-        })?;
-        write_atomic(path, |w| {
-            w.write_all(text.as_bytes())?;
-            w.write_all(b"\n")
-        })
+        write_json(path, self)
     }
 
     /// Reads and validates a `scene.json`.
     pub fn read(path: impl AsRef<Path>) -> Result<Self> {
         let path = path.as_ref();
-        let s: Scene = super::summary::read_json(path)?;
+        let s: Scene = read_json(path)?;
         s.validate(path)?;
         Ok(s)
     }

@@ -9,9 +9,9 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-use super::atomic::write_atomic;
 use super::error::{OutputError, Result};
 use super::frames::{Frame, label_name, motion_name};
+use super::json::{read_json, write_json};
 
 /// One agent group of the scenario.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -78,16 +78,7 @@ pub struct Summary {
 impl Summary {
     /// Writes pretty JSON (with a final newline) to `path`, whole or not at all.
     pub fn write(&self, path: impl AsRef<Path>) -> Result<()> {
-        let path = path.as_ref();
-        let text = serde_json::to_string_pretty(self).map_err(|source| OutputError::Json {
-            op: "serialising",
-            path: path.to_path_buf(),
-            source,
-        })?;
-        write_atomic(path, |w| {
-            w.write_all(text.as_bytes())?;
-            w.write_all(b"\n")
-        })
+        write_json(path.as_ref(), self)
     }
 
     /// Reads a `summary.json`.
@@ -104,15 +95,6 @@ impl Summary {
             (a, b) => a.or(b),
         };
     }
-}
-
-pub(crate) fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T> {
-    let text = std::fs::read_to_string(path).map_err(|e| OutputError::io("reading", path, e))?;
-    serde_json::from_str(&text).map_err(|source| OutputError::Json {
-        op: "parsing",
-        path: path.to_path_buf(),
-        source,
-    })
 }
 
 /// Counts agents per motion state and per label in `frame`. The ant names ("stop", "basic",
