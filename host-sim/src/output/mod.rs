@@ -28,6 +28,8 @@ pub mod render;
 pub mod scene;
 pub mod stage;
 pub mod summary;
+#[cfg(test)]
+mod testing;
 
 use std::path::Path;
 

@@ -332,6 +332,7 @@ impl RunLog {
 mod tests {
     use super::super::frames::AgentSample;
     use super::*;
+    use crate::output::testing::{read_error, round_trip, temp_path};
 
     fn full() -> Summary {
         let mut extra = serde_json::Map::new();
@@ -367,37 +368,27 @@ mod tests {
 
     #[test]
     fn json_round_trip() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("summary.json");
+        let (_dir, p) = temp_path("summary.json");
         let s = full();
-        s.write(&p).unwrap();
-        let text = std::fs::read_to_string(&p).unwrap();
+        let text = round_trip(&p, &s, Summary::write, Summary::read);
         assert!(text.ends_with("}\n"));
         assert!(text.contains("\n  \"scenario\": \"xiang-fig7a\""), "{text}");
-        assert_eq!(Summary::read(&p).unwrap(), s);
         // None minimum distance is null and reads back.
         let s2 = Summary {
             min_distance: None,
             ..s
         };
-        s2.write(&p).unwrap();
-        assert!(
-            std::fs::read_to_string(&p)
-                .unwrap()
-                .contains("\"min_distance\": null")
-        );
-        assert_eq!(Summary::read(&p).unwrap(), s2);
+        let text = round_trip(&p, &s2, Summary::write, Summary::read);
+        assert!(text.contains("\"min_distance\": null"), "{text}");
     }
 
     #[test]
     fn partial_json_reads_with_defaults_and_bad_json_names_file() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("summary.json");
+        let (_dir, p) = temp_path("summary.json");
         std::fs::write(&p, r#"{"scenario": "x", "steps": 3}"#).unwrap();
         let s = Summary::read(&p).unwrap();
         assert_eq!((s.scenario.as_str(), s.steps, s.agents), ("x", 3, 0));
-        std::fs::write(&p, "{\"steps\": \"many\"}").unwrap();
-        let msg = Summary::read(&p).unwrap_err().to_string();
+        let msg = read_error(&p, r#"{"steps": "many"}"#, Summary::read);
         assert!(
             msg.contains("summary.json") && msg.contains("line 1"),
             "{msg}"
@@ -503,8 +494,7 @@ mod tests {
 
     #[test]
     fn run_log_appends_flushed_lines() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("run.log");
+        let (_dir, p) = temp_path("run.log");
         let mut log = RunLog::create(&p).unwrap();
         log.line("start").unwrap();
         log.line(format_args!("step {}", 10)).unwrap();
