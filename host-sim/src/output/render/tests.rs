@@ -1,29 +1,37 @@
+use image::RgbImage;
+
 use super::palette::INK;
 use super::view::View;
 use super::*;
 use crate::output::frames::AgentSample;
 use crate::output::scene::{Shape, ShapeKind};
+use crate::output::testing::{sample_scene as scene, temp_path};
 
-fn scene() -> Scene {
-    let mut s = Scene::new_2d([0.0, 0.0], [200.0, 100.0]);
-    s.shapes = vec![
-        Shape::circle([30.0, 50.0, 0.0], 8.0, ShapeKind::Nest).named("home"),
-        Shape::circle([170.0, 50.0, 0.0], 6.0, ShapeKind::Food).during(None, Some(10)),
-        Shape::circle([160.0, 80.0, 0.0], 6.0, ShapeKind::Food).during(Some(10), None),
-        Shape::polygon(
-            vec![[95.0, 35.0], [110.0, 35.0], [102.0, 60.0]],
-            ShapeKind::Rock,
-        ),
-        Shape::circle([100.0, 15.0, 0.0], 7.0, ShapeKind::Disturbance),
-    ];
-    s
+/// [`render_png`] into a temporary file, read back.
+fn png(sc: &Scene, fr: &[Frame], opts: &RenderOptions) -> RgbImage {
+    let (_dir, p) = temp_path("snapshot.png");
+    render_png(sc, fr, &p, opts).unwrap();
+    image::open(&p).unwrap().to_rgb8()
 }
 
-/// 50 agents × 20 frames walking around the world, never near the nest centre.
+/// The colour of `img` at the world point `p` as `view` shows it.
+fn color_at(img: &RgbImage, view: &View, sc: &Scene, p: [f32; 3]) -> [u8; 3] {
+    let (x, y) = view.world(sc, p);
+    img.get_pixel(x.round() as u32, y.round() as u32).0
+}
+
+/// The part of `img` below its first `top` rows (the side view of a 3D scene).
+fn below(img: &RgbImage, top: usize) -> RgbImage {
+    let h = img.height() - top as u32;
+    image::imageops::crop_imm(img, 0, top as u32, img.width(), h).to_image()
+}
+
+/// `agents` agents walking around the middle of the [`scene`], never near the centre of its nest,
+/// food sources or rock triangle, one frame every 6 steps (20 frames: the food has moved).
 fn frames(agents: usize, nframes: usize) -> Vec<Frame> {
     (0..nframes)
         .map(|f| Frame {
-            step: (f * 5) as u32,
+            step: (f * 6) as u32,
             agents: (0..agents)
                 .map(|i| {
                     let a = i as f32 * 0.7 + f as f32 * 0.05;
@@ -45,44 +53,25 @@ fn frames(agents: usize, nframes: usize) -> Vec<Frame> {
 
 #[test]
 fn png_has_expected_size_and_nest_colour() {
-    let dir = tempfile::tempdir().unwrap();
-    let p = dir.path().join("snapshot.png");
     let (sc, fr) = (scene(), frames(50, 20));
-    let opts = RenderOptions::default();
-    render_png(&sc, &fr, &p, &opts).unwrap();
-    let img = image::open(&p).unwrap().to_rgb8();
+    let img = png(&sc, &fr, &RenderOptions::default());
     assert_eq!(img.width(), 1024);
     let view = View::new(&sc, 1024);
     assert_eq!(img.height() as usize, view.h);
     // World is 2:1, so about 512 px tall.
     assert!((500..=530).contains(&img.height()), "{}", img.height());
-    let (x, y) = view.world(&sc, [30.0, 50.0, 0.0]);
-    assert_eq!(
-        img.get_pixel(x.round() as u32, y.round() as u32).0,
-        kind_color(ShapeKind::Nest)
-    );
-    // The food source visible at the last step (moved at step 10) is drawn, the old one not.
-    let (x, y) = view.world(&sc, [160.0, 80.0, 0.0]);
-    assert_eq!(
-        img.get_pixel(x.round() as u32, y.round() as u32).0,
-        kind_color(ShapeKind::Food)
-    );
-    let (x, y) = view.world(&sc, [170.0, 50.0, 0.0]);
-    assert_ne!(
-        img.get_pixel(x.round() as u32, y.round() as u32).0,
-        kind_color(ShapeKind::Food)
-    );
+    let at = |p| color_at(&img, &view, &sc, p);
+    assert_eq!(at([20.0, 50.0, 0.0]), kind_color(ShapeKind::Nest));
+    // The food source visible at the last step (moved at step 100) is drawn, the old one not.
+    assert_eq!(at([150.0, 80.0, 0.0]), kind_color(ShapeKind::Food));
+    assert_ne!(at([180.0, 50.0, 0.0]), kind_color(ShapeKind::Food));
     // Some agent of each label colour is drawn.
     for label in 0..3u16 {
         let c = agent_color(ColorBy::Label, label);
         assert!(img.pixels().any(|px| px.0 == c), "label {label}");
     }
     // Rock polygon centre.
-    let (x, y) = view.world(&sc, [102.0, 43.0, 0.0]);
-    assert_eq!(
-        img.get_pixel(x.round() as u32, y.round() as u32).0,
-        kind_color(ShapeKind::Rock)
-    );
+    assert_eq!(at([100.0, 47.0, 0.0]), kind_color(ShapeKind::Rock));
 }
 
 #[test]
@@ -137,7 +126,6 @@ fn rendering_is_deterministic() {
 
 #[test]
 fn three_d_top_view() {
-    let dir = tempfile::tempdir().unwrap();
     let mut sc = Scene::new_3d([0.0, 0.0, 0.0], [100.0, 30.0, 50.0]);
     sc.shapes = vec![
         Shape::circle([50.0, 0.0, 25.0], 4.0, ShapeKind::Shaft),
@@ -157,9 +145,7 @@ fn three_d_top_view() {
                 .collect(),
         })
         .collect();
-    let p = dir.path().join("s.png");
-    render_png(&sc, &fr, &p, &RenderOptions::default()).unwrap();
-    let img = image::open(&p).unwrap().to_rgb8();
+    let img = png(&sc, &fr, &RenderOptions::default());
     let view = View::new(&sc, 1024);
     let side = View::side(&sc, &view);
     // The top view, then the side view below it.
@@ -168,17 +154,15 @@ fn three_d_top_view() {
         (1024, view.h + side.h)
     );
     // The shaft stands full height in the side view.
+    let side_img = below(&img, view.h);
     for y in [2.0, 15.0, 28.0] {
-        let (x, py) = side.world(&sc, [50.0, y, 0.0]);
         assert_eq!(
-            img.get_pixel(x.round() as u32, (py.round() as usize + view.h) as u32)
-                .0,
+            color_at(&side_img, &side, &sc, [50.0, y, 0.0]),
             kind_color(ShapeKind::Shaft)
         );
     }
-    let (x, y) = view.world(&sc, [50.0, 99.0, 25.0]);
     assert_eq!(
-        img.get_pixel(x.round() as u32, y.round() as u32).0,
+        color_at(&img, &view, &sc, [50.0, 99.0, 25.0]),
         kind_color(ShapeKind::Shaft)
     );
     // z grows downwards in the top view.
@@ -214,8 +198,9 @@ fn the_side_view_shows_the_roll_as_a_tilted_wing_bar() {
         let img = snapshot_image(&sc, &fr, &opts).unwrap();
         let view = View::new(&sc, opts.width);
         let side = View::side(&sc, &view);
+        let img = below(&img, view.h);
         let (x, y) = side.world(&sc, [50.0, 15.0, 25.0]);
-        let (x, y) = (x.round() as u32, y.round() as u32 + view.h as u32);
+        let (x, y) = (x.round() as u32, y.round() as u32);
         // Pixels straight above and below the dot, past its disc.
         (5..8)
             .filter(|d| img.get_pixel(x, y - d).0 == INK && img.get_pixel(x, y + d).0 == INK)
@@ -231,7 +216,6 @@ fn the_side_view_shows_the_roll_as_a_tilted_wing_bar() {
 
 #[test]
 fn a_nest_on_the_ground_box_stays_visible_from_above() {
-    let dir = tempfile::tempdir().unwrap();
     let mut sc = Scene::new_3d([0.0, 0.0, 0.0], [100.0, 30.0, 50.0]);
     // The ground box comes after the nest in the scene, as in bees-fig15-nest.
     sc.shapes = vec![
@@ -245,20 +229,10 @@ fn a_nest_on_the_ground_box_stays_visible_from_above() {
             ..Default::default()
         }],
     }];
-    let p = dir.path().join("n.png");
-    render_png(&sc, &fr, &p, &RenderOptions::default()).unwrap();
-    let img = image::open(&p).unwrap().to_rgb8();
-    let view = View::new(&sc, 1024);
-    let (x, y) = view.world(&sc, [50.0, 2.0, 25.0]);
-    assert_eq!(
-        img.get_pixel(x.round() as u32, y.round() as u32).0,
-        kind_color(ShapeKind::Target)
-    );
-    let (x, y) = view.world(&sc, [90.0, 0.5, 45.0]);
-    assert_eq!(
-        img.get_pixel(x.round() as u32, y.round() as u32).0,
-        kind_color(ShapeKind::Rock)
-    );
+    let img = png(&sc, &fr, &RenderOptions::default());
+    let at = |p| color_at(&img, &View::new(&sc, 1024), &sc, p);
+    assert_eq!(at([50.0, 2.0, 25.0]), kind_color(ShapeKind::Target));
+    assert_eq!(at([90.0, 0.5, 45.0]), kind_color(ShapeKind::Rock));
 }
 
 #[test]
@@ -291,24 +265,12 @@ fn frame_index_subsampling() {
 #[test]
 fn perf_500_agents_300_frames() {
     let dir = tempfile::tempdir().unwrap();
-    let (sc, fr) = (scene(), frames(500, 300));
+    let (sc, fr, o) = (scene(), frames(500, 300), RenderOptions::default());
     let t = std::time::Instant::now();
-    render_png(
-        &sc,
-        &fr,
-        dir.path().join("p.png"),
-        &RenderOptions::default(),
-    )
-    .unwrap();
+    render_png(&sc, &fr, dir.path().join("p.png"), &o).unwrap();
     let t_png = t.elapsed();
     let t = std::time::Instant::now();
-    render_gif(
-        &sc,
-        &fr,
-        dir.path().join("p.gif"),
-        &RenderOptions::default(),
-    )
-    .unwrap();
+    render_gif(&sc, &fr, dir.path().join("p.gif"), &o).unwrap();
     eprintln!(
         "perf: 500 agents x 300 frames: png {t_png:?}, gif {:?}",
         t.elapsed()
