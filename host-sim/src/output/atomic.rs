@@ -174,39 +174,39 @@ pub fn write_atomic_bytes(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::output::testing::{entries, temp_path};
 
-    fn entries(dir: &Path) -> Vec<String> {
-        let mut v: Vec<String> = std::fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        v.sort();
-        v
+    /// `p` holds `contents` and is the only file in its folder.
+    fn assert_alone_with(p: &Path, contents: &[u8]) {
+        assert_eq!(std::fs::read(p).unwrap(), contents);
+        let name = p.file_name().unwrap().to_string_lossy();
+        assert_eq!(entries(p.parent().unwrap()), vec![name]);
+    }
+
+    /// [`write_atomic`] with a closure that writes `bytes` and then fails with `why`.
+    fn write_then_fail(p: &Path, bytes: &[u8], why: &str) -> Result<()> {
+        write_atomic(p, |w| {
+            w.write_all(bytes)?;
+            Err(io::Error::other(why))
+        })
     }
 
     #[test]
     fn writes_whole_file() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("a.txt");
+        let (_dir, p) = temp_path("a.txt");
         write_atomic(&p, |w| w.write_all(b"hello\n")).unwrap();
-        assert_eq!(std::fs::read(&p).unwrap(), b"hello\n");
-        assert_eq!(entries(dir.path()), vec!["a.txt"]);
+        assert_alone_with(&p, b"hello\n");
         // Overwrite.
         write_atomic_bytes(&p, b"bye").unwrap();
-        assert_eq!(std::fs::read(&p).unwrap(), b"bye");
-        assert_eq!(entries(dir.path()), vec!["a.txt"]);
+        assert_alone_with(&p, b"bye");
     }
 
     #[test]
     fn failing_closure_leaves_no_file() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("b.csv");
-        let err = write_atomic(&p, |w| {
-            w.write_all(&[b'x'; 1_000_000])?;
-            Err(io::Error::other("boom"))
-        })
-        .unwrap_err();
-        let msg = err.to_string();
+        let (dir, p) = temp_path("b.csv");
+        let msg = write_then_fail(&p, &[b'x'; 1_000_000], "boom")
+            .unwrap_err()
+            .to_string();
         assert!(msg.contains("b.csv") && msg.contains("boom"), "{msg}");
         assert!(!p.exists());
         assert!(entries(dir.path()).is_empty(), "{:?}", entries(dir.path()));
@@ -214,24 +214,15 @@ mod tests {
 
     #[test]
     fn failing_closure_keeps_previous_file() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("c.json");
+        let (_dir, p) = temp_path("c.json");
         write_atomic_bytes(&p, b"old").unwrap();
-        assert!(
-            write_atomic(&p, |w| {
-                w.write_all(b"new but broken")?;
-                Err(io::Error::other("nope"))
-            })
-            .is_err()
-        );
-        assert_eq!(std::fs::read(&p).unwrap(), b"old");
-        assert_eq!(entries(dir.path()), vec!["c.json"]);
+        assert!(write_then_fail(&p, b"new but broken", "nope").is_err());
+        assert_alone_with(&p, b"old");
     }
 
     #[test]
     fn dropped_uncommitted_leaves_nothing() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("d.npy");
+        let (dir, p) = temp_path("d.npy");
         {
             let mut f = AtomicFile::create(&p).unwrap();
             f.writer().write_all(b"partial").unwrap();
@@ -241,8 +232,7 @@ mod tests {
 
     #[test]
     fn stale_temporary_files_of_one_name_are_removed() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("run.gif");
+        let (dir, p) = temp_path("run.gif");
         for n in [
             ".run.gif.aB3xYz.tmp",
             ".run.gif.q.tmp",
@@ -261,8 +251,7 @@ mod tests {
 
     #[test]
     fn patch_rewrites_header() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("e.bin");
+        let (_dir, p) = temp_path("e.bin");
         let mut f = AtomicFile::create(&p).unwrap();
         f.writer().write_all(b"????-body").unwrap();
         f.patch(0, b"HEAD").unwrap();
@@ -273,8 +262,7 @@ mod tests {
 
     #[test]
     fn missing_folder_names_the_path() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("no/such/dir/f.txt");
+        let (_dir, p) = temp_path("no/such/dir/f.txt");
         let msg = write_atomic_bytes(&p, b"x").unwrap_err().to_string();
         assert!(msg.contains("f.txt"), "{msg}");
     }
@@ -283,8 +271,7 @@ mod tests {
     #[test]
     fn file_mode_is_not_private() {
         use std::os::unix::fs::PermissionsExt;
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("m.txt");
+        let (dir, p) = temp_path("m.txt");
         write_atomic_bytes(&p, b"x").unwrap();
         let mode = std::fs::metadata(&p).unwrap().permissions().mode() & 0o777;
         // Whatever the umask, group/other get at least what a plain File::create gives them.

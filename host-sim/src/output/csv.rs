@@ -281,6 +281,7 @@ pub fn csv_path(dir: &Path) -> PathBuf {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::output::testing::{read_error, temp_path};
 
     pub(crate) fn sample_frames(frames: usize, agents: usize) -> Vec<Frame> {
         let mut s = 0x1234_5678_u32;
@@ -342,8 +343,7 @@ mod tests {
 
     #[test]
     fn exact_text() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("t.csv");
+        let (_dir, p) = temp_path("t.csv");
         let frames = vec![Frame {
             step: 4,
             agents: vec![AgentSample {
@@ -367,57 +367,48 @@ mod tests {
 
     #[test]
     fn files_without_the_attitude_columns_read_with_level_attitude() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("v1.csv");
+        let (_dir, p) = temp_path("v1.csv");
         std::fs::write(&p, format!("{CSV_HEADER_V1}\n4,2,1,0.1,-2.5,0,1,0,0,1,3\n")).unwrap();
         let f = read_csv(&p).unwrap();
         assert_eq!(f[0].agents[0].pos, [0.1, -2.5, 0.0]);
         assert_eq!((f[0].agents[0].roll, f[0].agents[0].pitch), (0.0, 0.0));
         // The new header wants the two columns.
-        std::fs::write(&p, format!("{CSV_HEADER}\n4,2,1,0.1,-2.5,0,1,0,0,1,3\n")).unwrap();
-        let msg = read_csv(&p).unwrap_err().to_string();
+        let msg = read_error(
+            &p,
+            format!("{CSV_HEADER}\n4,2,1,0.1,-2.5,0,1,0,0,1,3\n"),
+            read_csv,
+        );
         assert!(msg.contains("roll_deg"), "{msg}");
     }
 
     #[test]
     fn empty_frames_give_header_only() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("e.csv");
+        let (_dir, p) = temp_path("e.csv");
         write_csv(&p, &[]).unwrap();
         assert!(read_csv(&p).unwrap().is_empty());
     }
 
     #[test]
     fn reader_errors_name_file_and_line() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("bad.csv");
-        std::fs::write(
-            &p,
-            format!("{CSV_HEADER}\n0,0,0,1,2,3,1,0,0,0,1,0,0\n0,1,0,1,x,3,1,0,0,0,1,0,0\n"),
-        )
-        .unwrap();
-        let msg = read_csv(&p).unwrap_err().to_string();
+        let (dir, p) = temp_path("bad.csv");
+        let bad_y = format!("{CSV_HEADER}\n0,0,0,1,2,3,1,0,0,0,1,0,0\n0,1,0,1,x,3,1,0,0,0,1,0,0\n");
+        let msg = read_error(&p, bad_y, read_csv);
         assert!(msg.contains("bad.csv:3") && msg.contains("\"y\""), "{msg}");
 
-        std::fs::write(&p, "a,b\n").unwrap();
-        let msg = read_csv(&p).unwrap_err().to_string();
+        let msg = read_error(&p, "a,b\n", read_csv);
         assert!(msg.contains("bad.csv:1") && msg.contains("header"), "{msg}");
 
         // Second step lacks an agent.
-        std::fs::write(
-            &p,
-            format!(
-                "{CSV_HEADER}\n0,0,0,1,2,3,1,0,0,0,1,0,0\n0,1,0,1,2,3,1,0,0,0,1,0,0\n\
-                 1,0,0,1,2,3,1,0,0,0,1,0,0\n"
-            ),
-        )
-        .unwrap();
-        let msg = read_csv(&p).unwrap_err().to_string();
+        let short = format!(
+            "{CSV_HEADER}\n0,0,0,1,2,3,1,0,0,0,1,0,0\n0,1,0,1,2,3,1,0,0,0,1,0,0\n\
+             1,0,0,1,2,3,1,0,0,0,1,0,0\n"
+        );
+        let msg = read_error(&p, short, read_csv);
         assert!(msg.contains("step 1 has 1 agents"), "{msg}");
 
         // Too many fields.
-        std::fs::write(&p, format!("{CSV_HEADER}\n0,0,0,1,2,3,1,0,0,0,1,0,0,9\n")).unwrap();
-        let msg = read_csv(&p).unwrap_err().to_string();
+        let long = format!("{CSV_HEADER}\n0,0,0,1,2,3,1,0,0,0,1,0,0,9\n");
+        let msg = read_error(&p, long, read_csv);
         assert!(msg.contains("too many fields"), "{msg}");
 
         let msg = read_csv(dir.path().join("none.csv"))
@@ -428,8 +419,7 @@ mod tests {
 
     #[test]
     fn writer_rejects_inconsistent_frames() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("w.csv");
+        let (_dir, p) = temp_path("w.csv");
         let mut frames = sample_frames(3, 4);
         frames[2].agents.pop();
         assert!(write_csv(&p, &frames).is_err());

@@ -21,12 +21,15 @@ pub mod atomic;
 pub mod csv;
 pub mod error;
 pub mod frames;
+mod json;
 pub mod npy;
 pub mod read;
 pub mod render;
 pub mod scene;
 pub mod stage;
 pub mod summary;
+#[cfg(test)]
+mod testing;
 
 use std::path::Path;
 

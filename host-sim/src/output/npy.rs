@@ -335,6 +335,7 @@ fn dict_value<'a>(header: &'a str, key: &str) -> Option<&'a str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::output::testing::{read_error, temp_path};
 
     fn tiny() -> Vec<Frame> {
         // (2, 2, 3): values 0.0, 0.5, ..., 5.5 in C order.
@@ -386,16 +387,14 @@ mod tests {
 
     #[test]
     fn pinned_bytes() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("positions.npy");
+        let (_dir, p) = temp_path("positions.npy");
         write_npy(&p, &tiny()).unwrap();
         assert_eq!(std::fs::read(&p).unwrap(), pinned_tiny());
     }
 
     #[test]
     fn round_trip() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("positions.npy");
+        let (_dir, p) = temp_path("positions.npy");
         let frames = tiny();
         write_npy(&p, &frames).unwrap();
         let back = read_npy(&p).unwrap();
@@ -407,8 +406,7 @@ mod tests {
 
     #[test]
     fn attitude_round_trip() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("attitude.npy");
+        let (_dir, p) = temp_path("attitude.npy");
         let mut frames = tiny();
         frames[1].agents[0].roll = -12.5;
         frames[1].agents[0].pitch = 16.25;
@@ -434,8 +432,7 @@ mod tests {
 
     #[test]
     fn empty_array() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("e.npy");
+        let (_dir, p) = temp_path("e.npy");
         write_npy(&p, &[]).unwrap();
         let b = std::fs::read(&p).unwrap();
         assert!(
@@ -449,19 +446,15 @@ mod tests {
 
     #[test]
     fn reader_rejects_bad_files() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("bad.npy");
-        std::fs::write(&p, b"hello world").unwrap();
-        assert!(read_npy(&p).unwrap_err().to_string().contains("bad.npy"));
+        let (_dir, p) = temp_path("bad.npy");
+        assert!(read_error(&p, b"hello world", read_npy).contains("bad.npy"));
         let mut t = pinned_tiny();
         t.pop();
-        std::fs::write(&p, &t).unwrap();
-        assert!(read_npy(&p).unwrap_err().to_string().contains("data bytes"));
+        assert!(read_error(&p, &t, read_npy).contains("data bytes"));
         let mut t = pinned_tiny();
         let at = t.windows(3).position(|w| w == b"<f4").unwrap();
         t[at + 2] = b'8';
-        std::fs::write(&p, &t).unwrap();
-        assert!(read_npy(&p).unwrap_err().to_string().contains("dtype"));
+        assert!(read_error(&p, &t, read_npy).contains("dtype"));
     }
 
     /// The Python interpreter for the NumPy cross-check: `$SWARM_PYTHON` or `python3`.

@@ -154,6 +154,7 @@ mod tests {
     use super::super::scene::{Shape, ShapeKind};
     use super::super::write_run;
     use super::*;
+    use crate::output::testing::temp_path;
 
     fn run(dir: &Path) -> (Scene, Vec<Frame>, Summary) {
         let mut scene = Scene::new_2d([-50.0, -50.0], [50.0, 50.0]);
@@ -189,8 +190,7 @@ mod tests {
 
     #[test]
     fn write_open_render() {
-        let dir = tempfile::tempdir().unwrap();
-        let out = dir.path().join("out");
+        let (_dir, out) = temp_path("out");
         let (scene, frames, summary) = run(&out);
         let rd = RunDir::open(&out).unwrap();
         assert_eq!(rd.scene, scene);
@@ -224,8 +224,7 @@ mod tests {
 
     #[test]
     fn falls_back_to_npy_and_names_missing_files() {
-        let dir = tempfile::tempdir().unwrap();
-        let out = dir.path().join("out");
+        let (dir, out) = temp_path("out");
         let (_, frames, _) = run(&out);
         std::fs::remove_file(out.join(TRAJECTORIES_CSV)).unwrap();
         std::fs::remove_file(out.join(SUMMARY_JSON)).unwrap();

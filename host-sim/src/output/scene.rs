@@ -25,8 +25,8 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use super::atomic::write_atomic;
 use super::error::{OutputError, Result};
+use super::json::{read_json, write_json};
 
 /// What an object is (decides its colour).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -246,21 +246,13 @@ impl Scene {
     pub fn write(&self, path: impl AsRef<Path>) -> Result<()> {
         let path = path.as_ref();
         self.validate(path)?;
-        let text = serde_json::to_string_pretty(self).map_err(|source| OutputError::Json {
-            op: "serialising",
-            path: path.to_path_buf(),
-            source,
-        })?;
-        write_atomic(path, |w| {
-            w.write_all(text.as_bytes())?;
-            w.write_all(b"\n")
-        })
+        write_json(path, self)
     }
 
     /// Reads and validates a `scene.json`.
     pub fn read(path: impl AsRef<Path>) -> Result<Self> {
         let path = path.as_ref();
-        let s: Scene = super::summary::read_json(path)?;
+        let s: Scene = read_json(path)?;
         s.validate(path)?;
         Ok(s)
     }
@@ -269,41 +261,20 @@ impl Scene {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    pub(crate) fn sample_scene() -> Scene {
-        let mut s = Scene::new_2d([0.0, 0.0], [200.0, 100.0]);
-        s.shapes = vec![
-            Shape::circle([20.0, 50.0, 0.0], 6.0, ShapeKind::Nest).named("home"),
-            Shape::circle([180.0, 50.0, 0.0], 5.0, ShapeKind::Food).during(None, Some(100)),
-            Shape::circle([150.0, 80.0, 0.0], 5.0, ShapeKind::Food).during(Some(100), None),
-            Shape::polygon(
-                vec![[90.0, 40.0], [110.0, 40.0], [100.0, 60.0]],
-                ShapeKind::Rock,
-            ),
-            Shape::circle([100.0, 20.0, 0.0], 8.0, ShapeKind::Disturbance)
-                .during(Some(10), Some(50)),
-            Shape::cuboid([60.0, 70.0, 0.0], [70.0, 90.0, 0.0], ShapeKind::Rock),
-        ];
-        s
-    }
+    use crate::output::testing::{read_error, round_trip, sample_scene, temp_path};
 
     #[test]
     fn json_round_trip_and_format() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("scene.json");
-        let s = sample_scene();
-        s.write(&p).unwrap();
-        let text = std::fs::read_to_string(&p).unwrap();
+        let (_dir, p) = temp_path("scene.json");
+        let text = round_trip(&p, &sample_scene(), Scene::write, Scene::read);
         assert!(text.contains("\"type\": \"circle\""), "{text}");
         assert!(text.contains("\"kind\": \"nest\""), "{text}");
         assert!(text.contains("\"to_step\": 100"), "{text}");
-        assert_eq!(Scene::read(&p).unwrap(), s);
     }
 
     #[test]
     fn reads_hand_written_json() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("scene.json");
+        let (_dir, p) = temp_path("scene.json");
         std::fs::write(
             &p,
             r#"{"dim": 3, "min": [0,0,0], "max": [10,5,10], "shapes": [
@@ -328,8 +299,7 @@ mod tests {
 
     #[test]
     fn invalid_scenes_are_refused() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("scene.json");
+        let (_dir, p) = temp_path("scene.json");
         let mut s = sample_scene();
         s.dim = 4;
         assert!(s.write(&p).unwrap_err().to_string().contains("dim"));
@@ -338,18 +308,14 @@ mod tests {
             .push(Shape::polygon(vec![[0.0, 0.0]], ShapeKind::Rock));
         assert!(s.write(&p).unwrap_err().to_string().contains("shape 6"));
         assert!(!p.exists());
-        std::fs::write(&p, r#"{"dim": 2, "min": [0,0,0], "max": [0,1,0]}"#).unwrap();
-        let msg = Scene::read(&p).unwrap_err().to_string();
+        let bad = r#"{"dim": 2, "min": [0,0,0], "max": [0,1,0]}"#;
+        let msg = read_error(&p, bad, Scene::read);
         assert!(
             msg.contains("scene.json") && msg.contains("bounds"),
             "{msg}"
         );
-        std::fs::write(
-            &p,
-            r#"{"dim": 2, "min": [0,0,0], "max": [1,1,0], "shapes": [{"type": "blob"}]}"#,
-        )
-        .unwrap();
-        let msg = Scene::read(&p).unwrap_err().to_string();
+        let bad = r#"{"dim": 2, "min": [0,0,0], "max": [1,1,0], "shapes": [{"type": "blob"}]}"#;
+        let msg = read_error(&p, bad, Scene::read);
         assert!(
             msg.contains("scene.json") && msg.contains("parsing"),
             "{msg}"

@@ -9,9 +9,9 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-use super::atomic::write_atomic;
 use super::error::{OutputError, Result};
 use super::frames::{Frame, label_name, motion_name};
+use super::json::{read_json, write_json};
 
 /// One agent group of the scenario.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -78,16 +78,7 @@ pub struct Summary {
 impl Summary {
     /// Writes pretty JSON (with a final newline) to `path`, whole or not at all.
     pub fn write(&self, path: impl AsRef<Path>) -> Result<()> {
-        let path = path.as_ref();
-        let text = serde_json::to_string_pretty(self).map_err(|source| OutputError::Json {
-            op: "serialising",
-            path: path.to_path_buf(),
-            source,
-        })?;
-        write_atomic(path, |w| {
-            w.write_all(text.as_bytes())?;
-            w.write_all(b"\n")
-        })
+        write_json(path.as_ref(), self)
     }
 
     /// Reads a `summary.json`.
@@ -104,15 +95,6 @@ impl Summary {
             (a, b) => a.or(b),
         };
     }
-}
-
-pub(crate) fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T> {
-    let text = std::fs::read_to_string(path).map_err(|e| OutputError::io("reading", path, e))?;
-    serde_json::from_str(&text).map_err(|source| OutputError::Json {
-        op: "parsing",
-        path: path.to_path_buf(),
-        source,
-    })
 }
 
 /// Counts agents per motion state and per label in `frame`. The ant names ("stop", "basic",
@@ -350,6 +332,7 @@ impl RunLog {
 mod tests {
     use super::super::frames::AgentSample;
     use super::*;
+    use crate::output::testing::{read_error, round_trip, temp_path};
 
     fn full() -> Summary {
         let mut extra = serde_json::Map::new();
@@ -385,37 +368,27 @@ mod tests {
 
     #[test]
     fn json_round_trip() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("summary.json");
+        let (_dir, p) = temp_path("summary.json");
         let s = full();
-        s.write(&p).unwrap();
-        let text = std::fs::read_to_string(&p).unwrap();
+        let text = round_trip(&p, &s, Summary::write, Summary::read);
         assert!(text.ends_with("}\n"));
         assert!(text.contains("\n  \"scenario\": \"xiang-fig7a\""), "{text}");
-        assert_eq!(Summary::read(&p).unwrap(), s);
         // None minimum distance is null and reads back.
         let s2 = Summary {
             min_distance: None,
             ..s
         };
-        s2.write(&p).unwrap();
-        assert!(
-            std::fs::read_to_string(&p)
-                .unwrap()
-                .contains("\"min_distance\": null")
-        );
-        assert_eq!(Summary::read(&p).unwrap(), s2);
+        let text = round_trip(&p, &s2, Summary::write, Summary::read);
+        assert!(text.contains("\"min_distance\": null"), "{text}");
     }
 
     #[test]
     fn partial_json_reads_with_defaults_and_bad_json_names_file() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("summary.json");
+        let (_dir, p) = temp_path("summary.json");
         std::fs::write(&p, r#"{"scenario": "x", "steps": 3}"#).unwrap();
         let s = Summary::read(&p).unwrap();
         assert_eq!((s.scenario.as_str(), s.steps, s.agents), ("x", 3, 0));
-        std::fs::write(&p, "{\"steps\": \"many\"}").unwrap();
-        let msg = Summary::read(&p).unwrap_err().to_string();
+        let msg = read_error(&p, r#"{"steps": "many"}"#, Summary::read);
         assert!(
             msg.contains("summary.json") && msg.contains("line 1"),
             "{msg}"
@@ -521,8 +494,7 @@ mod tests {
 
     #[test]
     fn run_log_appends_flushed_lines() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("run.log");
+        let (_dir, p) = temp_path("run.log");
         let mut log = RunLog::create(&p).unwrap();
         log.line("start").unwrap();
         log.line(format_args!("step {}", 10)).unwrap();

@@ -1,16 +1,9 @@
 use super::*;
+use crate::output::testing::entries;
+use tempfile::TempDir;
 
 /// A pid no process has (above Linux's largest `pid_max`).
 const DEAD_PID: u32 = 4_000_000_000;
-
-fn entries(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
-}
 
 /// A run folder holding `files`, each containing `tag`.
 fn write_run(dir: &Path, files: &[&str], tag: &str) {
@@ -18,6 +11,19 @@ fn write_run(dir: &Path, files: &[&str], tag: &str) {
     for f in files {
         fs::write(dir.join(f), tag).unwrap();
     }
+}
+
+/// A temporary folder holding the run folder `run` with `files`, each containing "old".
+fn old_run(files: &[&str]) -> (TempDir, PathBuf) {
+    let root = tempfile::tempdir().unwrap();
+    let target = root.path().join("run");
+    write_run(&target, files, "old");
+    (root, target)
+}
+
+/// The text of the `summary.json` in `dir`.
+fn summary_in(dir: &Path) -> String {
+    fs::read_to_string(dir.join(SUMMARY_JSON)).unwrap()
 }
 
 fn stale(parent: &Path, target: &str, kind: Sibling, pid: u32) -> PathBuf {
@@ -88,61 +94,39 @@ fn a_new_folder_appears_whole_on_commit() {
 
 #[test]
 fn a_run_replaces_the_whole_previous_run() {
-    let root = tempfile::tempdir().unwrap();
-    let target = root.path().join("run");
-    write_run(
-        &target,
-        &[SUMMARY_JSON, SNAPSHOT_PNG, RUN_GIF, ".run.gif.abc.tmp"],
-        "old",
-    );
+    let (root, target) = old_run(&[SUMMARY_JSON, SNAPSHOT_PNG, RUN_GIF, ".run.gif.abc.tmp"]);
     let s = Staging::begin(&target).unwrap();
     write_run(s.path(), &[SUMMARY_JSON, POSITIONS_NPY], "new");
     // Until the commit the target is the old run.
-    assert_eq!(
-        fs::read_to_string(target.join(SUMMARY_JSON)).unwrap(),
-        "old"
-    );
+    assert_eq!(summary_in(&target), "old");
     s.commit().unwrap();
     // Files the new run does not write are gone with the old run.
     assert_eq!(entries(&target), vec![POSITIONS_NPY, SUMMARY_JSON]);
-    assert_eq!(
-        fs::read_to_string(target.join(SUMMARY_JSON)).unwrap(),
-        "new"
-    );
+    assert_eq!(summary_in(&target), "new");
     assert_eq!(entries(root.path()), vec!["run"]);
 }
 
 #[test]
 fn the_fallback_swap_replaces_the_previous_run_too() {
-    let root = tempfile::tempdir().unwrap();
-    let target = root.path().join("run");
-    write_run(&target, &[SUMMARY_JSON, RUN_GIF], "old");
+    let (root, target) = old_run(&[SUMMARY_JSON, RUN_GIF]);
     let s = Staging::begin(&target).unwrap();
     write_run(s.path(), &[SUMMARY_JSON], "new");
     s.swap_by_renames().unwrap();
     assert_eq!(entries(&target), vec![SUMMARY_JSON]);
-    assert_eq!(
-        fs::read_to_string(target.join(SUMMARY_JSON)).unwrap(),
-        "new"
-    );
+    assert_eq!(summary_in(&target), "new");
     drop(s);
     assert_eq!(entries(root.path()), vec!["run"]);
 }
 
 #[test]
 fn a_dropped_staging_folder_leaves_nothing() {
-    let root = tempfile::tempdir().unwrap();
-    let target = root.path().join("run");
-    write_run(&target, &[SUMMARY_JSON], "old");
+    let (root, target) = old_run(&[SUMMARY_JSON]);
     {
         let s = Staging::begin(&target).unwrap();
         write_run(s.path(), &[POSITIONS_NPY], "partial");
     }
     assert_eq!(entries(root.path()), vec!["run"]);
-    assert_eq!(
-        fs::read_to_string(target.join(SUMMARY_JSON)).unwrap(),
-        "old"
-    );
+    assert_eq!(summary_in(&target), "old");
 }
 
 #[test]
@@ -180,9 +164,7 @@ fn a_folder_with_other_files_is_refused_and_left_alone() {
 
 #[test]
 fn an_abandoned_run_keeps_only_its_log_beside_the_untouched_target() {
-    let root = tempfile::tempdir().unwrap();
-    let target = root.path().join("run");
-    write_run(&target, &[SUMMARY_JSON], "old");
+    let (_root, target) = old_run(&[SUMMARY_JSON]);
     let s = Staging::begin(&target).unwrap();
     write_run(
         s.path(),
@@ -199,10 +181,7 @@ fn an_abandoned_run_keeps_only_its_log_beside_the_untouched_target() {
         parse_sibling(name).map(|(t, k, _)| (t, k)),
         Some(("run", Sibling::Failed))
     );
-    assert_eq!(
-        fs::read_to_string(target.join(SUMMARY_JSON)).unwrap(),
-        "old"
-    );
+    assert_eq!(summary_in(&target), "old");
 }
 
 #[test]
@@ -229,17 +208,14 @@ fn stale_siblings_of_dead_runs_are_cleaned_and_nothing_else() {
     assert_eq!(cleaned, expected);
     assert!(!old_of_missing.exists());
     assert_eq!(
-        fs::read_to_string(parent.join("b").join(SUMMARY_JSON)).unwrap(),
+        summary_in(&parent.join("b")),
         "stale",
         "the old run is put back"
     );
     for kept in [&live, &foreign, &other] {
         assert!(kept.is_dir(), "{}", kept.display());
     }
-    assert_eq!(
-        fs::read_to_string(parent.join("a").join(SUMMARY_JSON)).unwrap(),
-        "a"
-    );
+    assert_eq!(summary_in(&parent.join("a")), "a");
 }
 
 #[test]
@@ -272,5 +248,5 @@ fn a_link_to_a_run_folder_replaces_the_folder_it_points_to() {
             .is_symlink()
     );
     assert_eq!(entries(&link), vec![SUMMARY_JSON]);
-    assert_eq!(fs::read_to_string(real.join(SUMMARY_JSON)).unwrap(), "new");
+    assert_eq!(summary_in(&real), "new");
 }
