@@ -111,6 +111,37 @@ pub trait AgentGroup {
     }
 }
 
+/// Implements [`AgentGroup`] for a model's group type (generic over the scalar, with fields
+/// `name`, `first` and `states`) and its conversions into [`ByScalar`].
+macro_rules! agent_group {
+    ($group:ident) => {
+        impl<S> $crate::scalar::AgentGroup for $group<S> {
+            fn name(&self) -> &str {
+                &self.name
+            }
+            fn len(&self) -> usize {
+                self.states.len()
+            }
+            fn first(&self) -> usize {
+                self.first
+            }
+        }
+        impl From<$group<f32>> for $crate::scalar::ByScalar<$group<f32>, $group<swarm_core::Fx>> {
+            fn from(g: $group<f32>) -> Self {
+                $crate::scalar::ByScalar::F32(g)
+            }
+        }
+        impl From<$group<swarm_core::Fx>>
+            for $crate::scalar::ByScalar<$group<f32>, $group<swarm_core::Fx>>
+        {
+            fn from(g: $group<swarm_core::Fx>) -> Self {
+                $crate::scalar::ByScalar::Fixed(g)
+            }
+        }
+    };
+}
+pub(crate) use agent_group;
+
 impl<F: AgentGroup, X: AgentGroup> AgentGroup for ByScalar<F, X> {
     fn name(&self) -> &str {
         by_scalar!(self, g => g.name())

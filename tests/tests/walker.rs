@@ -84,33 +84,14 @@ fn the_device_endpoint_serves_the_walker_without_knowing_it() {
     assert_eq!(got, expected);
 }
 
-/// A 2D scenario file for the walkers' run: its world, steps and outputs are what the run loop
-/// reads; the walkers are built from it by the test.
+/// The scenario of the walkers' run: a built-in one, whose world, steps, events and outputs are
+/// what the run loop reads; the walkers are built from its agent count by the test.
 fn scenario() -> Scenario {
-    Scenario::from_str(
-        r#"
-        name = "walkers"
-        steps = 300
-        world = { dim = 2, min = [-20, -20], max = [20, 20] }
-        [[groups]]
-        name = "walkers"
-        model = "ant"
-        count = 30
-        nest = "middle"
-        spawn = { at = "middle", radius = 5 }
-        [[objects]]
-        name = "middle"
-        kind = "nest"
-        center = [0, 0]
-        radius = 2
-        [outputs]
-        every = 10
-        render = false
-        gif = false
-        "#,
-        "walkers.toml",
-    )
-    .unwrap()
+    let mut sc = swarm_sim::scenario::builtin("ants-fig7a-single-colony").unwrap();
+    sc.set_steps(300);
+    sc.outputs.render = false;
+    sc.outputs.gif = false;
+    sc
 }
 
 #[test]
@@ -129,7 +110,7 @@ fn the_run_loop_writes_the_walkers_outputs() {
         Ok(Box::new(sim::<f32>(sc.agent_count() as usize, seed)) as Box<dyn Engine>)
     })
     .unwrap();
-    assert_eq!(report.summary.agents, 30);
+    assert_eq!(report.summary.agents, sc.agent_count() as u32);
     assert_eq!(report.summary.groups[0].model, "walker");
     assert!(report.summary.extra.contains_key("walker_bounces"));
     for f in [

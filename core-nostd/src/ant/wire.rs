@@ -111,7 +111,7 @@ mod on_the_wire {
 
     use super::*;
     use crate::wire::{
-        Capacities, Controller, ControllerKind, DeviceEndpoint, Message, kind, max_frame_len,
+        Capacities, Controller, ControllerKind, DeviceEndpoint, kind, max_frame_len,
     };
 
     /// The largest payload of an ant message (or [`ErrorReply`](crate::wire::ErrorReply)),
@@ -125,17 +125,11 @@ mod on_the_wire {
     /// delimiter included: buffer size for a node that only runs the ant controller.
     pub const MAX_ANT_FRAME: usize = max_frame_len(MAX_ANT_PAYLOAD);
 
-    impl<S: Serialize + DeserializeOwned> Message for AntPlanRequest<S> {
-        const KIND: u8 = kind::ANT_PLAN_REQUEST;
-    }
-    impl<S: Serialize + DeserializeOwned> Message for AntPlanReply<S> {
-        const KIND: u8 = kind::ANT_PLAN_REPLY;
-    }
-    impl<S: Serialize + DeserializeOwned> Message for AntResolveRequest<S> {
-        const KIND: u8 = kind::ANT_RESOLVE_REQUEST;
-    }
-    impl<S: Serialize + DeserializeOwned> Message for AntResolveReply<S> {
-        const KIND: u8 = kind::ANT_RESOLVE_REPLY;
+    crate::message_kinds! {
+        AntPlanRequest = kind::ANT_PLAN_REQUEST;
+        AntPlanReply = kind::ANT_PLAN_REPLY;
+        AntResolveRequest = kind::ANT_RESOLVE_REQUEST;
+        AntResolveReply = kind::ANT_RESOLVE_REPLY;
     }
 
     /// The longest reply frame of an ant device (its largest reply, or a session reply),

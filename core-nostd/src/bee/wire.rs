@@ -69,7 +69,7 @@ mod on_the_wire {
 
     use super::*;
     use crate::wire::{
-        Capacities, Controller, ControllerKind, DeviceEndpoint, Message, kind, max_frame_len,
+        Capacities, Controller, ControllerKind, DeviceEndpoint, kind, max_frame_len,
     };
 
     /// The largest payload of a bee message (or [`ErrorReply`](crate::wire::ErrorReply)), for
@@ -83,11 +83,9 @@ mod on_the_wire {
     /// delimiter included.
     pub const MAX_BEE_FRAME: usize = max_frame_len(MAX_BEE_PAYLOAD);
 
-    impl<S: Serialize + DeserializeOwned> Message for BeeStepRequest<S> {
-        const KIND: u8 = kind::BEE_STEP_REQUEST;
-    }
-    impl<S: Serialize + DeserializeOwned> Message for BeeStepReply<S> {
-        const KIND: u8 = kind::BEE_STEP_REPLY;
+    crate::message_kinds! {
+        BeeStepRequest = kind::BEE_STEP_REQUEST;
+        BeeStepReply = kind::BEE_STEP_REPLY;
     }
 
     /// The longest reply frame of a bee device (its largest reply, or a session reply),

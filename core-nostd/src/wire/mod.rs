@@ -129,6 +129,32 @@ pub trait Message: serde::Serialize + serde::de::DeserializeOwned {
     const KIND: u8;
 }
 
+/// What a message type must be: postcard-encodable both ways (implemented for every such
+/// type; the bound [`message_kinds!`](crate::message_kinds) writes without naming serde).
+pub trait Encodable: serde::Serialize + serde::de::DeserializeOwned {}
+impl<T: serde::Serialize + serde::de::DeserializeOwned> Encodable for T {}
+
+/// Implements [`Message`](crate::wire::Message) for message types generic over their scalar,
+/// from `Type = KIND;` lines: a model's requests and replies.
+///
+/// ```
+/// #[derive(serde::Serialize, serde::Deserialize)]
+/// struct Hop<S> { height: S }
+/// swarm_core::message_kinds! { Hop = 0x90; }
+/// assert_eq!(<Hop<f32> as swarm_core::wire::Message>::KIND, 0x90);
+/// ```
+#[macro_export]
+macro_rules! message_kinds {
+    ($($ty:ident = $kind:expr;)*) => {$(
+        impl<S> $crate::wire::Message for $ty<S>
+        where
+            $ty<S>: $crate::wire::Encodable,
+        {
+            const KIND: u8 = $kind;
+        }
+    )*};
+}
+
 /// Encodes `msg` as a complete frame (kind `M::KIND`, sequence number `seq`) into `out` and
 /// returns the frame's length, trailing `0x00` included. See [`encode_frame`].
 pub fn encode_message<M: Message>(seq: u16, msg: &M, out: &mut [u8]) -> Result<usize> {

@@ -247,28 +247,7 @@ impl<S: SimScalar> AntGroup<S> {
 /// A group of either scalar type.
 pub type AnyAntGroup = ByScalar<AntGroup<f32>, AntGroup<Fx>>;
 
-impl<S> AgentGroup for AntGroup<S> {
-    fn name(&self) -> &str {
-        &self.name
-    }
-    fn len(&self) -> usize {
-        self.states.len()
-    }
-    fn first(&self) -> usize {
-        self.first
-    }
-}
-
-impl From<AntGroup<f32>> for AnyAntGroup {
-    fn from(g: AntGroup<f32>) -> Self {
-        ByScalar::F32(g)
-    }
-}
-impl From<AntGroup<Fx>> for AnyAntGroup {
-    fn from(g: AntGroup<Fx>) -> Self {
-        ByScalar::Fixed(g)
-    }
-}
+crate::scalar::agent_group!(AntGroup);
 
 /// The event, if any, of ant `agent` going from `old` to `new`: the end of a collecting or
 /// dropping stop that changed its label.

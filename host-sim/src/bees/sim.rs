@@ -195,28 +195,7 @@ impl<S: SimScalar> BeeGroup<S> {
 /// A group of either scalar type.
 pub type AnyBeeGroup = ByScalar<BeeGroup<f32>, BeeGroup<Fx>>;
 
-impl<S> AgentGroup for BeeGroup<S> {
-    fn name(&self) -> &str {
-        &self.name
-    }
-    fn len(&self) -> usize {
-        self.states.len()
-    }
-    fn first(&self) -> usize {
-        self.first
-    }
-}
-
-impl From<BeeGroup<f32>> for AnyBeeGroup {
-    fn from(g: BeeGroup<f32>) -> Self {
-        ByScalar::F32(g)
-    }
-}
-impl From<BeeGroup<Fx>> for AnyBeeGroup {
-    fn from(g: BeeGroup<Fx>) -> Self {
-        ByScalar::Fixed(g)
-    }
-}
+crate::scalar::agent_group!(BeeGroup);
 
 /// A bee swarm (or several) in its world.
 #[derive(Clone, Debug)]

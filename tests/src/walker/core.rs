@@ -4,7 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 use swarm_core::model::{Model, Phase, Range};
-use swarm_core::wire::{Capacities, Controller, ControllerKind, Message};
+use swarm_core::wire::{Capacities, Controller, ControllerKind};
 use swarm_core::{Checked, Error, Result, Scalar, StepCtx, Vec2, rand};
 
 /// The walker's parameters.
@@ -59,11 +59,9 @@ pub struct WalkReply<S> {
     pub state: WalkState<S>,
 }
 
-impl<S: Serialize + serde::de::DeserializeOwned> Message for WalkRequest<S> {
-    const KIND: u8 = 0x80;
-}
-impl<S: Serialize + serde::de::DeserializeOwned> Message for WalkReply<S> {
-    const KIND: u8 = 0x81;
+swarm_core::message_kinds! {
+    WalkRequest = 0x80;
+    WalkReply = 0x81;
 }
 
 /// The walker's one phase.
