@@ -22,3 +22,24 @@ pub fn around_center<const D: usize>(scenario: &Scenario, at: &str) -> [f32; D] 
         .and_then(|c| <[f32; D]>::try_from(c).ok())
         .unwrap_or([0.0; D])
 }
+
+/// The groups of `scenario`, in order, each made by `make(group, params, first)` from its
+/// parameters (`params`, one per group) and its first world slot (the agents before it).
+///
+/// # Errors
+///
+/// The first error of `make`.
+pub fn groups<P, G: crate::scalar::AgentGroup>(
+    scenario: &Scenario,
+    params: Vec<P>,
+    mut make: impl FnMut(&crate::scenario::Group, P, usize) -> crate::Result<G>,
+) -> crate::Result<Vec<G>> {
+    let mut out = Vec::with_capacity(params.len());
+    let mut first = 0usize;
+    for (g, p) in scenario.groups.iter().zip(params) {
+        let group = make(g, p, first)?;
+        first += group.len();
+        out.push(group);
+    }
+    Ok(out)
+}

@@ -5,7 +5,7 @@ use swarm_core::{Fx, Vec2};
 
 use super::sim::{AntGroup, AntSim, AnyAntGroup};
 use super::world::{AntObjectDef, AntObjectKind, AntWorld, Shape2};
-use crate::scalar::{AgentGroup, SimScalar};
+use crate::scalar::SimScalar;
 use crate::scenario::{Action, Group, ObjectKind, ScalarType, Scenario, SpawnRegion, World};
 use crate::spawn::{around_center, draw};
 use crate::{Result, SimError};
@@ -32,9 +32,7 @@ impl AntSim {
             .collect();
         world.set_route();
 
-        let mut groups = Vec::new();
-        let mut first = 0usize;
-        for (g, p) in scenario.groups.iter().zip(params) {
+        let groups = crate::spawn::groups(scenario, params, |g, p, first| {
             let nest = g
                 .nest
                 .as_deref()
@@ -44,13 +42,11 @@ impl AntSim {
                     what: "nest",
                     name: g.nest.clone().unwrap_or_default(),
                 })?;
-            let any: AnyAntGroup = match g.scalar {
+            Ok::<AnyAntGroup, SimError>(match g.scalar {
                 ScalarType::F32 => spawn::<f32>(scenario, g, p, nest, first, seed)?.into(),
                 ScalarType::Fixed => spawn::<Fx>(scenario, g, p, nest, first, seed)?.into(),
-            };
-            first += any.len();
-            groups.push(any);
-        }
+            })
+        })?;
         Ok(AntSim::new(world, groups, seed))
     }
 

@@ -8,7 +8,7 @@ use super::sim::{AnyBeeGroup, BeeGroup, BeeSim};
 use super::world::{BeeObstacle, BeeTarget, BeeWorld, Shape3};
 use crate::by_scalar;
 use crate::output::{AgentSample, Frame};
-use crate::scalar::{AgentGroup, SimScalar};
+use crate::scalar::SimScalar;
 use crate::scenario::{Action, Group, ObjectKind, ScalarType, Scenario, SpawnRegion, World};
 use crate::spawn::{around_center, draw};
 use crate::{Result, SimError};
@@ -59,9 +59,7 @@ impl BeeSim {
 
         // The scenario's own radius, not its conversion to a fixed-point group's scalar.
         let radius = params.iter().map(|p| p.radius).fold(0.0, f32::max);
-        let mut groups = Vec::new();
-        let mut first = 0usize;
-        for (g, p) in scenario.groups.iter().zip(params) {
+        let groups = crate::spawn::groups(scenario, params, |g, p, first| {
             let goal = match g.goal.as_deref() {
                 Some(name) => Some(scenario.object_id(name).ok_or_else(|| SimError::NoObject {
                     group: g.name.clone(),
@@ -70,13 +68,11 @@ impl BeeSim {
                 })?),
                 None => None,
             };
-            let any: AnyBeeGroup = match g.scalar {
+            Ok::<AnyBeeGroup, SimError>(match g.scalar {
                 ScalarType::F32 => spawn::<f32>(scenario, g, p, goal, first, seed)?.into(),
                 ScalarType::Fixed => spawn::<Fx>(scenario, g, p, goal, first, seed)?.into(),
-            };
-            first += any.len();
-            groups.push(any);
-        }
+            })
+        })?;
         let mut sim = BeeSim::new(world, groups, seed);
         sim.collision_distance = 2.0 * radius;
         Ok(sim)
