@@ -304,6 +304,63 @@ pub fn run(
     exit(ok && m.overflows() == 0)
 }
 
+/// Writes a measurement image (`*-cycles`): the handlers of
+/// [`selfcheck_handlers!`](crate::selfcheck_handlers) and a `main` that [`run`]s, as image
+/// `$image`, the cost run of `$model` (`ant`: `ant::plan_checked` and `ant::resolve_checked`;
+/// `bee`: `bee::step_checked` with the wire frame capacities) in scalar `$scalar` (`f32` or
+/// `Fx`) with the serial node's parameters (`fw_node::ant_params`, `fw_node::bee_params`). The
+/// binary depends on `cortex-m-rt` and `fw-node`. Use once, at the top level.
+#[macro_export]
+macro_rules! cycles_image {
+    ($image:literal, $model:ident, f32) => {
+        $crate::cycles_image!(@ $image, "f32", $model, f32);
+    };
+    ($image:literal, $model:ident, Fx) => {
+        $crate::cycles_image!(
+            @ $image, "I16F16", $model, $crate::__private::fw_scenario::swarm_core::Fx
+        );
+    };
+    (@ $image:literal, $label:literal, ant, $scalar:ty) => {
+        $crate::cycles_image!(@@ $image, $label, |meter, line| {
+            let Ok(params) = fw_node::ant_params::<$scalar>().checked() else {
+                return false;
+            };
+            let cost = $crate::__private::fw_scenario::ant::cost(&params, meter);
+            $crate::cycles::put_ant(line, &cost)
+        });
+    };
+    (@ $image:literal, $label:literal, bee, $scalar:ty) => {
+        $crate::cycles_image!(@@ $image, $label, |meter, line| {
+            use $crate::__private::fw_scenario::swarm_core::wire::{
+                WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS,
+            };
+            let Ok(params) = fw_node::bee_params::<$scalar>().checked() else {
+                return false;
+            };
+            let cost = $crate::__private::fw_scenario::bee::cost::<
+                $scalar,
+                WIRE_BEE_NEIGHBOURS,
+                WIRE_BEE_TARGETS,
+            >(&params, meter);
+            $crate::cycles::put_bee(line, &cost)
+        });
+    };
+    (@@ $image:literal, $label:literal, $body:expr) => {
+        $crate::selfcheck_handlers!();
+
+        #[cortex_m_rt::entry]
+        fn main() -> ! {
+            $crate::cycles::run($image, $label, $body)
+        }
+    };
+}
+
+// The ant cost run's frames have the capacities of the serial node's wire frames.
+const _: () = {
+    use fw_scenario::swarm_core::wire::{WIRE_ANT_NEIGHBOURS, WIRE_ANT_OBJECTS};
+    assert!(fw_scenario::ant::N == WIRE_ANT_NEIGHBOURS && fw_scenario::ant::O == WIRE_ANT_OBJECTS);
+};
+
 /// The core the image runs on, as QEMU's `-cpu` names it.
 #[cfg(feature = "lm3s6965evb")]
 const CORE: &str = "cortex-m3";
