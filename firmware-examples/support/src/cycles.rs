@@ -149,37 +149,36 @@ impl Meter for SysTickMeter {
     }
 }
 
-/// A counted loop: `n` iterations of `subs; bne`, 2 instructions each (`n` ≥ 1).
-#[inline(never)]
-pub fn spin2(n: u32) {
-    // SAFETY: register-only arithmetic and a local branch.
-    unsafe {
-        core::arch::asm!(
-            "2:",
-            "subs {n}, {n}, #1",
-            "bne 2b",
-            n = inout(reg) n.max(1) => _,
-            options(nomem, nostack),
-        );
-    }
+/// Writes `pub fn $name(n: u32)`: a counted loop of `n` iterations (`n` ≥ 1) of the
+/// instructions `$op`, then `subs; bne`.
+macro_rules! counted_loop {
+    ($(#[$doc:meta])* $name:ident: $($op:literal),*) => {
+        $(#[$doc])*
+        #[inline(never)]
+        pub fn $name(n: u32) {
+            // SAFETY: register-only arithmetic and a local branch.
+            unsafe {
+                core::arch::asm!(
+                    "2:",
+                    $($op,)*
+                    "subs {n}, {n}, #1",
+                    "bne 2b",
+                    n = inout(reg) n.max(1) => _,
+                    options(nomem, nostack),
+                );
+            }
+        }
+    };
 }
 
-/// A counted loop: `n` iterations of `nop; nop; subs; bne`, 4 instructions each (`n` ≥ 1).
-#[inline(never)]
-pub fn spin4(n: u32) {
-    // SAFETY: register-only arithmetic and a local branch.
-    unsafe {
-        core::arch::asm!(
-            "2:",
-            "nop",
-            "nop",
-            "subs {n}, {n}, #1",
-            "bne 2b",
-            n = inout(reg) n.max(1) => _,
-            options(nomem, nostack),
-        );
-    }
-}
+counted_loop!(
+    /// A counted loop: `n` iterations of `subs; bne`, 2 instructions each (`n` ≥ 1).
+    spin2:
+);
+counted_loop!(
+    /// A counted loop: `n` iterations of `nop; nop; subs; bne`, 4 instructions each (`n` ≥ 1).
+    spin4: "nop", "nop"
+);
 
 /// What the DWT cycle counter showed.
 pub struct DwtProbe {
@@ -212,25 +211,7 @@ pub fn put_stats(l: &mut Report, key: &str, s: &Stats) {
     let min = if s.n == 0 { 0 } else { s.min };
     l.str(" ").str(key).str("=").dec(s.n as usize).str(":");
     l.dec(min as usize).str(":").dec(s.max as usize).str(":");
-    dec64(l, s.sum);
-}
-
-/// Appends a `u64` in decimal.
-fn dec64(l: &mut Report, v: u64) {
-    let mut d = [0u8; 20];
-    let mut n = 0;
-    let mut v = v;
-    for slot in d.iter_mut() {
-        *slot = b'0' + (v % 10) as u8;
-        n += 1;
-        v /= 10;
-        if v == 0 {
-            break;
-        }
-    }
-    for &c in d.iter().take(n).rev() {
-        l.bytes(&[c]);
-    }
+    l.dec(s.sum);
 }
 
 /// Appends an ant run's fields; true if every call returned a decision.

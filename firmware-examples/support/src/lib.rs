@@ -377,16 +377,17 @@ impl<const CAP: usize> Line<CAP> {
         self.bytes(s.as_bytes())
     }
 
-    /// Appends a number in decimal.
-    pub fn dec(&mut self, v: usize) -> &mut Self {
+    /// Appends a number (`usize` or `u64`) in decimal.
+    pub fn dec<T: Decimal>(&mut self, v: T) -> &mut Self {
         let mut d = [0u8; 20];
         let mut n = 0;
         let mut v = v;
         for slot in d.iter_mut() {
-            *slot = b'0' + (v % 10) as u8;
+            let (rest, digit) = v.div10();
+            *slot = b'0' + digit;
             n += 1;
-            v /= 10;
-            if v == 0 {
+            v = rest;
+            if v.is_zero() {
                 break;
             }
         }
@@ -418,6 +419,32 @@ impl<const CAP: usize> Line<CAP> {
         }
     }
 }
+
+/// An unsigned integer [`Line::dec`] prints (at most 20 digits).
+pub trait Decimal: Copy {
+    /// `self / 10` and the last digit, `self % 10`.
+    fn div10(self) -> (Self, u8);
+    /// `self == 0`.
+    fn is_zero(self) -> bool;
+}
+
+macro_rules! decimal {
+    ($($t:ty),*) => {$(
+        impl Decimal for $t {
+            #[inline(always)]
+            fn div10(self) -> (Self, u8) {
+                (self / 10, (self % 10) as u8)
+            }
+
+            #[inline(always)]
+            fn is_zero(self) -> bool {
+                self == 0
+            }
+        }
+    )*};
+}
+
+decimal!(usize, u64);
 
 impl Default for Line {
     fn default() -> Self {
