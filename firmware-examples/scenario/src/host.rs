@@ -14,6 +14,17 @@ impl crate::Sink for Recorder {
     }
 }
 
+/// A [`Meter`](crate::Meter) that counts calls (one tick each): the cost runs' host tests.
+#[cfg(test)]
+pub(crate) struct Calls;
+
+#[cfg(test)]
+impl crate::Meter for Calls {
+    fn measure<I, R>(&mut self, input: I, f: impl FnOnce(I) -> R) -> (R, u32) {
+        (f(input), 1)
+    }
+}
+
 /// Collects every word a scenario produces.
 pub fn collect(run: impl FnOnce(&mut Recorder)) -> Vec<u32> {
     let mut r = Recorder::default();
