@@ -302,6 +302,12 @@ macro_rules! cycles_image {
         );
     };
     (@ $image:literal, $label:literal, ant, $scalar:ty) => {
+        // The frames of the timed run have the capacities of the node's wire frames.
+        const _: () = {
+            use fw_node::swarm_core::wire::{WIRE_ANT_NEIGHBOURS, WIRE_ANT_OBJECTS};
+            use $crate::__private::fw_scenario::ant::{N, O};
+            assert!(N == WIRE_ANT_NEIGHBOURS && O == WIRE_ANT_OBJECTS);
+        };
         $crate::cycles_image!(@@ $image, $label, |meter, line| {
             let Ok(params) = fw_node::ant_params::<$scalar>().checked() else {
                 return false;
@@ -312,9 +318,7 @@ macro_rules! cycles_image {
     };
     (@ $image:literal, $label:literal, bee, $scalar:ty) => {
         $crate::cycles_image!(@@ $image, $label, |meter, line| {
-            use $crate::__private::fw_scenario::swarm_core::wire::{
-                WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS,
-            };
+            use fw_node::swarm_core::wire::{WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS};
             let Ok(params) = fw_node::bee_params::<$scalar>().checked() else {
                 return false;
             };
@@ -335,12 +339,6 @@ macro_rules! cycles_image {
         }
     };
 }
-
-// The ant cost run's frames have the capacities of the serial node's wire frames.
-const _: () = {
-    use fw_scenario::swarm_core::wire::{WIRE_ANT_NEIGHBOURS, WIRE_ANT_OBJECTS};
-    assert!(fw_scenario::ant::N == WIRE_ANT_NEIGHBOURS && fw_scenario::ant::O == WIRE_ANT_OBJECTS);
-};
 
 /// The core the image runs on, as QEMU's `-cpu` names it.
 #[cfg(feature = "lm3s6965evb")]

@@ -34,7 +34,7 @@ pub struct CmsdkUart0 {
 }
 
 impl CmsdkUart0 {
-    /// Configures UART0 for `baud` from the [`PCLK_HZ`] peripheral clock and returns it;
+    /// Configures UART0 for `baud` from the `PCLK_HZ` peripheral clock and returns it;
     /// `None` if it was taken before.
     pub fn take(baud: u32) -> Option<Self> {
         if !claim() {

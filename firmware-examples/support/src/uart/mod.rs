@@ -2,9 +2,9 @@
 //! ([`Read`](embedded_io::Read), [`Write`](embedded_io::Write),
 //! [`ErrorType`](embedded_io::ErrorType)), which is all `fw_node::run` needs.
 //!
-//! * [`Lm3sUart0`] (feature `lm3s6965evb`): TI Stellaris LM3S6965 UART0 (ARM PL011 with
+//! * `Lm3sUart0` (feature `lm3s6965evb`): TI Stellaris LM3S6965 UART0 (ARM PL011 with
 //!   Luminary extensions) at `0x4000_C000`, pins PA0 (U0Rx) / PA1 (U0Tx);
-//! * [`CmsdkUart0`] (feature `mps2-an386`): ARM CMSDK APB UART0 of the MPS2 AN386 FPGA image at
+//! * `CmsdkUart0` (feature `mps2-an386`): ARM CMSDK APB UART0 of the MPS2 AN386 FPGA image at
 //!   `0x4000_4000` (QEMU `info mtree`; `0x4020_0000` on that board is the LAN9118 Ethernet).
 //!
 //! Both are polled (no interrupt, no DMA) and 8N1. `read` blocks until one byte is there, then
