@@ -157,26 +157,25 @@ if [ "$FETCH" = 1 ]; then
     exit 0
 fi
 
+# node <package> <triple> <board> <budget of the f32 node> <budget of the fixed node>: builds the
+# package and lists its images (a budget is "flash ram" in bytes, or "- -" for none).
 IMAGES=()
+node() {
+    local pkg=$1 triple=$2 board=$3
+    build "$pkg" "$triple"
+    IMAGES+=("$pkg $triple $board f32 $4"
+             "$pkg-fixed $triple $board I16F16 $5"
+             "$pkg-selfcheck $triple $board f32 - -"
+             "$pkg-fixed-selfcheck $triple $board I16F16 - -"
+             "$pkg-other $triple $board f32 - -"
+             "$pkg-cycles $triple $board f32 - -"
+             "$pkg-fixed-cycles $triple $board I16F16 - -")
+}
 if [ -z "$ONLY" ] || [ "$ONLY" = ant ]; then
-    build ant-node thumbv7m-none-eabi
-    IMAGES+=("ant-node thumbv7m-none-eabi lm3s6965evb f32 - -"
-             "ant-node-fixed thumbv7m-none-eabi lm3s6965evb I16F16 16384 4096"
-             "ant-node-selfcheck thumbv7m-none-eabi lm3s6965evb f32 - -"
-             "ant-node-fixed-selfcheck thumbv7m-none-eabi lm3s6965evb I16F16 - -"
-             "ant-node-other thumbv7m-none-eabi lm3s6965evb f32 - -"
-             "ant-node-cycles thumbv7m-none-eabi lm3s6965evb f32 - -"
-             "ant-node-fixed-cycles thumbv7m-none-eabi lm3s6965evb I16F16 - -")
+    node ant-node thumbv7m-none-eabi lm3s6965evb "- -" "16384 4096"
 fi
 if [ -z "$ONLY" ] || [ "$ONLY" = bee ]; then
-    build bee-node thumbv7em-none-eabihf
-    IMAGES+=("bee-node thumbv7em-none-eabihf mps2-an386 f32 32768 8192"
-             "bee-node-fixed thumbv7em-none-eabihf mps2-an386 I16F16 32768 8192"
-             "bee-node-selfcheck thumbv7em-none-eabihf mps2-an386 f32 - -"
-             "bee-node-fixed-selfcheck thumbv7em-none-eabihf mps2-an386 I16F16 - -"
-             "bee-node-other thumbv7em-none-eabihf mps2-an386 f32 - -"
-             "bee-node-cycles thumbv7em-none-eabihf mps2-an386 f32 - -"
-             "bee-node-fixed-cycles thumbv7em-none-eabihf mps2-an386 I16F16 - -")
+    node bee-node thumbv7em-none-eabihf mps2-an386 "32768 8192" "32768 8192"
 fi
 
 # --- sizes ------------------------------------------------------------------------------------

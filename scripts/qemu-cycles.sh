@@ -33,29 +33,18 @@
 # instruction counts 1); they are not cycles on silicon (see docs/benchmarks.md).
 set -uo pipefail
 
-ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-FW="$ROOT/firmware-examples"
-TIMEOUT=60
+source "$(dirname "${BASH_SOURCE[0]}")/lib/qemu.sh" qemu-cycles.sh -cycles
 SHIFT=7
-BUILD=0
 SELFTEST=0
 TOLERANCE_PCT=1
-SELECTED=()
-while [ $# -gt 0 ]; do
+script_arg() {
     case "$1" in
-        --build) BUILD=1 ;;
-        --self-test) SELFTEST=1 ;;
-        --shift) SHIFT=${2:?--shift needs a number}; shift ;;
-        --timeout) TIMEOUT=${2:?--timeout needs seconds}; shift ;;
-        -h|--help) awk 'NR > 1 && /^set /{exit} NR > 1' "$0"; exit 0 ;;
-        ant-node|ant-node-fixed|bee-node|bee-node-fixed) SELECTED+=("$1") ;;
-        ant-node-cycles|ant-node-fixed-cycles|bee-node-cycles|bee-node-fixed-cycles)
-            SELECTED+=("${1%-cycles}") ;;
-        *) echo "qemu-cycles.sh: unknown argument '$1' (try --help)" >&2; exit 2 ;;
+        --shift) SHIFT=${2:?--shift needs a number}; ARGS_USED=2 ;;
+        *) return 1 ;;
     esac
-    shift
-done
-[ ${#SELECTED[@]} -gt 0 ] || SELECTED=(ant-node ant-node-fixed bee-node bee-node-fixed)
+}
+parse_args "$@"
+[ ${#SELECTED[@]} -gt 0 ] || SELECTED=("${NODES[@]}")
 case "$SHIFT" in
     [0-9]|10) ;;
     *) echo "qemu-cycles.sh: --shift must be 0-10 (got '$SHIFT')" >&2; exit 2 ;;
@@ -63,22 +52,8 @@ esac
 if [ "$SELFTEST" = 1 ] && [ "$SHIFT" -ge 10 ]; then
     echo "qemu-cycles.sh: --self-test needs --shift below 10" >&2; exit 2
 fi
-
-command -v qemu-system-arm >/dev/null 2>&1 \
-    || { echo "qemu-cycles.sh: error: qemu-system-arm not found (apt-get install qemu-system-arm)" >&2; exit 1; }
+prepare
 QEMU_VERSION=$(qemu-system-arm --version | sed -n '1s/^QEMU emulator version \([^ ]*\).*/\1/p')
-
-if [ "$BUILD" = 1 ]; then
-    "$FW/build.sh" || { echo "qemu-cycles.sh: error: build failed" >&2; exit 1; }
-fi
-
-# image -> "triple machine cpu"
-board() {
-    case "$1" in
-        ant-node*) echo "thumbv7m-none-eabi lm3s6965evb cortex-m3" ;;
-        bee-node*) echo "thumbv7em-none-eabihf mps2-an386 cortex-m4" ;;
-    esac
-}
 
 # Reads the image's line on stdin; prints, tab-separated:
 #   CAL <loop> <expected> <measured> <error %> <ok 0|1>
@@ -130,28 +105,17 @@ END {
     print "STATUS", ok, why
 }'
 
-PASSED=0
-FAILED=0
-FAILURES=()
-JSON=()
 ROWS=()
 LOG=$(mktemp)
 trap 'rm -f "$LOG"' EXIT
-
-json_str() { printf '"%s"' "$(printf '%s' "$1" | sed 's/\\/\\\\/g; s/"/\\"/g')"; }
 
 # run_one <image> <expect: pass|fail> <shift QEMU runs with>
 run_one() {
     local img=$1 expect=$2 run_shift=$3
     local triple machine cpu elf rc label
-    read -r triple machine cpu <<<"$(board "$img")"
-    elf="$FW/target/$triple/release/$img-cycles"
     label="$img-cycles"
     [ "$expect" = fail ] && label="$img-cycles (self-test: QEMU at shift $run_shift, converted at $SHIFT)"
-    if [ ! -f "$elf" ]; then
-        echo "FAIL  $label: $elf missing (run firmware-examples/build.sh or pass --build)"
-        FAILED=$((FAILED + 1)); FAILURES+=("$label"); return
-    fi
+    find_image "$label" "$img-cycles" || return
     timeout "$TIMEOUT" qemu-system-arm -machine "$machine" -cpu "$cpu" -nographic -monitor none \
         -icount "shift=$run_shift" -semihosting-config enable=on,target=native \
         -kernel "$elf" </dev/null >"$LOG" 2>&1
@@ -177,12 +141,10 @@ run_one() {
     [ $rc -eq 124 ] && what="timed out after ${TIMEOUT}s"
     [ -n "$why" ] && what="$what; $why"
     if [ $good = 1 ]; then
-        echo "ok    $label ($what)"
-        PASSED=$((PASSED + 1))
+        passed "$label" "$label ($what)"
     else
-        echo "FAIL  $label ($what; expected $( [ "$expect" = pass ] && echo 'exit 0 and the cross-check within '"$TOLERANCE_PCT"' %' || echo 'exit 0 and a failed cross-check'))"
-        FAILED=$((FAILED + 1)); FAILURES+=("$label")
-        grep -v '^Timer with period zero, disabling$' "$LOG" | sed 's/^/      | /'
+        failed "$label" "$label ($what; expected $( [ "$expect" = pass ] && echo 'exit 0 and the cross-check within '"$TOLERANCE_PCT"' %' || echo 'exit 0 and a failed cross-check'))"
+        qemu_output "$LOG" | sed 's/^/      | /'
     fi
     [ "$expect" = pass ] || return 0
     [ -n "$line" ] || return 0
@@ -227,20 +189,6 @@ if [ ${#ROWS[@]} -gt 0 ]; then
     for r in "${ROWS[@]}"; do printf '%s\n' "$r"; done
 fi
 
-mkdir -p "$FW/target"
-{
-    printf '{"qemu": "%s", "icount_shift": %d, "tolerance_pct": %s, "instructions": "ticks * (1e9 / clk_hz) / 2^icount_shift", "runs": [\n' \
-        "$QEMU_VERSION" "$SHIFT" "$TOLERANCE_PCT"
-    for i in "${!JSON[@]}"; do
-        [ "$i" -gt 0 ] && echo ","
-        printf '  %s' "${JSON[$i]}"
-    done
-    printf '\n], "passed": %d, "failed": %d}\n' "$PASSED" "$FAILED"
-} > "$FW/target/cycles.json"
-
-echo
-if [ "$FAILED" -gt 0 ]; then
-    echo "qemu-cycles: failed: ${FAILURES[*]}"
-fi
-echo "qemu-cycles: $PASSED passed, $FAILED failed (firmware-examples/target/cycles.json)"
-[ "$FAILED" -eq 0 ]
+write_runs "$FW/target/cycles.json" "$(printf '{"qemu": "%s", "icount_shift": %d, "tolerance_pct": %s, "instructions": "ticks * (1e9 / clk_hz) / 2^icount_shift", "runs": [' \
+    "$QEMU_VERSION" "$SHIFT" "$TOLERANCE_PCT")"
+finish "(firmware-examples/target/cycles.json)"

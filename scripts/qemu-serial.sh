@@ -30,8 +30,7 @@
 # if every check passed. Needs qemu-system-arm and python3.
 set -uo pipefail
 
-ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-FW="$ROOT/firmware-examples"
+source "$(dirname "${BASH_SOURCE[0]}")/lib/qemu.sh" qemu-serial.sh
 MODE=tcp
 PORT=0
 HELLO=0
@@ -40,57 +39,35 @@ STEPS=""
 WINDOW=1
 STACK=0
 PRINT=0
-BUILD=0
 CHECK=0
-TIMEOUT=60
-IMAGES=()
-while [ $# -gt 0 ]; do
+script_arg() {
     case "$1" in
-        --tcp) MODE=tcp; if [[ "${2:-}" =~ ^[0-9]+$ ]]; then PORT=$2; shift; fi ;;
+        --tcp) MODE=tcp; if [[ "${2:-}" =~ ^[0-9]+$ ]]; then PORT=$2; ARGS_USED=2; fi ;;
         --pty) MODE=pty ;;
         --hello) HELLO=1 ;;
-        --replay) REPLAY=${2:?--replay needs a transcript file}; shift ;;
-        --steps) STEPS=${2:?--steps needs a number}; shift ;;
-        --window) WINDOW=${2:?--window needs a number}; shift ;;
+        --replay) REPLAY=${2:?--replay needs a transcript file}; ARGS_USED=2 ;;
+        --steps) STEPS=${2:?--steps needs a number}; ARGS_USED=2 ;;
+        --window) WINDOW=${2:?--window needs a number}; ARGS_USED=2 ;;
         --stack) STACK=1 ;;
         --print-cmd) PRINT=1 ;;
-        --build) BUILD=1 ;;
         --check) CHECK=1 ;;
-        --timeout) TIMEOUT=${2:?--timeout needs seconds}; shift ;;
-        -h|--help) awk 'NR > 1 && /^set /{exit} NR > 1' "$0"; exit 0 ;;
-        ant-node|ant-node-fixed|bee-node|bee-node-fixed) IMAGES+=("$1") ;;
-        *) echo "qemu-serial.sh: unknown argument '$1' (try --help)" >&2; exit 2 ;;
+        *) return 1 ;;
     esac
-    shift
-done
+}
+parse_args "$@"
 if [ "$CHECK" = 1 ]; then
     HELLO=1; STACK=1; [ -n "$STEPS$REPLAY" ] || STEPS=10
-    [ ${#IMAGES[@]} -gt 0 ] || IMAGES=(ant-node ant-node-fixed bee-node bee-node-fixed)
+    [ ${#SELECTED[@]} -gt 0 ] || SELECTED=("${NODES[@]}")
 fi
-[ ${#IMAGES[@]} -gt 0 ] || { echo "qemu-serial.sh: name an image (try --help)" >&2; exit 2; }
-if [ ${#IMAGES[@]} -gt 1 ] && [ "$HELLO" = 0 ] && [ -z "$REPLAY$STEPS" ] && [ "$PRINT" = 0 ]; then
+[ ${#SELECTED[@]} -gt 0 ] || { echo "qemu-serial.sh: name an image (try --help)" >&2; exit 2; }
+if [ ${#SELECTED[@]} -gt 1 ] && [ "$HELLO" = 0 ] && [ -z "$REPLAY$STEPS" ] && [ "$PRINT" = 0 ]; then
     echo "qemu-serial.sh: one image at a time without --hello/--replay/--steps" >&2; exit 2
 fi
 if [ "$MODE" = pty ] && [ "$WINDOW" != 1 ]; then
     echo "qemu-serial.sh: --window needs --tcp" >&2; exit 2
 fi
 
-command -v qemu-system-arm >/dev/null 2>&1 \
-    || { echo "qemu-serial.sh: error: qemu-system-arm not found (apt-get install qemu-system-arm)" >&2; exit 1; }
-command -v python3 >/dev/null 2>&1 \
-    || { echo "qemu-serial.sh: error: python3 not found" >&2; exit 1; }
-
-if [ "$BUILD" = 1 ]; then
-    "$FW/build.sh" || { echo "qemu-serial.sh: error: build failed" >&2; exit 1; }
-fi
-
-# image -> "triple machine cpu"
-board() {
-    case "$1" in
-        ant-node*) echo "thumbv7m-none-eabi lm3s6965evb cortex-m3" ;;
-        bee-node*) echo "thumbv7em-none-eabihf mps2-an386 cortex-m4" ;;
-    esac
-}
+prepare python3
 
 free_port() {
     python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])'
@@ -307,11 +284,8 @@ sym() {  # sym ELF NAME -> hex address
     done
 }
 
-FAILED=0
-for img in "${IMAGES[@]}"; do
-    read -r triple machine cpu <<<"$(board "$img")"
-    elf="$FW/target/$triple/release/$img"
-    [ -f "$elf" ] || { echo "FAIL  $img: $elf missing (run firmware-examples/build.sh or pass --build)"; FAILED=1; continue; }
+for img in "${SELECTED[@]}"; do
+    find_image "$img" "$img" || continue
     trfile="$REPLAY"
     if [ -n "$STEPS" ] && [ "$PRINT" = 0 ]; then
         trfile=$(transcript "$img") || { FAILED=1; continue; }
@@ -361,8 +335,8 @@ for img in "${IMAGES[@]}"; do
     fi
     client "${cargs[@]}" || FAILED=1
     if ! kill -0 "$QEMU_PID" 2>/dev/null; then
-        echo "FAIL  $img: QEMU exited early"; grep -v '^Timer with period zero' "$log"; FAILED=1
+        echo "FAIL  $img: QEMU exited early"; qemu_output "$log"; FAILED=1
     fi
     stop_qemu
 done
-exit $FAILED
+exit $((FAILED > 0))

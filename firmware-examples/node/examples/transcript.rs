@@ -22,15 +22,17 @@
 
 use std::io::Write as _;
 
-use fw_node::swarm_core::ant::{AntNeighbor, AntObject, AntPlan, AntState, PlanFrame, Surface};
-use fw_node::swarm_core::bee::{BeeNeighbor, BeeState, ObstacleSense};
+use fw_node::swarm_core::ant::{AntObject, AntParams, AntPlan, AntState, PlanFrame, Surface};
+use fw_node::swarm_core::bee::BeeNeighbor;
+use fw_node::swarm_core::bee::{BeeParams, BeeState, ObstacleSense};
 use fw_node::swarm_core::wire::{
-    self, AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, BeeStepReply,
-    BeeStepRequest, Configure, Controller, DeviceEndpoint, Hello, Identity, Message, Ping,
-    StatsRequest, WireBeeFrame, WireResolveFrame,
+    self, AntDevice, AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, BeeDevice,
+    BeeStepReply, BeeStepRequest, Configure, Controller, DeviceEndpoint, Hello, Identity, Message,
+    Ping, StatsRequest, WireBeeFrame, WireResolveFrame,
 };
 use fw_node::swarm_core::{Fx, Rect, Scalar, StepCtx, Vec2, Vec3, rand::rand};
 use fw_node::{NodeScalar, ant_device, bee_device};
+use fw_scenario::ant::neighbour as ant_neighbour;
 
 const SEED: u32 = 5;
 
@@ -39,6 +41,11 @@ fn uniform(key: u32, salt: u32, lo: f32, hi: f32) -> f32 {
     let u = (rand(0x7a4e_5c11, key, salt, 0) >> 8) as f32 / (1u32 << 24) as f32;
     lo + u * (hi - lo)
 }
+
+/// A scalar the messages carry (serde).
+trait WireScalar: Scalar + serde::Serialize + serde::de::DeserializeOwned {}
+
+impl<S: Scalar + serde::Serialize + serde::de::DeserializeOwned> WireScalar for S {}
 
 struct Session<C, const RX: usize, const TX: usize> {
     device: DeviceEndpoint<C, RX, TX>,
@@ -71,16 +78,21 @@ impl<C: Controller, const RX: usize, const TX: usize> Session<C, RX, TX> {
         reply
     }
 
-    fn open(&mut self) {
-        let reply = self.send(&[0], &Hello);
-        let mut raw = reply[..reply.len() - 1].to_vec();
-        let (_, id) = wire::decode_message::<Identity>(&mut raw).unwrap();
+    /// A session with `device`, opened: `Hello` (after a lone `00`), then `Configure`.
+    fn open(device: DeviceEndpoint<C, RX, TX>) -> Self {
+        let mut session = Session {
+            device,
+            seq: 0,
+            lines: Vec::new(),
+        };
+        let id = decode::<Identity>(&session.send(&[0], &Hello)).expect("an Identity");
         let configure = Configure {
             session: 0x5e55,
             params_hash: id.params_hash,
             reset_stats: true,
         };
-        self.send(&[], &configure);
+        session.send(&[], &configure);
+        session
     }
 
     fn close(mut self) -> Vec<String> {
@@ -96,12 +108,9 @@ fn decode<M: Message>(reply: &[u8]) -> Option<M> {
     wire::decode_message::<M>(&mut raw).ok().map(|(_, m)| m)
 }
 
-fn ants<S: NodeScalar + serde::Serialize + serde::de::DeserializeOwned>(
-    name: &str,
-    steps: u32,
-) -> Vec<String>
+fn ants<S: NodeScalar + WireScalar>(device: AntDevice<S>, steps: u32) -> Vec<String>
 where
-    fw_node::swarm_core::ant::AntParams<S>: Controller,
+    AntParams<S>: Controller,
 {
     const N: usize = 12;
     let v = Vec2::<S>::from_f32;
@@ -129,12 +138,7 @@ where
             }
         })
         .collect();
-    let mut session = Session {
-        device: ant_device::<S>(name).unwrap(),
-        seq: 0,
-        lines: Vec::new(),
-    };
-    session.open();
+    let mut session = Session::open(device);
     let hear = s(3.0);
     for step in 0..steps {
         let mut plans: Vec<Option<AntPlan<S>>> = Vec::with_capacity(N);
@@ -143,14 +147,7 @@ where
             let mut frame = PlanFrame::new(bounds);
             for (j, a) in ants.iter().enumerate() {
                 if j != i && (a.pos - me).length() <= hear {
-                    let _ = frame.neighbours.push(AntNeighbor {
-                        id: j as u32,
-                        pos: a.pos,
-                        label: a.label,
-                        nest: a.nest,
-                        origin: a.origin,
-                        arrival: a.arrival,
-                    });
+                    let _ = frame.neighbours.push(ant_neighbour(j, a));
                 }
             }
             let sense = s(8.0);
@@ -215,12 +212,9 @@ where
     session.close()
 }
 
-fn bees<S: Scalar + serde::Serialize + serde::de::DeserializeOwned>(
-    name: &str,
-    steps: u32,
-) -> Vec<String>
+fn bees<S: WireScalar>(device: BeeDevice<S>, steps: u32) -> Vec<String>
 where
-    fw_node::swarm_core::bee::BeeParams<S>: Controller,
+    BeeParams<S>: Controller,
 {
     const N: usize = 10;
     let v = Vec3::<S>::from_f32;
@@ -245,12 +239,7 @@ where
             )
         })
         .collect();
-    let mut session = Session {
-        device: bee_device::<S>(name).unwrap(),
-        seq: 0,
-        lines: Vec::new(),
-    };
-    session.open();
+    let mut session = Session::open(device);
     for step in 0..steps {
         let prev = bees.clone();
         for i in 0..N {
@@ -306,10 +295,10 @@ fn main() {
     };
     let steps: u32 = steps.parse().expect(usage);
     let lines = match (model.as_str(), scalar.as_str()) {
-        ("ant", "f32") => ants::<f32>("ant-node", steps),
-        ("ant", "fixed") => ants::<Fx>("ant-node-fixed", steps),
-        ("bee", "f32") => bees::<f32>("bee-node", steps),
-        ("bee", "fixed") => bees::<Fx>("bee-node-fixed", steps),
+        ("ant", "f32") => ants(ant_device::<f32>("ant-node").unwrap(), steps),
+        ("ant", "fixed") => ants(ant_device::<Fx>("ant-node-fixed").unwrap(), steps),
+        ("bee", "f32") => bees(bee_device::<f32>("bee-node").unwrap(), steps),
+        ("bee", "fixed") => bees(bee_device::<Fx>("bee-node-fixed").unwrap(), steps),
         _ => {
             eprintln!("{usage}");
             std::process::exit(2);

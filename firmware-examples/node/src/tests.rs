@@ -149,22 +149,10 @@ fn the_node_parameters_are_the_host_scenarios() {
 #[test]
 fn every_image_identity() {
     let cases: [(&str, Identity); 4] = [
-        ("ant-node", {
-            let mut d = ant_device::<f32>("ant-node").unwrap();
-            identity_of(&serve(&mut d, &hello(1)))
-        }),
-        ("ant-node-fixed", {
-            let mut d = ant_device::<Fx>("ant-node-fixed").unwrap();
-            identity_of(&serve(&mut d, &hello(1)))
-        }),
-        ("bee-node", {
-            let mut d = bee_device::<f32>("bee-node").unwrap();
-            identity_of(&serve(&mut d, &hello(1)))
-        }),
-        ("bee-node-fixed", {
-            let mut d = bee_device::<Fx>("bee-node-fixed").unwrap();
-            identity_of(&serve(&mut d, &hello(1)))
-        }),
+        ("ant-node", greet(ant_device::<f32>("ant-node"))),
+        ("ant-node-fixed", greet(ant_device::<Fx>("ant-node-fixed"))),
+        ("bee-node", greet(bee_device::<f32>("bee-node"))),
+        ("bee-node-fixed", greet(bee_device::<Fx>("bee-node-fixed"))),
     ];
     let expect = [
         Identity::of(&ant_params::<f32>(), MAX_ANT_FRAME + 1, "ant-node").unwrap(),
@@ -179,6 +167,13 @@ fn every_image_identity() {
     }
     assert_eq!(cases[1].1.scalar, ScalarKind::I16F16);
     assert_eq!(cases[2].1.controller, ControllerKind::BEE);
+}
+
+/// The `Identity` a new device answers a `Hello` with.
+fn greet<C: Controller, const RX: usize, const TX: usize>(
+    device: swarm_core::Result<DeviceEndpoint<C, RX, TX>>,
+) -> Identity {
+    identity_of(&serve(&mut device.unwrap(), &hello(1)))
 }
 
 fn serve<C: Controller, const RX: usize, const TX: usize>(

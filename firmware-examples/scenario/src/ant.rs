@@ -79,14 +79,7 @@ impl<S: Scalar> World<S> {
         let hear = S::from_f32(HEAR);
         for (j, a) in ants.iter().enumerate() {
             if j != i && (a.pos - me).length() <= hear {
-                let _ = f.neighbours.push(AntNeighbor {
-                    id: j as u32,
-                    pos: a.pos,
-                    label: a.label,
-                    nest: a.nest,
-                    origin: a.origin,
-                    arrival: a.arrival,
-                });
+                let _ = f.neighbours.push(neighbour(j, a));
             }
         }
         let sense = S::from_f32(SENSE);
@@ -146,6 +139,27 @@ impl<S: Scalar> World<S> {
             }
         }
         f
+    }
+}
+
+/// What an ant hears of ant `id` (its state `a`): its entry in a plan frame's neighbours.
+#[inline]
+pub fn neighbour<S: Scalar>(id: usize, a: &AntState<S>) -> AntNeighbor<S> {
+    let AntState {
+        pos,
+        label,
+        nest,
+        origin,
+        arrival,
+        ..
+    } = *a;
+    AntNeighbor {
+        id: id as u32,
+        pos,
+        label,
+        nest,
+        origin,
+        arrival,
     }
 }
 
@@ -293,13 +307,7 @@ fn cost_colony<S: Scalar>(w: &World<S>) -> [AntState<S>; COST_AGENTS] {
 pub fn cost<S: Scalar>(params: &Checked<AntParams<S>>, meter: &mut impl Meter) -> AntCost {
     let w = World::<S>::new();
     let mut ants = cost_colony(&w);
-    let mut c = AntCost {
-        plan: Stats::EMPTY,
-        resolve: Stats::EMPTY,
-        step: Stats::EMPTY,
-        moving: Stats::EMPTY,
-        ..AntCost::default()
-    };
+    let mut c = AntCost::default();
     for step in 0..COST_TICKS {
         let mut plans: [Option<AntPlan<S>>; COST_AGENTS] = [None; COST_AGENTS];
         let mut plan_ticks = [0u32; COST_AGENTS];
@@ -343,12 +351,9 @@ pub fn cost<S: Scalar>(params: &Checked<AntParams<S>>, meter: &mut impl Meter) -
 
 /// A probe's outcome: the error's marker and code, or (wrongly accepted) the plan.
 fn emit<S: Word>(r: swarm_core::Result<AntPlan<S>>, out: &mut impl Sink) {
-    match r {
-        Ok(p) => {
-            out.vec2(p.predicted);
-            out.put(discrete(&p.state));
-        }
-        Err(e) => out.error(&e),
+    if let Some(p) = out.decided(r) {
+        out.vec2(p.predicted);
+        out.put(discrete(&p.state));
     }
 }
 
@@ -431,7 +436,7 @@ pub fn discrete<S>(s: &AntState<S>) -> u32 {
 #[cfg(all(test, feature = "std"))]
 mod tests {
     use super::*;
-    use crate::host::collect;
+    use crate::host::{Calls, collect};
     use swarm_core::ant::{EnvAction, StopReason};
 
     /// Decoded per tick: (plan discrete words, resolved discrete words), per ant.
@@ -547,25 +552,11 @@ mod tests {
         );
     }
 
-    #[test]
-    fn f32_scenario_exercises_every_branch() {
-        coverage::<f32>();
-    }
-
-    #[cfg(feature = "fixed")]
-    #[test]
-    fn fixed_scenario_exercises_every_branch() {
-        coverage::<swarm_core::Fx>();
-    }
-
-    /// A meter that counts calls (one tick each).
-    struct Calls;
-
-    impl Meter for Calls {
-        fn measure<I, R>(&mut self, input: I, f: impl FnOnce(I) -> R) -> (R, u32) {
-            (f(input), 1)
-        }
-    }
+    scalar_tests!(
+        coverage,
+        f32_scenario_exercises_every_branch,
+        fixed_scenario_exercises_every_branch
+    );
 
     fn cost_covers<S: Scalar>() {
         let params = params_of_node::<S>().checked().unwrap();
@@ -585,16 +576,11 @@ mod tests {
         AntParams::<f32>::default().cast()
     }
 
-    #[test]
-    fn f32_cost_run_times_decisions_in_crowds() {
-        cost_covers::<f32>();
-    }
-
-    #[cfg(feature = "fixed")]
-    #[test]
-    fn fixed_cost_run_times_decisions_in_crowds() {
-        cost_covers::<swarm_core::Fx>();
-    }
+    scalar_tests!(
+        cost_covers,
+        f32_cost_run_times_decisions_in_crowds,
+        fixed_cost_run_times_decisions_in_crowds
+    );
 
     #[test]
     fn word_count() {

@@ -218,10 +218,7 @@ pub fn cost<S: Scalar, const NN: usize, const PP: usize>(
 ) -> BeeCost {
     let w = World::<S>::new();
     let mut bees = cost_swarm::<S>();
-    let mut c = BeeCost {
-        step: Stats::EMPTY,
-        ..BeeCost::default()
-    };
+    let mut c = BeeCost::default();
     for step in 0..COST_STEPS {
         let prev = bees;
         for (i, bee) in bees.iter_mut().enumerate() {
@@ -249,9 +246,8 @@ pub fn cost<S: Scalar, const NN: usize, const PP: usize>(
 
 /// A probe's outcome: the error's marker and code, or (wrongly accepted) the velocity.
 fn emit<S: Word>(r: swarm_core::Result<(bee::BeeDecision<S>, BeeState<S>)>, out: &mut impl Sink) {
-    match r {
-        Ok((d, _)) => out.vec3(d.velocity),
-        Err(e) => out.error(&e),
+    if let Some((d, _)) = out.decided(r) {
+        out.vec3(d.velocity);
     }
 }
 
@@ -306,7 +302,7 @@ fn probes<S: Word>(
 #[cfg(all(test, feature = "std"))]
 mod tests {
     use super::*;
-    use crate::host::collect;
+    use crate::host::{Calls, collect};
 
     fn coverage<S: Word>() {
         let words = collect(run::<S>);
@@ -358,15 +354,6 @@ mod tests {
         assert!(d4.density > S::ZERO, "target particles add density");
     }
 
-    /// A meter that counts calls (one tick each).
-    struct Calls;
-
-    impl Meter for Calls {
-        fn measure<I, R>(&mut self, input: I, f: impl FnOnce(I) -> R) -> (R, u32) {
-            (f(input), 1)
-        }
-    }
-
     fn cost_covers<S: Scalar>() {
         // The serial nodes' parameters (`fw_node::bee_params`) and wire capacities (16, 16).
         let params = BeeParams::<f32>::default().cast::<S>().checked().unwrap();
@@ -386,25 +373,14 @@ mod tests {
         );
     }
 
-    #[test]
-    fn f32_cost_run_times_decisions_in_a_swarm() {
-        cost_covers::<f32>();
-    }
-
-    #[cfg(feature = "fixed")]
-    #[test]
-    fn fixed_cost_run_times_decisions_in_a_swarm() {
-        cost_covers::<swarm_core::Fx>();
-    }
-
-    #[test]
-    fn f32_scenario_exercises_every_branch() {
-        coverage::<f32>();
-    }
-
-    #[cfg(feature = "fixed")]
-    #[test]
-    fn fixed_scenario_exercises_every_branch() {
-        coverage::<swarm_core::Fx>();
-    }
+    scalar_tests!(
+        cost_covers,
+        f32_cost_run_times_decisions_in_a_swarm,
+        fixed_cost_run_times_decisions_in_a_swarm
+    );
+    scalar_tests!(
+        coverage,
+        f32_scenario_exercises_every_branch,
+        fixed_scenario_exercises_every_branch
+    );
 }

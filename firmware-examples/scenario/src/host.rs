@@ -14,6 +14,17 @@ impl crate::Sink for Recorder {
     }
 }
 
+/// A [`Meter`](crate::Meter) that counts calls (one tick each): the cost runs' host tests.
+#[cfg(test)]
+pub(crate) struct Calls;
+
+#[cfg(test)]
+impl crate::Meter for Calls {
+    fn measure<I, R>(&mut self, input: I, f: impl FnOnce(I) -> R) -> (R, u32) {
+        (f(input), 1)
+    }
+}
+
 /// Collects every word a scenario produces.
 pub fn collect(run: impl FnOnce(&mut Recorder)) -> Vec<u32> {
     let mut r = Recorder::default();
@@ -68,4 +79,23 @@ pub fn node_build_script(what: &str, f32_words: &[u32], fixed_words: Option<&[u3
             words,
         );
     }
+}
+
+/// Writes a node's `build.rs` `main`: runs `fw_scenario::$model::run` (`$model`: `ant` or `bee`)
+/// here on the host in `f32` and, with the node's feature `fixed`, in `Fx`, and passes the words
+/// to [`node_build_script`] (`$what` names the scenario in the tables' doc comments).
+#[macro_export]
+macro_rules! node_build_script {
+    ($model:ident, $what:literal) => {
+        fn main() {
+            let f32_words = $crate::host::collect(|s| $crate::$model::run::<f32>(s));
+            #[cfg(feature = "fixed")]
+            let fixed_words = Some($crate::host::collect(|s| {
+                $crate::$model::run::<$crate::swarm_core::Fx>(s)
+            }));
+            #[cfg(not(feature = "fixed"))]
+            let fixed_words: Option<Vec<u32>> = None;
+            $crate::host::node_build_script($what, &f32_words, fixed_words.as_deref());
+        }
+    };
 }

@@ -16,6 +16,24 @@ use swarm_core::{Error, Scalar, Vec2, Vec3};
 /// Re-exported for the build scripts (the scalar types).
 pub use swarm_core;
 
+/// Host tests of a check generic over the scalar: `#[test] fn $f32()` runs `$check::<f32>()`
+/// and, with feature `fixed`, `#[test] fn $fx()` runs `$check::<Fx>()`.
+#[cfg(all(test, feature = "std"))]
+macro_rules! scalar_tests {
+    ($check:ident, $f32:ident, $fx:ident) => {
+        #[test]
+        fn $f32() {
+            $check::<f32>();
+        }
+
+        #[cfg(feature = "fixed")]
+        #[test]
+        fn $fx() {
+            $check::<swarm_core::Fx>();
+        }
+    };
+}
+
 pub mod ant;
 pub mod bee;
 #[cfg(feature = "std")]
@@ -64,6 +82,11 @@ pub trait Sink {
         self.put(v.x.word());
         self.put(v.y.word());
         self.put(v.z.word());
+    }
+    /// A controller call's result: its value, or `None` once its error is emitted.
+    #[inline]
+    fn decided<T>(&mut self, r: swarm_core::Result<T>) -> Option<T> {
+        r.map_err(|e| self.error(&e)).ok()
     }
     /// A controller error, as a marker word followed by a code for its kind and its list index.
     fn error(&mut self, e: &Error) {

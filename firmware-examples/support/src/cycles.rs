@@ -149,37 +149,36 @@ impl Meter for SysTickMeter {
     }
 }
 
-/// A counted loop: `n` iterations of `subs; bne`, 2 instructions each (`n` ≥ 1).
-#[inline(never)]
-pub fn spin2(n: u32) {
-    // SAFETY: register-only arithmetic and a local branch.
-    unsafe {
-        core::arch::asm!(
-            "2:",
-            "subs {n}, {n}, #1",
-            "bne 2b",
-            n = inout(reg) n.max(1) => _,
-            options(nomem, nostack),
-        );
-    }
+/// Writes `pub fn $name(n: u32)`: a counted loop of `n` iterations (`n` ≥ 1) of the
+/// instructions `$op`, then `subs; bne`.
+macro_rules! counted_loop {
+    ($(#[$doc:meta])* $name:ident: $($op:literal),*) => {
+        $(#[$doc])*
+        #[inline(never)]
+        pub fn $name(n: u32) {
+            // SAFETY: register-only arithmetic and a local branch.
+            unsafe {
+                core::arch::asm!(
+                    "2:",
+                    $($op,)*
+                    "subs {n}, {n}, #1",
+                    "bne 2b",
+                    n = inout(reg) n.max(1) => _,
+                    options(nomem, nostack),
+                );
+            }
+        }
+    };
 }
 
-/// A counted loop: `n` iterations of `nop; nop; subs; bne`, 4 instructions each (`n` ≥ 1).
-#[inline(never)]
-pub fn spin4(n: u32) {
-    // SAFETY: register-only arithmetic and a local branch.
-    unsafe {
-        core::arch::asm!(
-            "2:",
-            "nop",
-            "nop",
-            "subs {n}, {n}, #1",
-            "bne 2b",
-            n = inout(reg) n.max(1) => _,
-            options(nomem, nostack),
-        );
-    }
-}
+counted_loop!(
+    /// A counted loop: `n` iterations of `subs; bne`, 2 instructions each (`n` ≥ 1).
+    spin2:
+);
+counted_loop!(
+    /// A counted loop: `n` iterations of `nop; nop; subs; bne`, 4 instructions each (`n` ≥ 1).
+    spin4: "nop", "nop"
+);
 
 /// What the DWT cycle counter showed.
 pub struct DwtProbe {
@@ -212,25 +211,7 @@ pub fn put_stats(l: &mut Report, key: &str, s: &Stats) {
     let min = if s.n == 0 { 0 } else { s.min };
     l.str(" ").str(key).str("=").dec(s.n as usize).str(":");
     l.dec(min as usize).str(":").dec(s.max as usize).str(":");
-    dec64(l, s.sum);
-}
-
-/// Appends a `u64` in decimal.
-fn dec64(l: &mut Report, v: u64) {
-    let mut d = [0u8; 20];
-    let mut n = 0;
-    let mut v = v;
-    for slot in d.iter_mut() {
-        *slot = b'0' + (v % 10) as u8;
-        n += 1;
-        v /= 10;
-        if v == 0 {
-            break;
-        }
-    }
-    for &c in d.iter().take(n).rev() {
-        l.bytes(&[c]);
-    }
+    l.dec(s.sum);
 }
 
 /// Appends an ant run's fields; true if every call returned a decision.
@@ -302,6 +283,61 @@ pub fn run(
     l.str(" overflows=").dec(m.overflows() as usize);
     l.print();
     exit(ok && m.overflows() == 0)
+}
+
+/// Writes a measurement image (`*-cycles`): the handlers of
+/// [`selfcheck_handlers!`](crate::selfcheck_handlers) and a `main` that [`run`]s, as image
+/// `$image`, the cost run of `$model` (`ant`: `ant::plan_checked` and `ant::resolve_checked`;
+/// `bee`: `bee::step_checked` with the wire frame capacities) in scalar `$scalar` (`f32` or
+/// `Fx`) with the serial node's parameters (`fw_node::ant_params`, `fw_node::bee_params`). The
+/// binary depends on `cortex-m-rt` and `fw-node`. Use once, at the top level.
+#[macro_export]
+macro_rules! cycles_image {
+    ($image:literal, $model:ident, f32) => {
+        $crate::cycles_image!(@ $image, "f32", $model, f32);
+    };
+    ($image:literal, $model:ident, Fx) => {
+        $crate::cycles_image!(
+            @ $image, "I16F16", $model, $crate::__private::fw_scenario::swarm_core::Fx
+        );
+    };
+    (@ $image:literal, $label:literal, ant, $scalar:ty) => {
+        // The frames of the timed run have the capacities of the node's wire frames.
+        const _: () = {
+            use fw_node::swarm_core::wire::{WIRE_ANT_NEIGHBOURS, WIRE_ANT_OBJECTS};
+            use $crate::__private::fw_scenario::ant::{N, O};
+            assert!(N == WIRE_ANT_NEIGHBOURS && O == WIRE_ANT_OBJECTS);
+        };
+        $crate::cycles_image!(@@ $image, $label, |meter, line| {
+            let Ok(params) = fw_node::ant_params::<$scalar>().checked() else {
+                return false;
+            };
+            let cost = $crate::__private::fw_scenario::ant::cost(&params, meter);
+            $crate::cycles::put_ant(line, &cost)
+        });
+    };
+    (@ $image:literal, $label:literal, bee, $scalar:ty) => {
+        $crate::cycles_image!(@@ $image, $label, |meter, line| {
+            use fw_node::swarm_core::wire::{WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS};
+            let Ok(params) = fw_node::bee_params::<$scalar>().checked() else {
+                return false;
+            };
+            let cost = $crate::__private::fw_scenario::bee::cost::<
+                $scalar,
+                WIRE_BEE_NEIGHBOURS,
+                WIRE_BEE_TARGETS,
+            >(&params, meter);
+            $crate::cycles::put_bee(line, &cost)
+        });
+    };
+    (@@ $image:literal, $label:literal, $body:expr) => {
+        $crate::selfcheck_handlers!();
+
+        #[cortex_m_rt::entry]
+        fn main() -> ! {
+            $crate::cycles::run($image, $label, $body)
+        }
+    };
 }
 
 /// The core the image runs on, as QEMU's `-cpu` names it.

@@ -245,6 +245,66 @@ pub fn reset() -> ! {
     cortex_m::peripheral::SCB::sys_reset()
 }
 
+/// Names the macros below use, whatever the binary names its dependencies.
+#[doc(hidden)]
+pub mod __private {
+    pub use fw_scenario;
+}
+
+/// Writes a serial node image (`ant-node`, `bee-node`, their `-fixed` and `-other` variants):
+/// the handlers of [`node_handlers!`] and a `main` that paints the stack, takes the board's
+/// UART0 ([`uart::take_uart0`]), builds the device with `$device` (a
+/// `swarm_core::Result<DeviceEndpoint<..>>`, e.g. `fw_node::ant_device::<f32>("ant-node")`)
+/// and serves it with `fw_node::run` forever. A UART taken before or a device error resets the
+/// MCU. The binary depends on `cortex-m-rt` and `fw-node`. Use once, at the top level.
+#[macro_export]
+macro_rules! serial_node {
+    ($device:expr) => {
+        $crate::node_handlers!();
+
+        #[cortex_m_rt::entry]
+        fn main() -> ! {
+            $crate::paint_stack();
+            let Some(mut uart) = $crate::uart::take_uart0() else {
+                $crate::reset()
+            };
+            let Ok(mut device) = ($device) else {
+                $crate::reset()
+            };
+            fw_node::run(&mut device, &mut uart)
+        }
+    };
+}
+
+/// Writes a self-check image (`*-selfcheck`): the handlers of [`selfcheck_handlers!`], the
+/// expected table the node's `build.rs` wrote for the scalar (`OUT_DIR/expected_f32.rs` or
+/// `expected_fixed.rs`), and a `main` that runs [`check`] labelled `$name` over
+/// `fw_scenario::$model::run` (`$model`: `ant` or `bee`; `$scalar`: `f32` or `Fx`). The binary
+/// depends on `cortex-m-rt`. Use once, at the top level.
+#[macro_export]
+macro_rules! selfcheck_image {
+    ($name:literal, $model:ident, f32) => {
+        $crate::selfcheck_image!(@ $name, $model, f32, "/expected_f32.rs");
+    };
+    ($name:literal, $model:ident, Fx) => {
+        $crate::selfcheck_image!(
+            @ $name, $model, $crate::__private::fw_scenario::swarm_core::Fx, "/expected_fixed.rs"
+        );
+    };
+    (@ $name:literal, $model:ident, $scalar:ty, $table:literal) => {
+        $crate::selfcheck_handlers!();
+
+        include!(concat!(env!("OUT_DIR"), $table));
+
+        #[cortex_m_rt::entry]
+        fn main() -> ! {
+            $crate::check($name, &EXPECTED, |c| {
+                $crate::__private::fw_scenario::$model::run::<$scalar>(c)
+            })
+        }
+    };
+}
+
 /// Defines the panic and HardFault handlers of a self-check image: print over semihosting,
 /// exit QEMU with failure. Use once, at the top level of the binary.
 #[macro_export]
@@ -317,16 +377,17 @@ impl<const CAP: usize> Line<CAP> {
         self.bytes(s.as_bytes())
     }
 
-    /// Appends a number in decimal.
-    pub fn dec(&mut self, v: usize) -> &mut Self {
+    /// Appends a number (`usize` or `u64`) in decimal.
+    pub fn dec<T: Decimal>(&mut self, v: T) -> &mut Self {
         let mut d = [0u8; 20];
         let mut n = 0;
         let mut v = v;
         for slot in d.iter_mut() {
-            *slot = b'0' + (v % 10) as u8;
+            let (rest, digit) = v.div10();
+            *slot = b'0' + digit;
             n += 1;
-            v /= 10;
-            if v == 0 {
+            v = rest;
+            if v.is_zero() {
                 break;
             }
         }
@@ -358,6 +419,32 @@ impl<const CAP: usize> Line<CAP> {
         }
     }
 }
+
+/// An unsigned integer [`Line::dec`] prints (at most 20 digits).
+pub trait Decimal: Copy {
+    /// `self / 10` and the last digit, `self % 10`.
+    fn div10(self) -> (Self, u8);
+    /// `self == 0`.
+    fn is_zero(self) -> bool;
+}
+
+macro_rules! decimal {
+    ($($t:ty),*) => {$(
+        impl Decimal for $t {
+            #[inline(always)]
+            fn div10(self) -> (Self, u8) {
+                (self / 10, (self % 10) as u8)
+            }
+
+            #[inline(always)]
+            fn is_zero(self) -> bool {
+                self == 0
+            }
+        }
+    )*};
+}
+
+decimal!(usize, u64);
 
 impl Default for Line {
     fn default() -> Self {

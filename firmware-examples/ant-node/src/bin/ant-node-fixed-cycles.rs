@@ -6,21 +6,4 @@
 #![no_std]
 #![no_main]
 
-fw_support::selfcheck_handlers!();
-
-// The frames of the timed run have the capacities of the node's wire frames.
-const _: () = assert!(
-    fw_scenario::ant::N == swarm_core::wire::WIRE_ANT_NEIGHBOURS
-        && fw_scenario::ant::O == swarm_core::wire::WIRE_ANT_OBJECTS
-);
-
-#[cortex_m_rt::entry]
-fn main() -> ! {
-    fw_support::cycles::run("ant-node-fixed-cycles", "I16F16", |meter, line| {
-        let Ok(params) = fw_node::ant_params::<swarm_core::Fx>().checked() else {
-            return false;
-        };
-        let cost = fw_scenario::ant::cost(&params, meter);
-        fw_support::cycles::put_ant(line, &cost)
-    })
-}
+fw_support::cycles_image!("ant-node-fixed-cycles", ant, Fx);

@@ -4,22 +4,4 @@
 #![no_std]
 #![no_main]
 
-use fw_support::uart::{BAUD, Lm3sUart0};
-
-fw_support::node_handlers!();
-
-/// The UART clock: the LM3S6965's 12 MHz internal oscillator after reset (QEMU ignores it;
-/// a real board switches to the crystal or PLL first, see README.md).
-const CLOCK_HZ: u32 = 12_000_000;
-
-#[cortex_m_rt::entry]
-fn main() -> ! {
-    fw_support::paint_stack();
-    let Some(mut uart) = Lm3sUart0::take(CLOCK_HZ, BAUD) else {
-        fw_support::reset()
-    };
-    let Ok(mut device) = fw_node::ant_device::<swarm_core::Fx>("ant-node-fixed") else {
-        fw_support::reset()
-    };
-    fw_node::run(&mut device, &mut uart)
-}
+fw_support::serial_node!(fw_node::ant_device::<swarm_core::Fx>("ant-node-fixed"));

@@ -6,18 +6,4 @@
 #![no_std]
 #![no_main]
 
-use swarm_core::wire::{WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS};
-
-fw_support::selfcheck_handlers!();
-
-#[cortex_m_rt::entry]
-fn main() -> ! {
-    fw_support::cycles::run("bee-node-cycles", "f32", |meter, line| {
-        let Ok(params) = fw_node::bee_params::<f32>().checked() else {
-            return false;
-        };
-        let cost =
-            fw_scenario::bee::cost::<f32, WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS>(&params, meter);
-        fw_support::cycles::put_bee(line, &cost)
-    })
-}
+fw_support::cycles_image!("bee-node-cycles", bee, f32);

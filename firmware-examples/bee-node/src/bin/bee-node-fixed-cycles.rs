@@ -6,19 +6,4 @@
 #![no_std]
 #![no_main]
 
-use swarm_core::Fx;
-use swarm_core::wire::{WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS};
-
-fw_support::selfcheck_handlers!();
-
-#[cortex_m_rt::entry]
-fn main() -> ! {
-    fw_support::cycles::run("bee-node-fixed-cycles", "I16F16", |meter, line| {
-        let Ok(params) = fw_node::bee_params::<Fx>().checked() else {
-            return false;
-        };
-        let cost =
-            fw_scenario::bee::cost::<Fx, WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS>(&params, meter);
-        fw_support::cycles::put_bee(line, &cost)
-    })
-}
+fw_support::cycles_image!("bee-node-fixed-cycles", bee, Fx);

@@ -4,13 +4,4 @@
 #![no_std]
 #![no_main]
 
-fw_support::selfcheck_handlers!();
-
-include!(concat!(env!("OUT_DIR"), "/expected_fixed.rs"));
-
-#[cortex_m_rt::entry]
-fn main() -> ! {
-    fw_support::check("bee-node-fixed [I16F16, cortex-m4f]", &EXPECTED, |c| {
-        fw_scenario::bee::run::<swarm_core::Fx>(c)
-    })
-}
+fw_support::selfcheck_image!("bee-node-fixed [I16F16, cortex-m4f]", bee, Fx);

@@ -4,18 +4,4 @@
 #![no_std]
 #![no_main]
 
-use fw_support::uart::{BAUD, CmsdkUart0};
-
-fw_support::node_handlers!();
-
-#[cortex_m_rt::entry]
-fn main() -> ! {
-    fw_support::paint_stack();
-    let Some(mut uart) = CmsdkUart0::take(BAUD) else {
-        fw_support::reset()
-    };
-    let Ok(mut device) = fw_node::bee_device::<swarm_core::Fx>("bee-node-fixed") else {
-        fw_support::reset()
-    };
-    fw_node::run(&mut device, &mut uart)
-}
+fw_support::serial_node!(fw_node::bee_device::<swarm_core::Fx>("bee-node-fixed"));

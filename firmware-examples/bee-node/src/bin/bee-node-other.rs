@@ -5,24 +5,10 @@
 #![no_std]
 #![no_main]
 
-use fw_support::uart::{BAUD, CmsdkUart0};
 use swarm_core::bee::BeeParams;
 use swarm_core::wire::BeeDevice;
 
-fw_support::node_handlers!();
-
-#[cortex_m_rt::entry]
-fn main() -> ! {
-    fw_support::paint_stack();
-    let Some(mut uart) = CmsdkUart0::take(BAUD) else {
-        fw_support::reset()
-    };
-    let params = BeeParams {
-        kappa2: 3.21,
-        ..fw_node::bee_params::<f32>()
-    };
-    let Ok(mut device) = BeeDevice::<f32>::new(params, "bee-node-other") else {
-        fw_support::reset()
-    };
-    fw_node::run(&mut device, &mut uart)
-}
+fw_support::serial_node!({
+    let p = fw_node::bee_params::<f32>();
+    BeeDevice::new(BeeParams { kappa2: 3.21, ..p }, "bee-node-other")
+});

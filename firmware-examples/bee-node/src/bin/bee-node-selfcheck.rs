@@ -4,13 +4,4 @@
 #![no_std]
 #![no_main]
 
-fw_support::selfcheck_handlers!();
-
-include!(concat!(env!("OUT_DIR"), "/expected_f32.rs"));
-
-#[cortex_m_rt::entry]
-fn main() -> ! {
-    fw_support::check("bee-node [f32/libm, cortex-m4f]", &EXPECTED, |c| {
-        fw_scenario::bee::run::<f32>(c)
-    })
-}
+fw_support::selfcheck_image!("bee-node [f32/libm, cortex-m4f]", bee, f32);

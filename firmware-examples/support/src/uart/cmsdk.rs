@@ -11,8 +11,7 @@
 //! whenever the receive buffer is empty: no overrun whatever the host's pace. A `BAUDDIV` below
 //! 16 makes QEMU log "Tx enabled with invalid baudrate" (and a real UART misbehave).
 
-use super::{claim, rd, wr};
-use core::convert::Infallible;
+use super::{Polled, claim, rd, wr};
 
 const BASE: usize = 0x4000_4000;
 const DATA: usize = BASE;
@@ -35,7 +34,7 @@ pub struct CmsdkUart0 {
 }
 
 impl CmsdkUart0 {
-    /// Configures UART0 for `baud` from the [`PCLK_HZ`] peripheral clock and returns it;
+    /// Configures UART0 for `baud` from the `PCLK_HZ` peripheral clock and returns it;
     /// `None` if it was taken before.
     pub fn take(baud: u32) -> Option<Self> {
         if !claim() {
@@ -47,64 +46,31 @@ impl CmsdkUart0 {
         wr(CTRL, CTRL_TX_EN | CTRL_RX_EN);
         Some(CmsdkUart0 { _private: () })
     }
+}
 
+impl Polled for CmsdkUart0 {
     fn rx_ready() -> bool {
         rd(STATE) & STATE_RXFULL != 0
     }
 
-    fn put(byte: u8) {
-        while rd(STATE) & STATE_TXFULL != 0 {}
-        wr(DATA, u32::from(byte));
+    fn rx() -> u8 {
+        rd(DATA) as u8
     }
-}
 
-impl embedded_io::ErrorType for CmsdkUart0 {
-    type Error = Infallible;
-}
-
-impl embedded_io::Read for CmsdkUart0 {
-    fn read(&mut self, buf: &mut [u8]) -> Result<usize, Infallible> {
-        if buf.is_empty() {
-            return Ok(0);
-        }
-        while !Self::rx_ready() {}
-        let mut n = 0;
-        for slot in buf.iter_mut() {
-            if !Self::rx_ready() {
-                break;
-            }
-            *slot = rd(DATA) as u8;
-            n += 1;
-        }
-        // An overrun (real hardware only) lost a byte: its frame fails its CRC. Clear the flag.
+    // An overrun (real hardware only) lost a byte: its frame fails its CRC. Clear the flag.
+    fn rx_done() {
         if rd(STATE) & STATE_OVERRUNS != 0 {
             wr(STATE, STATE_OVERRUNS);
         }
-        Ok(n)
-    }
-}
-
-impl embedded_io::ReadReady for CmsdkUart0 {
-    fn read_ready(&mut self) -> Result<bool, Infallible> {
-        Ok(Self::rx_ready())
-    }
-}
-
-impl embedded_io::Write for CmsdkUart0 {
-    fn write(&mut self, buf: &[u8]) -> Result<usize, Infallible> {
-        self.write_all(buf).map(|()| buf.len())
     }
 
-    // Overridden: the provided one carries a panic path for `Ok(0)`, which never happens here.
-    fn write_all(&mut self, buf: &[u8]) -> Result<(), Infallible> {
-        for &b in buf {
-            Self::put(b);
-        }
-        Ok(())
+    fn tx(byte: u8) {
+        while Self::tx_busy() {}
+        wr(DATA, u32::from(byte));
     }
 
-    fn flush(&mut self) -> Result<(), Infallible> {
-        while rd(STATE) & STATE_TXFULL != 0 {}
-        Ok(())
+    // The one-byte transmit buffer still holds a byte.
+    fn tx_busy() -> bool {
+        rd(STATE) & STATE_TXFULL != 0
     }
 }

@@ -2,9 +2,9 @@
 //! ([`Read`](embedded_io::Read), [`Write`](embedded_io::Write),
 //! [`ErrorType`](embedded_io::ErrorType)), which is all `fw_node::run` needs.
 //!
-//! * [`Lm3sUart0`] (feature `lm3s6965evb`): TI Stellaris LM3S6965 UART0 (ARM PL011 with
+//! * `Lm3sUart0` (feature `lm3s6965evb`): TI Stellaris LM3S6965 UART0 (ARM PL011 with
 //!   Luminary extensions) at `0x4000_C000`, pins PA0 (U0Rx) / PA1 (U0Tx);
-//! * [`CmsdkUart0`] (feature `mps2-an386`): ARM CMSDK APB UART0 of the MPS2 AN386 FPGA image at
+//! * `CmsdkUart0` (feature `mps2-an386`): ARM CMSDK APB UART0 of the MPS2 AN386 FPGA image at
 //!   `0x4000_4000` (QEMU `info mtree`; `0x4020_0000` on that board is the LAN9118 Ethernet).
 //!
 //! Both are polled (no interrupt, no DMA) and 8N1. `read` blocks until one byte is there, then
@@ -16,6 +16,7 @@
 //! Each driver is a singleton: `take` returns it once (a second `take` gives `None`), after
 //! configuring the clocks, pins and baud rate.
 
+use core::convert::Infallible;
 use core::sync::atomic::{AtomicBool, Ordering};
 
 #[cfg(feature = "mps2-an386")]
@@ -31,6 +32,97 @@ pub use pl011::Lm3sUart0;
 /// The baud rate the examples use (8N1). QEMU ignores it (its UARTs move bytes as fast as the
 /// host reads them); on a real board both ends must agree.
 pub const BAUD: u32 = 115_200;
+
+/// The board's UART0 at [`BAUD`], as the serial nodes use it (see `serial_node!`); `None` if
+/// it was taken before. The UART clock is [`Lm3sUart0::RESET_CLOCK_HZ`].
+#[cfg(feature = "lm3s6965evb")]
+#[inline(always)]
+pub fn take_uart0() -> Option<Lm3sUart0> {
+    Lm3sUart0::take(Lm3sUart0::RESET_CLOCK_HZ, BAUD)
+}
+
+/// The board's UART0 at [`BAUD`], as the serial nodes use it (see `serial_node!`); `None` if
+/// it was taken before.
+#[cfg(feature = "mps2-an386")]
+#[inline(always)]
+pub fn take_uart0() -> Option<CmsdkUart0> {
+    CmsdkUart0::take(BAUD)
+}
+
+/// What a polled UART driver provides (its registers); [`polled_io!`] builds the
+/// `embedded-io` implementations on it, the same for every driver.
+trait Polled {
+    /// A received byte is waiting.
+    fn rx_ready() -> bool;
+    /// Takes the waiting byte (after [`Polled::rx_ready`]).
+    fn rx() -> u8;
+    /// After a `read` took its bytes: clears the line-error flags the UART keeps, if any.
+    fn rx_done() {}
+    /// Waits until the transmitter has room, then hands it `byte`.
+    fn tx(byte: u8);
+    /// True while the transmitter still holds bytes to send (`flush` waits for false).
+    fn tx_busy() -> bool;
+}
+
+/// `embedded_io::{ErrorType, Read, ReadReady, Write}` for a [`Polled`] driver (a macro: the
+/// traits and the drivers' types are not this module's, so no blanket implementation).
+macro_rules! polled_io {
+    ($uart:ty) => {
+        impl embedded_io::ErrorType for $uart {
+            type Error = Infallible;
+        }
+
+        impl embedded_io::Read for $uart {
+            fn read(&mut self, buf: &mut [u8]) -> Result<usize, Infallible> {
+                if buf.is_empty() {
+                    return Ok(0);
+                }
+                while !<$uart as Polled>::rx_ready() {}
+                let mut n = 0;
+                for slot in buf.iter_mut() {
+                    if !<$uart as Polled>::rx_ready() {
+                        break;
+                    }
+                    *slot = <$uart as Polled>::rx();
+                    n += 1;
+                }
+                <$uart as Polled>::rx_done();
+                Ok(n)
+            }
+        }
+
+        impl embedded_io::ReadReady for $uart {
+            fn read_ready(&mut self) -> Result<bool, Infallible> {
+                Ok(<$uart as Polled>::rx_ready())
+            }
+        }
+
+        impl embedded_io::Write for $uart {
+            fn write(&mut self, buf: &[u8]) -> Result<usize, Infallible> {
+                self.write_all(buf).map(|()| buf.len())
+            }
+
+            // Overridden: the provided one carries a panic path for `Ok(0)`, which never
+            // happens here.
+            fn write_all(&mut self, buf: &[u8]) -> Result<(), Infallible> {
+                for &b in buf {
+                    <$uart as Polled>::tx(b);
+                }
+                Ok(())
+            }
+
+            fn flush(&mut self) -> Result<(), Infallible> {
+                while <$uart as Polled>::tx_busy() {}
+                Ok(())
+            }
+        }
+    };
+}
+
+#[cfg(feature = "mps2-an386")]
+polled_io!(CmsdkUart0);
+#[cfg(feature = "lm3s6965evb")]
+polled_io!(Lm3sUart0);
 
 /// Set once a driver was handed out.
 static TAKEN: AtomicBool = AtomicBool::new(false);

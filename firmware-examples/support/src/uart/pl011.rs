@@ -17,8 +17,7 @@
 //! (TCP socket / pty) until the firmware reads: nothing is lost afterwards, whatever the host's
 //! pace.
 
-use super::{claim, rd, wr};
-use core::convert::Infallible;
+use super::{Polled, claim, rd, wr};
 
 const BASE: usize = 0x4000_C000;
 const DR: usize = BASE;
@@ -50,6 +49,11 @@ pub struct Lm3sUart0 {
 }
 
 impl Lm3sUart0 {
+    /// The UART clock the serial nodes pass to [`Lm3sUart0::take`]: the LM3S6965's 12 MHz
+    /// internal oscillator after reset (QEMU ignores it; a real board switches to the crystal
+    /// or the PLL first and passes that frequency, see README.md).
+    pub const RESET_CLOCK_HZ: u32 = 12_000_000;
+
     /// Configures UART0 for `baud` from a UART clock of `clock_hz` (the system clock), and
     /// returns it; `None` if it was taken before.
     ///
@@ -76,61 +80,24 @@ impl Lm3sUart0 {
         wr(CTL, CTL_UARTEN | CTL_TXE | CTL_RXE);
         Some(Lm3sUart0 { _private: () })
     }
+}
 
+impl Polled for Lm3sUart0 {
     fn rx_ready() -> bool {
         rd(FR) & FR_RXFE == 0
     }
 
-    fn put(byte: u8) {
+    // The error flags (bits 8-11) are dropped with the data register read.
+    fn rx() -> u8 {
+        rd(DR) as u8
+    }
+
+    fn tx(byte: u8) {
         while rd(FR) & FR_TXFF != 0 {}
         wr(DR, u32::from(byte));
     }
-}
 
-impl embedded_io::ErrorType for Lm3sUart0 {
-    type Error = Infallible;
-}
-
-impl embedded_io::Read for Lm3sUart0 {
-    fn read(&mut self, buf: &mut [u8]) -> Result<usize, Infallible> {
-        if buf.is_empty() {
-            return Ok(0);
-        }
-        while !Self::rx_ready() {}
-        let mut n = 0;
-        for slot in buf.iter_mut() {
-            if !Self::rx_ready() {
-                break;
-            }
-            // The error flags (bits 8-11) are dropped with the data register read.
-            *slot = rd(DR) as u8;
-            n += 1;
-        }
-        Ok(n)
-    }
-}
-
-impl embedded_io::ReadReady for Lm3sUart0 {
-    fn read_ready(&mut self) -> Result<bool, Infallible> {
-        Ok(Self::rx_ready())
-    }
-}
-
-impl embedded_io::Write for Lm3sUart0 {
-    fn write(&mut self, buf: &[u8]) -> Result<usize, Infallible> {
-        self.write_all(buf).map(|()| buf.len())
-    }
-
-    // Overridden: the provided one carries a panic path for `Ok(0)`, which never happens here.
-    fn write_all(&mut self, buf: &[u8]) -> Result<(), Infallible> {
-        for &b in buf {
-            Self::put(b);
-        }
-        Ok(())
-    }
-
-    fn flush(&mut self) -> Result<(), Infallible> {
-        while rd(FR) & FR_BUSY != 0 {}
-        Ok(())
+    fn tx_busy() -> bool {
+        rd(FR) & FR_BUSY != 0
     }
 }
