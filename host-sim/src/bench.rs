@@ -62,7 +62,7 @@ pub fn bench(
         let seconds = t0.elapsed().as_secs_f64();
         Ok(BenchReport {
             model: format!("{}s", model.as_str()),
-            backend: "cpu".into(),
+            backend: engine.backend().into(),
             agents,
             steps,
             threads,

@@ -32,6 +32,12 @@ pub trait Engine: Send {
     fn apply(&mut self, object: u16, action: &Action);
     /// The names of the phases of a tick, in order.
     fn phases(&self) -> &'static [&'static str];
+    /// Who computes [`Engine::decide`]: `cpu` (rayon, deterministic for any thread count)
+    /// for every engine today; a GPU engine of a model reuses the model's world (sensing for
+    /// the mirror, events, frames, summary) and decides on the device.
+    fn backend(&self) -> &'static str {
+        "cpu"
+    }
     /// Runs phase `phase` of the current tick for every agent, from what the previous phase
     /// published; publishes nothing.
     ///

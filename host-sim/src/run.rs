@@ -136,7 +136,7 @@ fn summary_for(sc: &Scenario, seed: u32, threads: usize, engine: &dyn Engine) ->
                 scalar: format!("{:?}", g.scalar.kind()),
             })
             .collect(),
-        backend: "cpu".into(),
+        backend: engine.backend().into(),
         threads: threads as u32,
         collision_distance: engine.collision_distance(),
         ..Summary::default()
