@@ -6,8 +6,9 @@
 //!   ports and pseudo-terminals, TCP) and a fault-injecting wrapper.
 //! * [`client`]: the host end of a session (handshake, pipelined requests, retries), a pure
 //!   state machine driven over any transport.
-//! * [`mirror`]: a scenario run on the host with every chosen agent's decisions asked of the
-//!   device and compared bit for bit; [`verdict`]: what a run concludes.
+//! * [`mirror`]: a simulation of any model (a `swarm_sim::engine::Engine`) run on the host
+//!   with every chosen agent's requests sent to the device and its answers compared, bit for
+//!   bit, with the decisions the engine made; [`verdict`]: what a run concludes.
 //! * [`loopback`]: the mirror against the soft device, in memory or over a pseudo-terminal.
 //! * `qemu` (Unix): the firmware images in QEMU, on a pseudo-terminal.
 //! * [`soft`]: the soft device, `swarm-core`'s device endpoint served on the host.

@@ -6,11 +6,26 @@
 //! harness calls too.
 //!
 //! * [`scenario`]: scenario files (TOML) and the built-in scenarios, checked before a run;
+//! * [`engine`]: the [`Engine`](engine::Engine) trait through which everything generic drives
+//!   any model, one phase at a time (and what a mirror asks of it: requests, replies, the
+//!   device); [`models`]: the one place naming the built-in models;
 //! * [`ants`], [`bees`]: each model's world, sensing and deterministic parallel CPU engine;
 //! * [`run`]: `swarm run`, a scenario from its first tick to its last into one output folder
 //!   ([`output`]: CSV, `.npy`, JSON, PNG, GIF); [`mod@bench`]: `swarm bench`.
 //!
-//! The GPU backend is not built yet (issue 14).
+//! `docs/architecture.md` says how a new model plugs in. The GPU backend is not built yet
+//! (issue 14).
+//!
+//! ```
+//! use swarm_sim::{engine::Engine, models, scenario};
+//!
+//! let sc = scenario::builtin("ants-fig7a-single-colony").unwrap();
+//! let mut engine = models::engine(&sc, sc.seed).unwrap();
+//! assert_eq!((engine.model(), engine.phases()), ("ant", &["plan", "resolve"][..]));
+//! engine.tick().unwrap();
+//! assert_eq!(engine.step(), 1);
+//! assert_eq!(engine.frame().agents.len(), engine.agents());
+//! ```
 
 pub use swarm_core;
 
