@@ -1,12 +1,25 @@
-//! The crate's error type.
+//! The crate's error type: one flat enum for the engines, the scenario files and the run
+//! outputs.
+
+use std::path::PathBuf;
+
+use crate::scenario::Diagnostic;
 
 /// `Result` with [`SimError`].
 pub type Result<T> = std::result::Result<T, SimError>;
 
 /// Everything that can go wrong in the simulator.
+///
+/// Every message can be shown to a user as it is: it names the step and agent, the scenario
+/// file, line and field, or the output file (and line) and what was wrong. The variants come in
+/// four groups: the engines and runs; scenarios (a bad scenario file is one
+/// [`InvalidScenario`](SimError::InvalidScenario), its [`Diagnostic`] naming file, line, column
+/// and field); the data handed to an output writer (`cannot write <file>: ...`); and files of a
+/// run folder that cannot be read back (`<file>[:line]: ...`).
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum SimError {
+    // ---- engines and runs ----
     /// A controller refused its input (a bug in the world or in frame building: the report
     /// names the step, the agent and the field).
     #[error("{phase} of agent {agent} at step {step}: {source}")]
@@ -81,11 +94,16 @@ pub enum SimError {
         /// The controller's complaint (which parameter).
         source: swarm_core::Error,
     },
-    /// A worker-thread count that cannot be used.
-    #[error("threads: {problem}")]
-    Threads {
-        /// Why (`must be at least 1`, the pool's own error).
-        problem: String,
+    /// A worker-thread count of zero.
+    #[error("threads: must be at least 1")]
+    NoThreads,
+    /// The pool of worker threads could not be started.
+    #[error("threads: cannot start {threads} threads: {source}")]
+    ThreadPool {
+        /// The count asked for.
+        threads: usize,
+        /// The pool's error.
+        source: rayon::ThreadPoolBuildError,
     },
     /// A benchmark with nothing to time.
     #[error("bench: needs at least one agent and one step (got {agents} agents, {steps} steps)")]
@@ -95,12 +113,6 @@ pub enum SimError {
         /// Steps asked for.
         steps: u32,
     },
-    /// A scenario file could not be read or is invalid (file, line, field in the message).
-    #[error(transparent)]
-    Scenario(#[from] crate::scenario::ScenarioError),
-    /// An output could not be written or read (the path in the message).
-    #[error(transparent)]
-    Output(#[from] crate::output::OutputError),
     /// A run failed after it started writing: its output folder was left as it was, and the
     /// run's log (ending with the error) kept beside it, when it could be.
     #[error(
@@ -110,12 +122,44 @@ pub enum SimError {
     )]
     RunFailed {
         /// The output folder the run was to replace.
-        target: std::path::PathBuf,
+        target: PathBuf,
         /// The failed run's log, if it could be kept.
-        log: Option<std::path::PathBuf>,
+        log: Option<PathBuf>,
         /// What went wrong.
         error: Box<SimError>,
     },
+
+    // ---- scenarios ----
+    /// A scenario file could not be read.
+    #[error("cannot read scenario file `{}`: {source}", path.display())]
+    ScenarioRead {
+        /// The file.
+        path: PathBuf,
+        /// The I/O error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// A scenario is not valid TOML, does not have the scenario's shape (unknown field, wrong
+    /// type, missing field) or breaks a rule of the scenario (a spawn region outside the world,
+    /// an event naming a missing object, a bad controller parameter, ...). Loading stops at the
+    /// first problem; the diagnostic names the file, line, column and field path.
+    #[error("{0}")]
+    InvalidScenario(Box<Diagnostic>),
+    /// Neither a built-in scenario nor a file of that name (`resolve`).
+    #[error(
+        "no built-in scenario and no file named `{name}` (built-in scenarios: {})",
+        builtins.join(", ")
+    )]
+    ScenarioNotFound {
+        /// The name or path asked for.
+        name: String,
+        /// The names of the built-in scenarios.
+        builtins: &'static [&'static str],
+    },
+
+    /// An output could not be written or read (the path in the message).
+    #[error(transparent)]
+    Output(#[from] crate::output::OutputError),
 }
 
 impl SimError {
@@ -126,6 +170,14 @@ impl SimError {
             step,
             agent,
             source: e,
+        }
+    }
+
+    /// The diagnostic of an [`InvalidScenario`](SimError::InvalidScenario) error.
+    pub fn diagnostic(&self) -> Option<&Diagnostic> {
+        match self {
+            SimError::InvalidScenario(d) => Some(d),
+            _ => None,
         }
     }
 }
