@@ -1,12 +1,26 @@
-//! The crate's error type.
+//! The crate's error type: one flat enum for the engines, the scenario files and the run
+//! outputs.
+
+use std::io;
+use std::path::PathBuf;
+
+use crate::scenario::Diagnostic;
 
 /// `Result` with [`SimError`].
 pub type Result<T> = std::result::Result<T, SimError>;
 
 /// Everything that can go wrong in the simulator.
+///
+/// Every message can be shown to a user as it is: it names the step and agent, the scenario
+/// file, line and field, or the output file (and line) and what was wrong. The variants come in
+/// four groups: the engines and runs; scenarios (a bad scenario file is one
+/// [`InvalidScenario`](SimError::InvalidScenario), its [`Diagnostic`] naming file, line, column
+/// and field); the data handed to an output writer (`cannot write <file>: ...`); and files of a
+/// run folder that cannot be read back (`<file>[:line]: ...`).
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum SimError {
+    // ---- engines and runs ----
     /// A controller refused its input (a bug in the world or in frame building: the report
     /// names the step, the agent and the field).
     #[error("{phase} of agent {agent} at step {step}: {source}")]
@@ -81,11 +95,16 @@ pub enum SimError {
         /// The controller's complaint (which parameter).
         source: swarm_core::Error,
     },
-    /// A worker-thread count that cannot be used.
-    #[error("threads: {problem}")]
-    Threads {
-        /// Why (`must be at least 1`, the pool's own error).
-        problem: String,
+    /// A worker-thread count of zero.
+    #[error("threads: must be at least 1")]
+    NoThreads,
+    /// The pool of worker threads could not be started.
+    #[error("threads: cannot start {threads} threads: {source}")]
+    ThreadPool {
+        /// The count asked for.
+        threads: usize,
+        /// The pool's error.
+        source: rayon::ThreadPoolBuildError,
     },
     /// A benchmark with nothing to time.
     #[error("bench: needs at least one agent and one step (got {agents} agents, {steps} steps)")]
@@ -95,12 +114,6 @@ pub enum SimError {
         /// Steps asked for.
         steps: u32,
     },
-    /// A scenario file could not be read or is invalid (file, line, field in the message).
-    #[error(transparent)]
-    Scenario(#[from] crate::scenario::ScenarioError),
-    /// An output could not be written or read (the path in the message).
-    #[error(transparent)]
-    Output(#[from] crate::output::OutputError),
     /// A run failed after it started writing: its output folder was left as it was, and the
     /// run's log (ending with the error) kept beside it, when it could be.
     #[error(
@@ -110,11 +123,497 @@ pub enum SimError {
     )]
     RunFailed {
         /// The output folder the run was to replace.
-        target: std::path::PathBuf,
+        target: PathBuf,
         /// The failed run's log, if it could be kept.
-        log: Option<std::path::PathBuf>,
+        log: Option<PathBuf>,
         /// What went wrong.
         error: Box<SimError>,
+    },
+
+    // ---- scenarios ----
+    /// A scenario file could not be read.
+    #[error("cannot read scenario file `{}`: {source}", path.display())]
+    ScenarioRead {
+        /// The file.
+        path: PathBuf,
+        /// The I/O error.
+        #[source]
+        source: io::Error,
+    },
+    /// A scenario is not valid TOML, does not have the scenario's shape (unknown field, wrong
+    /// type, missing field) or breaks a rule of the scenario (a spawn region outside the world,
+    /// an event naming a missing object, a bad controller parameter, ...). Loading stops at the
+    /// first problem; the diagnostic names the file, line, column and field path.
+    #[error("{0}")]
+    InvalidScenario(Box<Diagnostic>),
+    /// Neither a built-in scenario nor a file of that name (`resolve`).
+    #[error(
+        "no built-in scenario and no file named `{name}` (built-in scenarios: {})",
+        builtins.join(", ")
+    )]
+    ScenarioNotFound {
+        /// The name or path asked for.
+        name: String,
+        /// The names of the built-in scenarios.
+        builtins: &'static [&'static str],
+    },
+
+    // ---- output files and folders ----
+    /// An I/O operation on `path` failed (`op` says which: "creating", "writing", "reading", ...).
+    #[error("{op} {}: {source}", path.display())]
+    Io {
+        /// What was being done.
+        op: &'static str,
+        /// The file or folder.
+        path: PathBuf,
+        /// The underlying error.
+        #[source]
+        source: io::Error,
+    },
+    /// A JSON file could not be written or parsed.
+    #[error("{op} {}: {source}", path.display())]
+    Json {
+        /// "serialising" or "parsing".
+        op: &'static str,
+        /// The file.
+        path: PathBuf,
+        /// The underlying error (its message carries line and column when parsing).
+        #[source]
+        source: serde_json::Error,
+    },
+    /// A required file of a run folder is missing.
+    #[error("run folder {} has no {file} ({hint})", dir.display())]
+    MissingRunFile {
+        /// The run folder.
+        dir: PathBuf,
+        /// The missing file name (or names).
+        file: String,
+        /// What it is needed for.
+        hint: &'static str,
+    },
+    /// An existing output folder holds something no run writes (a run replaces its folder
+    /// whole, so it refuses to delete what may be a user's file).
+    #[error(
+        "{} holds `{entry}`, which no run writes; a run replaces its output folder whole, so \
+         choose another output folder (`--out`) or move `{entry}` away",
+        dir.display()
+    )]
+    NotARunFolder {
+        /// The folder.
+        dir: PathBuf,
+        /// The first entry that is not a run file.
+        entry: String,
+    },
+    /// An output folder whose name is missing or not UTF-8.
+    #[error("cannot write {}: the output folder needs a name in UTF-8", path.display())]
+    OutputFolderName {
+        /// The folder.
+        path: PathBuf,
+    },
+    /// An output file path without a file name.
+    #[error("cannot write {}: the path has no file name", path.display())]
+    NoFileName {
+        /// The path.
+        path: PathBuf,
+    },
+
+    // ---- data handed to an output writer ----
+    /// Nothing to draw: no frames were recorded.
+    #[error("cannot write {}: there are no recorded frames to draw", path.display())]
+    NoFrames {
+        /// The picture to be drawn.
+        path: PathBuf,
+    },
+    /// A frame holds another number of agents than the first.
+    #[error(
+        "cannot write {}: frame {frame} (step {step}) has {agents} agents, frame 0 has {first}",
+        path.display()
+    )]
+    FrameAgentCount {
+        /// The file to be written.
+        path: PathBuf,
+        /// The frame's index.
+        frame: usize,
+        /// Its step.
+        step: u32,
+        /// Its agents.
+        agents: usize,
+        /// The first frame's agents.
+        first: usize,
+    },
+    /// A frame whose step is not after the previous frame's.
+    #[error(
+        "cannot write {}: frame {frame} has step {step} after step {previous}: steps must increase",
+        path.display()
+    )]
+    FrameStepOrder {
+        /// The file to be written.
+        path: PathBuf,
+        /// The frame's index.
+        frame: usize,
+        /// Its step.
+        step: u32,
+        /// The previous frame's step.
+        previous: u32,
+    },
+    /// A frame holds another agent than the first frame at the same index.
+    #[error(
+        "cannot write {}: frame {frame} (step {step}) has agent id {id} at index {index}, frame 0 \
+         has {first}",
+        path.display()
+    )]
+    FrameAgentId {
+        /// The file to be written.
+        path: PathBuf,
+        /// The frame's index.
+        frame: usize,
+        /// Its step.
+        step: u32,
+        /// The agent's index in the frame.
+        index: usize,
+        /// The agent id there.
+        id: u32,
+        /// The first frame's agent id there.
+        first: u32,
+    },
+    /// A frame streamed to a CSV writer holds another number of agents than the first.
+    #[error(
+        "cannot write {}: frame at step {step} has {agents} agents, the first frame had {first}",
+        path.display()
+    )]
+    CsvFrameAgents {
+        /// The CSV file.
+        path: PathBuf,
+        /// The frame's step.
+        step: u32,
+        /// Its agents.
+        agents: usize,
+        /// The first frame's agents.
+        first: usize,
+    },
+    /// A frame streamed to a CSV writer whose step is not after the previous frame's.
+    #[error(
+        "cannot write {}: step {step} follows step {last}: steps must increase",
+        path.display()
+    )]
+    CsvStepOrder {
+        /// The CSV file.
+        path: PathBuf,
+        /// The frame's step.
+        step: u32,
+        /// The previous frame's step.
+        last: u32,
+    },
+    /// A frame streamed to an NPY writer holds another number of agents than the array.
+    #[error(
+        "cannot write {}: a frame has {agents} agents, the array has {expected}",
+        path.display()
+    )]
+    NpyFrameAgents {
+        /// The NPY file.
+        path: PathBuf,
+        /// The frame's agents.
+        agents: usize,
+        /// The array's agents.
+        expected: usize,
+    },
+    /// The NPY header with the final frame count no longer fits the space left for it.
+    #[error(
+        "cannot write {}: the NPY header changed length (more than 10^21 frames?)",
+        path.display()
+    )]
+    NpyHeaderGrew {
+        /// The NPY file.
+        path: PathBuf,
+    },
+    /// A scene that is neither 2D nor 3D.
+    #[error("cannot write {}: dim is {dim}, must be 2 or 3", path.display())]
+    SceneDim {
+        /// The scene file.
+        path: PathBuf,
+        /// Its dimension.
+        dim: u8,
+    },
+    /// A scene whose world bounds are empty or not finite.
+    #[error(
+        "cannot write {}: world bounds min {min:?} max {max:?} are empty or not finite",
+        path.display()
+    )]
+    SceneBounds {
+        /// The scene file.
+        path: PathBuf,
+        /// The smallest corner.
+        min: [f32; 3],
+        /// The largest corner.
+        max: [f32; 3],
+    },
+    /// A scene shape with invalid geometry.
+    #[error(
+        "cannot write {}: shape {index} ({shape}) has invalid geometry (non-finite numbers, \
+         negative radius, fewer than 3 polygon points or min > max)",
+        path.display()
+    )]
+    SceneShape {
+        /// The scene file.
+        path: PathBuf,
+        /// The shape's index.
+        index: usize,
+        /// The shape's kind and geometry, as `{kind:?} {geom:?}`.
+        shape: String,
+    },
+    /// A scene shape visible from a step after the one it disappears at.
+    #[error(
+        "cannot write {}: shape {index} has from_step {from} > to_step {to}",
+        path.display()
+    )]
+    SceneShapeSteps {
+        /// The scene file.
+        path: PathBuf,
+        /// The shape's index.
+        index: usize,
+        /// Its first step.
+        from: u32,
+        /// Its last step (exclusive).
+        to: u32,
+    },
+    /// An animation too large for a GIF (whose sides are 16-bit).
+    #[error("cannot write {}: GIF size {width}x{height} is too large", path.display())]
+    GifTooLarge {
+        /// The GIF file.
+        path: PathBuf,
+        /// Width in pixels.
+        width: usize,
+        /// Height in pixels.
+        height: usize,
+    },
+
+    // ---- run files that cannot be read back ----
+    /// `attitude.npy` has another shape than `positions.npy` beside it.
+    #[error(
+        "{}: shape ({frames}, {agents}, 2) does not match positions.npy",
+        path.display()
+    )]
+    AttitudeShape {
+        /// The attitude file.
+        path: PathBuf,
+        /// Its frames.
+        frames: usize,
+        /// Its agents.
+        agents: usize,
+    },
+    /// An empty CSV file.
+    #[error("{}:1: empty file, expected the CSV header", path.display())]
+    CsvEmpty {
+        /// The CSV file.
+        path: PathBuf,
+    },
+    /// A CSV file with another header than a trajectory file's.
+    #[error("{}:1: header is {header:?}, expected {expected:?}", path.display())]
+    CsvHeader {
+        /// The CSV file.
+        path: PathBuf,
+        /// Its header line.
+        header: String,
+        /// The header of a trajectory file.
+        expected: &'static str,
+    },
+    /// A CSV row with too few fields.
+    #[error(
+        "{}:{line}: missing field {field:?} (expected {fields} fields)",
+        path.display()
+    )]
+    CsvMissingField {
+        /// The CSV file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// The first missing field.
+        field: &'static str,
+        /// How many fields a row has.
+        fields: usize,
+    },
+    /// A CSV row with too many fields.
+    #[error("{}:{line}: too many fields (expected {fields})", path.display())]
+    CsvExtraFields {
+        /// The CSV file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// How many fields a row has.
+        fields: usize,
+    },
+    /// A CSV field that is not a number of its type.
+    #[error(
+        "{}:{line}: field {field:?} is {value:?}, not a valid number",
+        path.display()
+    )]
+    CsvNumber {
+        /// The CSV file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// The field.
+        field: &'static str,
+        /// Its text.
+        value: String,
+    },
+    /// CSV rows not grouped by increasing step.
+    #[error(
+        "{}:{line}: step {step} after step {previous}: rows must be grouped by increasing step",
+        path.display()
+    )]
+    CsvRowOrder {
+        /// The CSV file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// The row's step.
+        step: u32,
+        /// The step of the rows before.
+        previous: u32,
+    },
+    /// A step of a CSV file with another number of agents than the first step.
+    #[error(
+        "{}:{line}: step {step} has {agents} agents, the first step has {first}",
+        path.display()
+    )]
+    CsvStepAgents {
+        /// The CSV file.
+        path: PathBuf,
+        /// 1-based line of the step's last row.
+        line: usize,
+        /// The step.
+        step: u32,
+        /// Its agents.
+        agents: usize,
+        /// The first step's agents.
+        first: usize,
+    },
+    /// A CSV row with another agent than the first step has at its position.
+    #[error(
+        "{}:{line}: agent id {id} at position {position} of step {step}, the first step has id \
+         {first} there",
+        path.display()
+    )]
+    CsvAgentId {
+        /// The CSV file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// The row's agent id.
+        id: u32,
+        /// Its position within the step.
+        position: usize,
+        /// The step.
+        step: u32,
+        /// The first step's agent id at that position.
+        first: u32,
+    },
+    /// A step of a CSV file with more agents than the first step.
+    #[error(
+        "{}:{line}: step {step} has more agents than the first step ({first})",
+        path.display()
+    )]
+    CsvExtraAgent {
+        /// The CSV file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// The step.
+        step: u32,
+        /// The first step's agents.
+        first: usize,
+    },
+    /// A file that does not start with the NumPy magic string.
+    #[error("{}: not a NumPy .npy file (bad magic)", path.display())]
+    NpyMagic {
+        /// The file.
+        path: PathBuf,
+    },
+    /// An NPY format version this reader does not know.
+    #[error("{}: unsupported NPY version {major}.{minor}", path.display())]
+    NpyVersion {
+        /// The file.
+        path: PathBuf,
+        /// Major version.
+        major: u8,
+        /// Minor version.
+        minor: u8,
+    },
+    /// An NPY file shorter than its header says.
+    #[error("{}: truncated header", path.display())]
+    NpyTruncated {
+        /// The file.
+        path: PathBuf,
+    },
+    /// An NPY header that is not text.
+    #[error("{}: header is not text", path.display())]
+    NpyHeaderText {
+        /// The file.
+        path: PathBuf,
+    },
+    /// An NPY header without a key it must have.
+    #[error("{}: header has no '{key}'", path.display())]
+    NpyHeaderKey {
+        /// The file.
+        path: PathBuf,
+        /// The key (`descr`, `fortran_order`, `shape`).
+        key: &'static str,
+    },
+    /// An NPY array of another element type than little-endian `f32`.
+    #[error(
+        "{}: dtype is {dtype:?}, expected '<f4' (little-endian float32)",
+        path.display()
+    )]
+    NpyDtype {
+        /// The file.
+        path: PathBuf,
+        /// Its dtype.
+        dtype: String,
+    },
+    /// An NPY array in Fortran (column-major) order.
+    #[error("{}: array is in Fortran order, expected C order", path.display())]
+    NpyFortranOrder {
+        /// The file.
+        path: PathBuf,
+    },
+    /// An NPY shape that is not a tuple of integers.
+    #[error("{}: shape {shape} is not a tuple of integers", path.display())]
+    NpyShapeSyntax {
+        /// The file.
+        path: PathBuf,
+        /// The shape as written.
+        shape: String,
+    },
+    /// An NPY array of another shape than `(frames, agents, width)`.
+    #[error("{}: shape is {shape}, expected (frames, agents, {width})", path.display())]
+    NpyShape {
+        /// The file.
+        path: PathBuf,
+        /// The shape as written.
+        shape: String,
+        /// The last dimension expected.
+        width: usize,
+    },
+    /// An NPY shape too large to address.
+    #[error("{}: shape {shape} is too large", path.display())]
+    NpyTooLarge {
+        /// The file.
+        path: PathBuf,
+        /// The shape as written.
+        shape: String,
+    },
+    /// An NPY file whose data is not the size its shape says.
+    #[error("{}: holds {bytes} data bytes, shape {shape} needs {needed}", path.display())]
+    NpyDataLength {
+        /// The file.
+        path: PathBuf,
+        /// The data bytes it holds.
+        bytes: usize,
+        /// The shape as written.
+        shape: String,
+        /// The data bytes the shape needs.
+        needed: usize,
     },
 }
 
@@ -126,6 +625,23 @@ impl SimError {
             step,
             agent,
             source: e,
+        }
+    }
+
+    /// An I/O error on `path`.
+    pub fn io(op: &'static str, path: impl Into<PathBuf>, source: io::Error) -> Self {
+        SimError::Io {
+            op,
+            path: path.into(),
+            source,
+        }
+    }
+
+    /// The diagnostic of an [`InvalidScenario`](SimError::InvalidScenario) error.
+    pub fn diagnostic(&self) -> Option<&Diagnostic> {
+        match self {
+            SimError::InvalidScenario(d) => Some(d),
+            _ => None,
         }
     }
 }

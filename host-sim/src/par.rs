@@ -13,16 +13,12 @@ pub(crate) fn pool(threads: Option<usize>) -> Result<(rayon::ThreadPool, usize)>
     let threads =
         threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     if threads == 0 {
-        return Err(SimError::Threads {
-            problem: "must be at least 1".into(),
-        });
+        return Err(SimError::NoThreads);
     }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
-        .map_err(|e| SimError::Threads {
-            problem: format!("cannot start {threads} threads: {e}"),
-        })?;
+        .map_err(|source| SimError::ThreadPool { threads, source })?;
     Ok((pool, threads))
 }
 

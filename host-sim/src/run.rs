@@ -73,7 +73,7 @@ pub fn run_with(
     let stage = output::Staging::begin(&opts.out)?;
     let mut log = match RunLog::create(stage.path().join(output::RUN_LOG)) {
         Ok(log) => log,
-        Err(e) => return Err(failed(opts, None, e.into())),
+        Err(e) => return Err(failed(opts, None, e)),
     };
     let result = log
         .line(format_args!(
@@ -82,7 +82,6 @@ pub fn run_with(
             sc.agent_count(),
             sc.steps
         ))
-        .map_err(SimError::from)
         .and_then(|()| {
             for w in opts.warnings.iter().filter(|w| w.applies_to(&sc)) {
                 log.line(w)?;
@@ -97,10 +96,7 @@ pub fn run_with(
     let (stage, error) = match result {
         Ok(report) => match stage.commit() {
             Ok(()) => return Ok(report),
-            Err(failure) => {
-                let (stage, e) = *failure;
-                (stage, SimError::from(e))
-            }
+            Err(failure) => *failure,
         },
         Err(e) => (stage, e),
     };

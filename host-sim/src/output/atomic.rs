@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 
 use tempfile::NamedTempFile;
 
-use super::error::{OutputError, Result};
+use crate::{Result, SimError};
 
 /// Buffer size of the writer handed to callers.
 const BUF_SIZE: usize = 256 * 1024;
@@ -44,7 +44,7 @@ impl AtomicFile {
         };
         let name = path
             .file_name()
-            .ok_or_else(|| OutputError::invalid(&path, "the path has no file name"))?;
+            .ok_or_else(|| SimError::NoFileName { path: path.clone() })?;
         let mut prefix = OsString::from(".");
         prefix.push(name);
         prefix.push(".");
@@ -58,7 +58,7 @@ impl AtomicFile {
         }
         let tmp = builder
             .tempfile_in(&dir)
-            .map_err(|e| OutputError::io("creating a temporary file for", &path, e))?;
+            .map_err(|e| SimError::io("creating a temporary file for", &path, e))?;
         Ok(Self {
             path,
             out: BufWriter::with_capacity(BUF_SIZE, tmp),
@@ -79,7 +79,7 @@ impl AtomicFile {
     /// only known at the end), then returns to the end of the file.
     pub fn patch(&mut self, offset: u64, bytes: &[u8]) -> Result<()> {
         let path = self.path.clone();
-        let io = |e| OutputError::io("writing", &path, e);
+        let io = |e| SimError::io("writing", &path, e);
         self.out.flush().map_err(io)?;
         let f = self.out.get_mut();
         f.seek(SeekFrom::Start(offset)).map_err(io)?;
@@ -93,12 +93,12 @@ impl AtomicFile {
         let Self { path, out } = self;
         let tmp = out
             .into_inner()
-            .map_err(|e| OutputError::io("writing", &path, e.into_error()))?;
+            .map_err(|e| SimError::io("writing", &path, e.into_error()))?;
         tmp.as_file()
             .sync_all()
-            .map_err(|e| OutputError::io("syncing", &path, e))?;
+            .map_err(|e| SimError::io("syncing", &path, e))?;
         tmp.persist(&path)
-            .map_err(|e| OutputError::io("renaming the temporary file to", &path, e.error))?;
+            .map_err(|e| SimError::io("renaming the temporary file to", &path, e.error))?;
         sync_parent(&path);
         Ok(())
     }
@@ -161,7 +161,7 @@ where
 {
     let mut file = AtomicFile::create(path)?;
     if let Err(e) = write(file.writer()) {
-        return Err(OutputError::io("writing", file.path(), e));
+        return Err(SimError::io("writing", file.path(), e));
     }
     file.commit()
 }

@@ -18,8 +18,8 @@ use std::io::{BufRead, BufReader, Write};
 use std::path::{Path, PathBuf};
 
 use super::atomic::AtomicFile;
-use super::error::{OutputError, Result};
 use super::frames::{AgentSample, Frame};
+use crate::{Result, SimError};
 
 /// The header line (without the newline).
 pub const CSV_HEADER: &str = "step,id,group,x,y,z,hx,hy,hz,label,motion,roll_deg,pitch_deg";
@@ -40,7 +40,7 @@ impl CsvWriter {
     pub fn create(path: impl AsRef<Path>) -> Result<Self> {
         let mut file = AtomicFile::create(path)?;
         writeln!(file.writer(), "{CSV_HEADER}")
-            .map_err(|e| OutputError::io("writing", file.path(), e))?;
+            .map_err(|e| SimError::io("writing", file.path(), e))?;
         Ok(Self {
             file,
             agents: None,
@@ -54,27 +54,23 @@ impl CsvWriter {
         match self.agents {
             None => self.agents = Some(frame.agents.len()),
             Some(n) if n != frame.agents.len() => {
-                return Err(OutputError::invalid(
-                    &path,
-                    format!(
-                        "frame at step {} has {} agents, the first frame had {n}",
-                        frame.step,
-                        frame.agents.len()
-                    ),
-                ));
+                return Err(SimError::CsvFrameAgents {
+                    path,
+                    step: frame.step,
+                    agents: frame.agents.len(),
+                    first: n,
+                });
             }
             Some(_) => {}
         }
         if let Some(last) = self.last_step
             && frame.step <= last
         {
-            return Err(OutputError::invalid(
-                &path,
-                format!(
-                    "step {} follows step {last}: steps must increase",
-                    frame.step
-                ),
-            ));
+            return Err(SimError::CsvStepOrder {
+                path,
+                step: frame.step,
+                last,
+            });
         }
         self.last_step = Some(frame.step);
         let w = self.file.writer();
@@ -87,7 +83,7 @@ impl CsvWriter {
                 "{step},{},{},{x},{y},{z},{hx},{hy},{hz},{},{},{},{}",
                 a.id, a.group, a.label, a.motion, a.roll, a.pitch
             )
-            .map_err(|e| OutputError::io("writing", &path, e))?;
+            .map_err(|e| SimError::io("writing", &path, e))?;
         }
         Ok(())
     }
@@ -113,31 +109,29 @@ pub fn write_csv(path: impl AsRef<Path>, frames: &[Frame]) -> Result<()> {
 /// step holds the same agents in the same order. Errors name the file and line.
 pub fn read_csv(path: impl AsRef<Path>) -> Result<Vec<Frame>> {
     let path = path.as_ref();
-    let file = File::open(path).map_err(|e| OutputError::io("opening", path, e))?;
+    let file = File::open(path).map_err(|e| SimError::io("opening", path, e))?;
     let mut rd = BufReader::with_capacity(256 * 1024, file);
     let mut line = String::new();
     let mut lineno = 0usize;
     let read = |rd: &mut BufReader<File>, line: &mut String| -> Result<usize> {
         line.clear();
         rd.read_line(line)
-            .map_err(|e| OutputError::io("reading", path, e))
+            .map_err(|e| SimError::io("reading", path, e))
     };
     if read(&mut rd, &mut line)? == 0 {
-        return Err(OutputError::format(
-            path,
-            1,
-            "empty file, expected the CSV header",
-        ));
+        return Err(SimError::CsvEmpty {
+            path: path.to_path_buf(),
+        });
     }
     lineno += 1;
     let header = line.trim_end_matches(['\n', '\r']);
     let attitude = header == CSV_HEADER;
     if !attitude && header != CSV_HEADER_V1 {
-        return Err(OutputError::format(
-            path,
-            1,
-            format!("header is {header:?}, expected {CSV_HEADER:?}"),
-        ));
+        return Err(SimError::CsvHeader {
+            path: path.to_path_buf(),
+            header: header.to_owned(),
+            expected: CSV_HEADER,
+        });
     }
     let mut frames: Vec<Frame> = Vec::new();
     let mut agents_per_frame: Option<usize> = None;
@@ -150,30 +144,29 @@ pub fn read_csv(path: impl AsRef<Path>) -> Result<Vec<Frame>> {
         if row.is_empty() {
             continue;
         }
-        let (step, sample) =
-            parse_row(row, attitude).map_err(|m| OutputError::format(path, lineno, m))?;
+        let (step, sample) = parse_row(row, attitude, path, lineno)?;
         let new_frame = frames.last().is_none_or(|f| f.step != step);
         if new_frame {
             if let Some(prev) = frames.last() {
                 if step < prev.step {
-                    return Err(OutputError::format(
-                        path,
-                        lineno,
-                        format!(
-                            "step {step} after step {}: rows must be grouped by increasing step",
-                            prev.step
-                        ),
-                    ));
+                    return Err(SimError::CsvRowOrder {
+                        path: path.to_path_buf(),
+                        line: lineno,
+                        step,
+                        previous: prev.step,
+                    });
                 }
                 let n = prev.agents.len();
                 match agents_per_frame {
                     None => agents_per_frame = Some(n),
                     Some(m) if m != n => {
-                        return Err(OutputError::format(
-                            path,
-                            lineno - 1,
-                            format!("step {} has {n} agents, the first step has {m}", prev.step),
-                        ));
+                        return Err(SimError::CsvStepAgents {
+                            path: path.to_path_buf(),
+                            line: lineno - 1,
+                            step: prev.step,
+                            agents: n,
+                            first: m,
+                        });
                     }
                     Some(_) => {}
                 }
@@ -189,20 +182,23 @@ pub fn read_csv(path: impl AsRef<Path>) -> Result<Vec<Frame>> {
         if nf > 1 {
             let expect = frames[0].agents.get(idx).map(|a| a.id);
             if expect != Some(sample.id) {
-                return Err(OutputError::format(
-                    path,
-                    lineno,
-                    match expect {
-                        Some(id) => format!(
-                            "agent id {} at position {idx} of step {step}, the first step has id {id} there",
-                            sample.id
-                        ),
-                        None => format!(
-                            "step {step} has more agents than the first step ({})",
-                            frames[0].agents.len()
-                        ),
+                let path = path.to_path_buf();
+                return Err(match expect {
+                    Some(first) => SimError::CsvAgentId {
+                        path,
+                        line: lineno,
+                        id: sample.id,
+                        position: idx,
+                        step,
+                        first,
                     },
-                ));
+                    None => SimError::CsvExtraAgent {
+                        path,
+                        line: lineno,
+                        step,
+                        first: frames[0].agents.len(),
+                    },
+                });
             }
         }
         frames[nf - 1].agents.push(sample);
@@ -210,60 +206,83 @@ pub fn read_csv(path: impl AsRef<Path>) -> Result<Vec<Frame>> {
     if let (Some(m), Some(last)) = (agents_per_frame, frames.last())
         && last.agents.len() != m
     {
-        return Err(OutputError::format(
-            path,
-            lineno,
-            format!(
-                "step {} has {} agents, the first step has {m}",
-                last.step,
-                last.agents.len()
-            ),
-        ));
+        return Err(SimError::CsvStepAgents {
+            path: path.to_path_buf(),
+            line: lineno,
+            step: last.step,
+            agents: last.agents.len(),
+            first: m,
+        });
     }
     Ok(frames)
 }
 
-/// One data row: 13 fields, or the 11 of [`CSV_HEADER_V1`] when `attitude` is false.
-fn parse_row(row: &str, attitude: bool) -> std::result::Result<(u32, AgentSample), String> {
-    let fields = if attitude { 13 } else { 11 };
-    let mut it = row.split(',');
-    let mut next = |name: &str| {
-        it.next()
+/// The fields of one data row at `line` of `path`, read in order.
+struct Row<'a> {
+    fields: std::str::Split<'a, char>,
+    /// How many fields a row has.
+    count: usize,
+    path: &'a Path,
+    line: usize,
+}
+
+impl Row<'_> {
+    /// The next field, `name`, parsed.
+    fn field<T: std::str::FromStr>(&mut self, name: &'static str) -> Result<T> {
+        let text = self
+            .fields
+            .next()
             .map(str::trim)
-            .ok_or_else(|| format!("missing field {name:?} (expected {fields} fields)"))
-    };
-    fn num<T: std::str::FromStr>(s: &str, name: &str) -> std::result::Result<T, String> {
-        s.parse::<T>()
-            .map_err(|_| format!("field {name:?} is {s:?}, not a valid number"))
+            .ok_or_else(|| SimError::CsvMissingField {
+                path: self.path.to_path_buf(),
+                line: self.line,
+                field: name,
+                fields: self.count,
+            })?;
+        text.parse().map_err(|_| SimError::CsvNumber {
+            path: self.path.to_path_buf(),
+            line: self.line,
+            field: name,
+            value: text.to_owned(),
+        })
     }
-    let step: u32 = num(next("step")?, "step")?;
-    let id: u32 = num(next("id")?, "id")?;
-    let group: u16 = num(next("group")?, "group")?;
-    let x: f32 = num(next("x")?, "x")?;
-    let y: f32 = num(next("y")?, "y")?;
-    let z: f32 = num(next("z")?, "z")?;
-    let hx: f32 = num(next("hx")?, "hx")?;
-    let hy: f32 = num(next("hy")?, "hy")?;
-    let hz: f32 = num(next("hz")?, "hz")?;
-    let label: u8 = num(next("label")?, "label")?;
-    let motion: u8 = num(next("motion")?, "motion")?;
+}
+
+/// One data row at `line` of `path`: 13 fields, or the 11 of [`CSV_HEADER_V1`] when
+/// `attitude` is false.
+fn parse_row(row: &str, attitude: bool, path: &Path, line: usize) -> Result<(u32, AgentSample)> {
+    let count = if attitude { 13 } else { 11 };
+    let mut r = Row {
+        fields: row.split(','),
+        count,
+        path,
+        line,
+    };
+    let step: u32 = r.field("step")?;
+    let id: u32 = r.field("id")?;
+    let group: u16 = r.field("group")?;
+    let pos: [f32; 3] = [r.field("x")?, r.field("y")?, r.field("z")?];
+    let heading: [f32; 3] = [r.field("hx")?, r.field("hy")?, r.field("hz")?];
+    let label: u8 = r.field("label")?;
+    let motion: u8 = r.field("motion")?;
     let (roll, pitch): (f32, f32) = if attitude {
-        (
-            num(next("roll_deg")?, "roll_deg")?,
-            num(next("pitch_deg")?, "pitch_deg")?,
-        )
+        (r.field("roll_deg")?, r.field("pitch_deg")?)
     } else {
         (0.0, 0.0)
     };
-    if it.next().is_some() {
-        return Err(format!("too many fields (expected {fields})"));
+    if r.fields.next().is_some() {
+        return Err(SimError::CsvExtraFields {
+            path: path.to_path_buf(),
+            line,
+            fields: count,
+        });
     }
     Ok((
         step,
         AgentSample {
             id,
-            pos: [x, y, z],
-            heading: [hx, hy, hz],
+            pos,
+            heading,
             group,
             label,
             motion,

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use super::error::{OutputError, Result};
+use crate::{Result, SimError};
 
 /// One agent at one recorded step (40 bytes).
 ///
@@ -73,35 +73,33 @@ pub fn check_frames(frames: &[Frame], path: &Path) -> Result<usize> {
     let n = first.agents.len();
     for (fi, f) in frames.iter().enumerate() {
         if f.agents.len() != n {
-            return Err(OutputError::invalid(
-                path,
-                format!(
-                    "frame {fi} (step {}) has {} agents, frame 0 has {n}",
-                    f.step,
-                    f.agents.len()
-                ),
-            ));
+            return Err(SimError::FrameAgentCount {
+                path: path.to_path_buf(),
+                frame: fi,
+                step: f.step,
+                agents: f.agents.len(),
+                first: n,
+            });
         }
         if fi > 0 && f.step <= frames[fi - 1].step {
-            return Err(OutputError::invalid(
-                path,
-                format!(
-                    "frame {fi} has step {} after step {}: steps must increase",
-                    f.step,
-                    frames[fi - 1].step
-                ),
-            ));
+            return Err(SimError::FrameStepOrder {
+                path: path.to_path_buf(),
+                frame: fi,
+                step: f.step,
+                previous: frames[fi - 1].step,
+            });
         }
         if fi > 0
             && let Some(i) = (0..n).find(|&i| f.agents[i].id != first.agents[i].id)
         {
-            return Err(OutputError::invalid(
-                path,
-                format!(
-                    "frame {fi} (step {}) has agent id {} at index {i}, frame 0 has {}",
-                    f.step, f.agents[i].id, first.agents[i].id
-                ),
-            ));
+            return Err(SimError::FrameAgentId {
+                path: path.to_path_buf(),
+                frame: fi,
+                step: f.step,
+                index: i,
+                id: f.agents[i].id,
+                first: first.agents[i].id,
+            });
         }
     }
     Ok(n)

@@ -7,11 +7,11 @@ use serde::Serialize;
 use serde::de::DeserializeOwned;
 
 use super::atomic::write_atomic;
-use super::error::{OutputError, Result};
+use crate::{Result, SimError};
 
 /// Writes `value` as pretty JSON with a final newline to `path`, whole or not at all.
 pub(crate) fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<()> {
-    let text = serde_json::to_string_pretty(value).map_err(|source| OutputError::Json {
+    let text = serde_json::to_string_pretty(value).map_err(|source| SimError::Json {
         op: "serialising",
         path: path.to_path_buf(),
         source,
@@ -24,8 +24,8 @@ pub(crate) fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<()> {
 
 /// Reads the JSON file `path`.
 pub(crate) fn read_json<T: DeserializeOwned>(path: &Path) -> Result<T> {
-    let text = std::fs::read_to_string(path).map_err(|e| OutputError::io("reading", path, e))?;
-    serde_json::from_str(&text).map_err(|source| OutputError::Json {
+    let text = std::fs::read_to_string(path).map_err(|e| SimError::io("reading", path, e))?;
+    serde_json::from_str(&text).map_err(|source| SimError::Json {
         op: "parsing",
         path: path.to_path_buf(),
         source,

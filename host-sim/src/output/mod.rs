@@ -19,7 +19,6 @@
 
 pub mod atomic;
 pub mod csv;
-pub mod error;
 pub mod frames;
 mod json;
 pub mod npy;
@@ -33,9 +32,10 @@ mod testing;
 
 use std::path::Path;
 
+use crate::{Result, SimError};
+
 pub use atomic::{AtomicFile, remove_stale_temps, write_atomic, write_atomic_bytes};
 pub use csv::{CSV_HEADER, CSV_HEADER_V1, CsvWriter, read_csv, write_csv};
-pub use error::{OutputError, Result};
 pub use frames::{AgentSample, Frame, check_frames, label_name, motion_name};
 pub use npy::{
     NpyField, NpyWriter, Positions, npy_header, npy_header_of, read_attitude_npy, read_npy,
@@ -77,7 +77,7 @@ pub fn write_run(
     summary: &Summary,
 ) -> Result<()> {
     let dir = dir.as_ref();
-    std::fs::create_dir_all(dir).map_err(|e| OutputError::io("creating folder", dir, e))?;
+    std::fs::create_dir_all(dir).map_err(|e| SimError::io("creating folder", dir, e))?;
     check_frames(frames, &dir.join(TRAJECTORIES_CSV))?;
     scene.write(dir.join(SCENE_JSON))?;
     write_csv(dir.join(TRAJECTORIES_CSV), frames)?;

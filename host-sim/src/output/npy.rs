@@ -21,8 +21,8 @@ use std::io::{Read, Write};
 use std::path::Path;
 
 use super::atomic::AtomicFile;
-use super::error::{OutputError, Result};
 use super::frames::{AgentSample, Frame};
+use crate::{Result, SimError};
 
 /// The NPY magic string.
 pub const NPY_MAGIC: &[u8; 6] = b"\x93NUMPY";
@@ -103,7 +103,7 @@ impl NpyWriter {
         let header = npy_header_of(0, agents, field.width());
         file.writer()
             .write_all(&header)
-            .map_err(|e| OutputError::io("writing", file.path(), e))?;
+            .map_err(|e| SimError::io("writing", file.path(), e))?;
         Ok(Self {
             file,
             field,
@@ -122,14 +122,11 @@ impl NpyWriter {
     /// Appends the values (positions, or attitudes) of one frame's agents.
     pub fn push_positions(&mut self, agents: &[AgentSample]) -> Result<()> {
         if agents.len() != self.agents {
-            return Err(OutputError::invalid(
-                self.file.path(),
-                format!(
-                    "a frame has {} agents, the array has {}",
-                    agents.len(),
-                    self.agents
-                ),
-            ));
+            return Err(SimError::NpyFrameAgents {
+                path: self.file.path().to_path_buf(),
+                agents: agents.len(),
+                expected: self.agents,
+            });
         }
         self.buf.clear();
         self.buf.reserve(agents.len() * 4 * self.field.width());
@@ -149,7 +146,7 @@ impl NpyWriter {
         self.file
             .writer()
             .write_all(&self.buf)
-            .map_err(|e| OutputError::io("writing", self.file.path(), e))?;
+            .map_err(|e| SimError::io("writing", self.file.path(), e))?;
         self.frames += 1;
         Ok(())
     }
@@ -158,10 +155,9 @@ impl NpyWriter {
     pub fn finish(mut self) -> Result<()> {
         let header = npy_header_of(self.frames, self.agents, self.field.width());
         if header.len() != self.header_len {
-            return Err(OutputError::invalid(
-                self.file.path(),
-                "the NPY header changed length (more than 10^21 frames?)",
-            ));
+            return Err(SimError::NpyHeaderGrew {
+                path: self.file.path().to_path_buf(),
+            });
         }
         self.file.patch(0, &header)?;
         self.file.commit()
@@ -234,14 +230,14 @@ pub fn read_attitude_npy(path: impl AsRef<Path>) -> Result<Positions> {
 /// Reads an `<f4` C-order array of shape `(F, A, width)`.
 fn read_npy_of(path: impl AsRef<Path>, width: usize) -> Result<Positions> {
     let path = path.as_ref();
-    let bad = |m: String| OutputError::format(path, 0, m);
+    let file = || path.to_path_buf();
     let mut bytes = Vec::new();
     File::open(path)
-        .map_err(|e| OutputError::io("opening", path, e))?
+        .map_err(|e| SimError::io("opening", path, e))?
         .read_to_end(&mut bytes)
-        .map_err(|e| OutputError::io("reading", path, e))?;
+        .map_err(|e| SimError::io("reading", path, e))?;
     if bytes.len() < 10 || &bytes[..6] != NPY_MAGIC {
-        return Err(bad("not a NumPy .npy file (bad magic)".into()));
+        return Err(SimError::NpyMagic { path: file() });
     }
     let (hlen, start) = match bytes[6] {
         1 => (u16::from_le_bytes([bytes[8], bytes[9]]) as usize, 10),
@@ -249,27 +245,35 @@ fn read_npy_of(path: impl AsRef<Path>, width: usize) -> Result<Positions> {
             u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize,
             12,
         ),
-        v => return Err(bad(format!("unsupported NPY version {v}.{}", bytes[7]))),
+        major => {
+            return Err(SimError::NpyVersion {
+                path: file(),
+                major,
+                minor: bytes[7],
+            });
+        }
     };
     let data_start = start + hlen;
     if bytes.len() < data_start {
-        return Err(bad("truncated header".into()));
+        return Err(SimError::NpyTruncated { path: file() });
     }
     let header = std::str::from_utf8(&bytes[start..data_start])
-        .map_err(|_| bad("header is not text".into()))?;
-    let descr = dict_value(header, "descr").ok_or_else(|| bad("header has no 'descr'".into()))?;
+        .map_err(|_| SimError::NpyHeaderText { path: file() })?;
+    let key = |key: &'static str| {
+        dict_value(header, key).ok_or_else(|| SimError::NpyHeaderKey { path: file(), key })
+    };
+    let descr = key("descr")?;
     let descr = descr.trim_matches(|c| c == '\'' || c == '"');
     if descr != "<f4" {
-        return Err(bad(format!(
-            "dtype is {descr:?}, expected '<f4' (little-endian float32)"
-        )));
+        return Err(SimError::NpyDtype {
+            path: file(),
+            dtype: descr.to_owned(),
+        });
     }
-    let fortran = dict_value(header, "fortran_order")
-        .ok_or_else(|| bad("header has no 'fortran_order'".into()))?;
-    if fortran != "False" {
-        return Err(bad("array is in Fortran order, expected C order".into()));
+    if key("fortran_order")? != "False" {
+        return Err(SimError::NpyFortranOrder { path: file() });
     }
-    let shape = dict_value(header, "shape").ok_or_else(|| bad("header has no 'shape'".into()))?;
+    let shape = key("shape")?;
     let dims: Vec<usize> = shape
         .trim_start_matches('(')
         .trim_end_matches(')')
@@ -278,26 +282,34 @@ fn read_npy_of(path: impl AsRef<Path>, width: usize) -> Result<Positions> {
         .filter(|s| !s.is_empty())
         .map(|s| s.parse::<usize>())
         .collect::<std::result::Result<_, _>>()
-        .map_err(|_| bad(format!("shape {shape} is not a tuple of integers")))?;
-    let [frames, agents, w] = dims[..] else {
-        return Err(bad(format!(
-            "shape is {shape}, expected (frames, agents, {width})"
-        )));
+        .map_err(|_| SimError::NpyShapeSyntax {
+            path: file(),
+            shape: shape.to_owned(),
+        })?;
+    let (frames, agents) = match dims[..] {
+        [frames, agents, w] if w == width => (frames, agents),
+        _ => {
+            return Err(SimError::NpyShape {
+                path: file(),
+                shape: shape.to_owned(),
+                width,
+            });
+        }
     };
-    if w != width {
-        return Err(bad(format!(
-            "shape is {shape}, expected (frames, agents, {width})"
-        )));
-    }
     let n = frames
         .checked_mul(agents)
         .and_then(|x| x.checked_mul(4 * width))
-        .ok_or_else(|| bad(format!("shape {shape} is too large")))?;
+        .ok_or_else(|| SimError::NpyTooLarge {
+            path: file(),
+            shape: shape.to_owned(),
+        })?;
     if bytes.len() - data_start != n {
-        return Err(bad(format!(
-            "holds {} data bytes, shape {shape} needs {n}",
-            bytes.len() - data_start
-        )));
+        return Err(SimError::NpyDataLength {
+            path: file(),
+            bytes: bytes.len() - data_start,
+            shape: shape.to_owned(),
+            needed: n,
+        });
     }
     let data = bytes[data_start..]
         .chunks_exact(4)

@@ -4,7 +4,6 @@ use std::path::{Path, PathBuf};
 
 use super::atomic::remove_stale_temps;
 use super::csv::read_csv;
-use super::error::{OutputError, Result};
 use super::frames::Frame;
 use super::npy::{read_attitude_npy, read_npy};
 use super::render::{RenderOptions, render_gif, render_png};
@@ -13,6 +12,7 @@ use super::summary::Summary;
 use super::{
     ATTITUDE_NPY, POSITIONS_NPY, RUN_GIF, SCENE_JSON, SNAPSHOT_PNG, SUMMARY_JSON, TRAJECTORIES_CSV,
 };
+use crate::{Result, SimError};
 
 /// Where the trajectories of a [`RunDir`] came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,9 +47,9 @@ impl RunDir {
     pub fn open(dir: impl AsRef<Path>) -> Result<Self> {
         let dir = dir.as_ref();
         let meta =
-            std::fs::metadata(dir).map_err(|e| OutputError::io("opening run folder", dir, e))?;
+            std::fs::metadata(dir).map_err(|e| SimError::io("opening run folder", dir, e))?;
         if !meta.is_dir() {
-            return Err(OutputError::io(
+            return Err(SimError::io(
                 "opening run folder",
                 dir,
                 std::io::Error::other("not a folder"),
@@ -57,7 +57,7 @@ impl RunDir {
         }
         let scene_path = dir.join(SCENE_JSON);
         if !scene_path.exists() {
-            return Err(OutputError::Missing {
+            return Err(SimError::MissingRunFile {
                 dir: dir.to_path_buf(),
                 file: SCENE_JSON.into(),
                 hint: "it holds the world bounds and objects to draw; `swarm run` writes it",
@@ -76,13 +76,11 @@ impl RunDir {
                 if (a.frames, a.agents)
                     != (frames.len(), frames.first().map_or(0, |f| f.agents.len()))
                 {
-                    return Err(OutputError::invalid(
-                        &attitude,
-                        format!(
-                            "shape ({}, {}, 2) does not match {POSITIONS_NPY}",
-                            a.frames, a.agents
-                        ),
-                    ));
+                    return Err(SimError::AttitudeShape {
+                        path: attitude,
+                        frames: a.frames,
+                        agents: a.agents,
+                    });
                 }
                 for (fi, f) in frames.iter_mut().enumerate() {
                     for (ai, s) in f.agents.iter_mut().enumerate() {
@@ -93,7 +91,7 @@ impl RunDir {
             }
             (frames, TrajectorySource::Npy)
         } else {
-            return Err(OutputError::Missing {
+            return Err(SimError::MissingRunFile {
                 dir: dir.to_path_buf(),
                 file: format!("{TRAJECTORIES_CSV} or {POSITIONS_NPY}"),
                 hint: "the recorded agent positions to draw",

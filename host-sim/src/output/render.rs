@@ -33,9 +33,9 @@ mod tests;
 
 use std::path::Path;
 
-use super::error::{OutputError, Result};
 use super::frames::{Frame, check_frames};
 use super::scene::Scene;
+use crate::{Result, SimError};
 
 pub use animation::gif_frame_indices;
 pub use palette::{agent_color, kind_color};
@@ -98,10 +98,9 @@ impl Default for RenderOptions {
 fn check_inputs(scene: &Scene, frames: &[Frame], path: &Path) -> Result<()> {
     scene.validate(path)?;
     if frames.is_empty() {
-        return Err(OutputError::invalid(
-            path,
-            "there are no recorded frames to draw",
-        ));
+        return Err(SimError::NoFrames {
+            path: path.to_path_buf(),
+        });
     }
     check_frames(frames, path)?;
     Ok(())

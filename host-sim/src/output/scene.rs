@@ -25,8 +25,8 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use super::error::{OutputError, Result};
 use super::json::{read_json, write_json};
+use crate::{Result, SimError};
 
 /// What an object is (decides its colour).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -199,18 +199,22 @@ impl Scene {
 
     /// Checks the scene makes sense; `path` names the file in the error.
     pub fn validate(&self, path: &Path) -> Result<()> {
-        let bad = |m: String| Err(OutputError::invalid(path, m));
+        let path = || path.to_path_buf();
         if self.dim != 2 && self.dim != 3 {
-            return bad(format!("dim is {}, must be 2 or 3", self.dim));
+            return Err(SimError::SceneDim {
+                path: path(),
+                dim: self.dim,
+            });
         }
         let lo = self.plan(self.min);
         let hi = self.plan(self.max);
         for k in 0..2 {
             if !(lo[k].is_finite() && hi[k].is_finite() && lo[k] < hi[k]) {
-                return bad(format!(
-                    "world bounds min {:?} max {:?} are empty or not finite",
-                    self.min, self.max
-                ));
+                return Err(SimError::SceneBounds {
+                    path: path(),
+                    min: self.min,
+                    max: self.max,
+                });
             }
         }
         for (i, s) in self.shapes.iter().enumerate() {
@@ -227,16 +231,21 @@ impl Scene {
                 }
             };
             if !ok {
-                return bad(format!(
-                    "shape {i} ({:?} {:?}) has invalid geometry (non-finite numbers, negative \
-                     radius, fewer than 3 polygon points or min > max)",
-                    s.kind, s.geom
-                ));
+                return Err(SimError::SceneShape {
+                    path: path(),
+                    index: i,
+                    shape: format!("{:?} {:?}", s.kind, s.geom),
+                });
             }
             if let (Some(f), Some(t)) = (s.from_step, s.to_step)
                 && f > t
             {
-                return bad(format!("shape {i} has from_step {f} > to_step {t}"));
+                return Err(SimError::SceneShapeSteps {
+                    path: path(),
+                    index: i,
+                    from: f,
+                    to: t,
+                });
             }
         }
         Ok(())

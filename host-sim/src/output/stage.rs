@@ -33,11 +33,11 @@ use std::path::{Path, PathBuf};
 
 use tempfile::TempDir;
 
-use super::error::{OutputError, Result};
 use super::{
     ATTITUDE_NPY, POSITIONS_NPY, RUN_GIF, RUN_LOG, SCENE_JSON, SNAPSHOT_PNG, SUMMARY_JSON,
     TRAJECTORIES_CSV,
 };
+use crate::{Result, SimError};
 
 /// Every file a run writes into its folder. A new output file must be listed here: a run
 /// refuses to replace a folder holding a file not listed (the tests that identify whole run
@@ -204,29 +204,28 @@ impl Staging {
     pub fn begin(target: impl AsRef<Path>) -> Result<Self> {
         let target = resolve(target.as_ref())?;
         let (parent, name) = split(&target)?;
-        fs::create_dir_all(&parent)
-            .map_err(|e| OutputError::io("creating the folder", &parent, e))?;
+        fs::create_dir_all(&parent).map_err(|e| SimError::io("creating the folder", &parent, e))?;
         clean_stale(&parent);
         match fs::symlink_metadata(&target) {
             Ok(m) if m.is_dir() => {
                 let foreign = foreign_entry(&target)
-                    .map_err(|e| OutputError::io("reading the folder", &target, e))?;
+                    .map_err(|e| SimError::io("reading the folder", &target, e))?;
                 if let Some(entry) = foreign {
-                    return Err(OutputError::NotARunFolder { dir: target, entry });
+                    return Err(SimError::NotARunFolder { dir: target, entry });
                 }
             }
             Ok(_) => {
-                return Err(OutputError::io(
+                return Err(SimError::io(
                     "writing the run folder",
                     &target,
                     io::Error::other("a file of that name exists and is not a folder"),
                 ));
             }
             Err(e) if e.kind() == io::ErrorKind::NotFound => {}
-            Err(e) => return Err(OutputError::io("reading", &target, e)),
+            Err(e) => return Err(SimError::io("reading", &target, e)),
         }
         let dir = sibling(&parent, &name, Sibling::Staging)
-            .map_err(|e| OutputError::io("creating a staging folder beside", &target, e))?;
+            .map_err(|e| SimError::io("creating a staging folder beside", &target, e))?;
         Ok(Self {
             target,
             parent,
@@ -247,7 +246,7 @@ impl Staging {
 
     /// Swaps the staging folder in as the target and removes the previous run. On an error the
     /// target is as it was and the staging folder, handed back, still holds the new run.
-    pub fn commit(self) -> std::result::Result<(), Box<(Self, OutputError)>> {
+    pub fn commit(self) -> std::result::Result<(), Box<(Self, SimError)>> {
         sync_dir(self.dir.path());
         let exists = fs::symlink_metadata(&self.target).is_ok();
         let swapped = if !exists {
@@ -259,7 +258,7 @@ impl Staging {
             }
         };
         if let Err(e) = swapped {
-            let err = OutputError::io("moving the finished run into", &self.target, e);
+            let err = SimError::io("moving the finished run into", &self.target, e);
             return Err(Box::new((self, err)));
         }
         sync_dir(&self.parent);
@@ -310,7 +309,7 @@ impl Staging {
 fn resolve(target: &Path) -> Result<PathBuf> {
     let is_link = fs::symlink_metadata(target).is_ok_and(|m| m.file_type().is_symlink());
     if is_link || target.file_name().is_none() {
-        return fs::canonicalize(target).map_err(|e| OutputError::io("resolving", target, e));
+        return fs::canonicalize(target).map_err(|e| SimError::io("resolving", target, e));
     }
     Ok(target.to_path_buf())
 }
@@ -320,7 +319,9 @@ fn split(target: &Path) -> Result<(PathBuf, String)> {
     let name = target
         .file_name()
         .and_then(OsStr::to_str)
-        .ok_or_else(|| OutputError::invalid(target, "the output folder needs a name in UTF-8"))?
+        .ok_or_else(|| SimError::OutputFolderName {
+            path: target.to_path_buf(),
+        })?
         .to_owned();
     let parent = match target.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),

@@ -9,9 +9,9 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-use super::error::{OutputError, Result};
 use super::frames::{Frame, label_name, motion_name};
 use super::json::{read_json, write_json};
+use crate::{Result, SimError};
 
 /// One agent group of the scenario.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -303,7 +303,7 @@ impl RunLog {
             .append(append)
             .truncate(!append)
             .open(path)
-            .map_err(|e| OutputError::io("opening", path, e))?;
+            .map_err(|e| SimError::io("opening", path, e))?;
         Ok(Self {
             path: path.to_path_buf(),
             file,
@@ -324,7 +324,7 @@ impl RunLog {
         self.file
             .write_all(text.as_bytes())
             .and_then(|()| self.file.flush())
-            .map_err(|e| OutputError::io("writing", &self.path, e))
+            .map_err(|e| SimError::io("writing", &self.path, e))
     }
 }
 

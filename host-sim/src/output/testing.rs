@@ -5,8 +5,8 @@ use std::path::{Path, PathBuf};
 
 use tempfile::TempDir;
 
-use super::error::Result;
 use super::scene::{Scene, Shape, ShapeKind};
+use crate::Result;
 
 /// A fresh temporary folder and the path `name` in it; the folder goes with the guard.
 pub(crate) fn temp_path(name: &str) -> (TempDir, PathBuf) {

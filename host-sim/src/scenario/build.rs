@@ -10,7 +10,7 @@
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use super::error::DiagnosticKind;
+use super::diagnostic::DiagnosticKind;
 use super::problem::Problem;
 use super::raw::{
     KindTag, RawEvent, RawGroup, RawMove, RawObject, RawScenario, RawSpawn, RawWorld,

@@ -3,10 +3,10 @@
 
 use std::path::Path;
 
-use super::error::{Result, ScenarioError};
 use super::load::load;
 use super::types::Scenario;
 use super::warning::ScenarioWarning;
+use crate::{Result, SimError};
 
 /// A built-in scenario file.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -80,7 +80,8 @@ pub fn resolve_with_warnings(name_or_path: &str) -> Result<(Scenario, Vec<Scenar
     if path.exists() {
         return Scenario::from_path_with_warnings(path);
     }
-    Err(ScenarioError::NotFound {
+    Err(SimError::ScenarioNotFound {
         name: name_or_path.to_owned(),
+        builtins: NAMES,
     })
 }

@@ -14,12 +14,13 @@
 use std::path::Path;
 
 use super::build::build;
-use super::error::{DiagnosticKind, Result, ScenarioError};
+use super::diagnostic::DiagnosticKind;
 use super::locate::{Document, invalid, unlocated};
 use super::raw::RawScenario;
 use super::rules::{steps_rule, validate};
 use super::types::Scenario;
 use super::warning::ScenarioWarning;
+use crate::{Result, SimError};
 
 impl Scenario {
     /// Reads and checks the scenario file at `path`. The scenario's `name` defaults to the
@@ -31,7 +32,7 @@ impl Scenario {
 
     /// [`Scenario::from_path`], with the scenario's warnings (file, line, field, message).
     pub fn from_path_with_warnings(path: &Path) -> Result<(Scenario, Vec<ScenarioWarning>)> {
-        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Read {
+        let text = std::fs::read_to_string(path).map_err(|source| SimError::ScenarioRead {
             path: path.to_owned(),
             source,
         })?;

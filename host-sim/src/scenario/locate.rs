@@ -9,8 +9,9 @@ use serde::Deserialize;
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
 
-use super::error::{Diagnostic, DiagnosticKind, Result, ScenarioError};
+use super::diagnostic::{Diagnostic, DiagnosticKind};
 use super::problem::{Problem, join};
+use crate::{Result, SimError};
 
 /// Scenario text, parsed into a TOML document that keeps every key's and value's span.
 pub(crate) struct Document<'a> {
@@ -99,8 +100,8 @@ pub(crate) fn unlocated(file: String, kind: DiagnosticKind, problem: Problem) ->
 }
 
 /// The error of a rejected scenario.
-pub(crate) fn invalid(diagnostic: Diagnostic) -> ScenarioError {
-    ScenarioError::Invalid(Box::new(diagnostic))
+pub(crate) fn invalid(diagnostic: Diagnostic) -> SimError {
+    SimError::InvalidScenario(Box::new(diagnostic))
 }
 
 /// `x` of serde's "missing field `x`".

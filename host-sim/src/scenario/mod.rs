@@ -46,7 +46,7 @@
 // model's parameter table. `types` imports none of `raw`, `build` or `load`.
 mod build;
 mod builtin;
-mod error;
+mod diagnostic;
 mod load;
 mod locate;
 mod params;
@@ -61,7 +61,7 @@ mod warning;
 mod tests;
 
 pub use builtin::{BUILTINS, Builtin, builtin, builtin_names, resolve, resolve_with_warnings};
-pub use error::{Diagnostic, DiagnosticKind, Result, ScenarioError};
+pub use diagnostic::{Diagnostic, DiagnosticKind};
 pub use load::check_steps;
 pub use params::{AntParamsOverride, BeeParamsOverride, BeePreset, ParamsOverride};
 pub use types::{

@@ -2,7 +2,7 @@
 
 use std::fmt;
 
-use super::error::Diagnostic;
+use super::diagnostic::Diagnostic;
 use super::types::Scenario;
 
 /// What a [`ScenarioWarning`] is about.

@@ -12,9 +12,9 @@ use super::legend::draw_step;
 use super::palette::{I_BG, palette};
 use super::view::View;
 use crate::output::atomic::write_atomic;
-use crate::output::error::{OutputError, Result};
 use crate::output::frames::Frame;
 use crate::output::scene::Scene;
+use crate::{Result, SimError};
 
 /// The indices of the frames shown in the GIF: at most `max` (≥ 2), evenly spaced, first and
 /// last included.
@@ -38,10 +38,11 @@ pub(super) fn write_gif(
     let side = (scene.dim == 3).then(|| View::side(scene, &view));
     let total_h = view.h + side.as_ref().map_or(0, |s| s.h);
     if view.w > u16::MAX as usize || total_h > u16::MAX as usize {
-        return Err(OutputError::invalid(
-            path,
-            format!("GIF size {}x{} is too large", view.w, total_h),
-        ));
+        return Err(SimError::GifTooLarge {
+            path: path.to_path_buf(),
+            width: view.w,
+            height: total_h,
+        });
     }
     let shown = gif_frame_indices(frames.len(), opts.gif_max_frames);
     let n = frames[0].agents.len();

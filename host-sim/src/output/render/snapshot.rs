@@ -13,8 +13,8 @@ use super::draw::{AgentStyle, auto_radius, frame_canvas};
 use super::legend::draw_legend;
 use super::palette::palette;
 use super::view::View;
+use crate::Result;
 use crate::output::atomic::write_atomic;
-use crate::output::error::Result;
 use crate::output::frames::Frame;
 use crate::output::scene::Scene;
 

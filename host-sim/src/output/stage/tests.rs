@@ -136,7 +136,7 @@ fn a_folder_with_other_files_is_refused_and_left_alone() {
     write_run(&target, &[SUMMARY_JSON, "notes.txt"], "user");
     let err = Staging::begin(&target).unwrap_err();
     assert!(
-        matches!(&err, OutputError::NotARunFolder { entry, .. } if entry == "notes.txt"),
+        matches!(&err, SimError::NotARunFolder { entry, .. } if entry == "notes.txt"),
         "{err}"
     );
     let msg = err.to_string();
@@ -148,7 +148,7 @@ fn a_folder_with_other_files_is_refused_and_left_alone() {
     fs::create_dir_all(sub.join("inner")).unwrap();
     assert!(matches!(
         Staging::begin(&sub),
-        Err(OutputError::NotARunFolder { .. })
+        Err(SimError::NotARunFolder { .. })
     ));
     // Nor is a plain file a folder.
     let file = root.path().join("file");

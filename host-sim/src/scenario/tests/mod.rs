@@ -8,6 +8,7 @@ use swarm_core::bee::BeeParams;
 use swarm_core::model::ParamValue;
 
 use super::*;
+use crate::SimError;
 
 mod sanity;
 
@@ -925,10 +926,10 @@ fn display_shows_the_source_line_and_a_caret() {
 #[test]
 fn read_and_resolve_errors() {
     let err = Scenario::from_path(Path::new("/no/such/dir/x.toml")).unwrap_err();
-    assert!(matches!(err, ScenarioError::Read { .. }));
+    assert!(matches!(err, SimError::ScenarioRead { .. }));
     assert!(err.to_string().contains("/no/such/dir/x.toml"));
     let err = resolve("no-such-scenario").unwrap_err();
-    assert!(matches!(err, ScenarioError::NotFound { .. }));
+    assert!(matches!(err, SimError::ScenarioNotFound { .. }));
     assert!(err.to_string().contains("ants-fig7a-single-colony"));
     // A file: errors name it.
     let dir = tempfile::tempdir().unwrap();

@@ -2,9 +2,9 @@
 //! where each is reported.
 
 use super::{edit, expect_error, line_of};
+use crate::SimError;
 use crate::scenario::{
-    BUILTINS, DiagnosticKind, Scenario, ScenarioError, ScenarioWarning, WarningKind,
-    resolve_with_warnings,
+    BUILTINS, DiagnosticKind, Scenario, ScenarioWarning, WarningKind, resolve_with_warnings,
 };
 
 /// An ant world: a nest, a food source, a rock and a concave polygon (a U open upwards,
@@ -322,7 +322,7 @@ fn validate_refuses_what_code_changed() {
     sc.objects[1].kind.set_center(&[60.0, 50.0]);
     let err = sc.validate().unwrap_err();
     assert!(
-        matches!(&err, ScenarioError::Invalid(d) if d.field == "objects[1].center"),
+        matches!(&err, SimError::InvalidScenario(d) if d.field == "objects[1].center"),
         "{err}"
     );
 }

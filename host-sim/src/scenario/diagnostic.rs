@@ -1,50 +1,8 @@
-//! The scenario layer's error type.
+//! Diagnostics: where a scenario is wrong (file, line, column, field path) and why; the
+//! payload of [`SimError::InvalidScenario`](crate::SimError::InvalidScenario) and of each
+//! [`ScenarioWarning`](super::ScenarioWarning).
 
 use std::fmt;
-use std::path::PathBuf;
-
-/// Everything that can go wrong while finding, reading, parsing or validating a scenario.
-///
-/// A bad file never yields a [`Scenario`](super::Scenario): loading stops at the first problem
-/// and reports it as a [`Diagnostic`] naming the file, the line and column, the field path
-/// (`groups[1].spawn.radius`) and what was wrong and expected.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum ScenarioError {
-    /// The scenario file could not be read.
-    #[error("cannot read scenario file `{}`: {source}", path.display())]
-    Read {
-        /// The file.
-        path: PathBuf,
-        /// The I/O error.
-        #[source]
-        source: std::io::Error,
-    },
-    /// The text is not valid TOML, does not have the scenario's shape (unknown field, wrong
-    /// type, missing field) or breaks a rule of the scenario (a spawn region outside the world,
-    /// an event naming a missing object, a bad controller parameter, ...).
-    #[error("{0}")]
-    Invalid(Box<Diagnostic>),
-    /// `resolve` found neither a built-in scenario nor a file of that name.
-    #[error(
-        "no built-in scenario and no file named `{name}` (built-in scenarios: {})",
-        super::builtin_names().join(", ")
-    )]
-    NotFound {
-        /// The name or path asked for.
-        name: String,
-    },
-}
-
-impl ScenarioError {
-    /// The diagnostic of an [`Invalid`](ScenarioError::Invalid) error.
-    pub fn diagnostic(&self) -> Option<&Diagnostic> {
-        match self {
-            ScenarioError::Invalid(d) => Some(d),
-            _ => None,
-        }
-    }
-}
 
 /// Which stage rejected a scenario.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -118,6 +76,3 @@ impl fmt::Display for Diagnostic {
         Ok(())
     }
 }
-
-/// `Result` with a [`ScenarioError`].
-pub type Result<T> = std::result::Result<T, ScenarioError>;
