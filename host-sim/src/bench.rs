@@ -53,7 +53,7 @@ pub fn bench(
     }
     let (pool, threads) = crate::par::pool(threads)?;
     pool.install(|| {
-        let mut engine = crate::models::bench_engine(model, agents, 1);
+        let mut engine = crate::models::bench_engine(model, agents, 1)?;
         engine.tick()?;
         let t0 = Instant::now();
         for _ in 0..steps {

@@ -55,6 +55,9 @@ pub enum SimError {
     /// The simulation has no agents.
     #[error("the simulation has no agents")]
     NoAgents,
+    /// A model the simulator does not know (not one of [`models::BUILTIN`](crate::models::BUILTIN)).
+    #[error("no model `{0}` (built in: ant, bee)")]
+    UnknownModel(String),
     /// An agent id the simulation does not have.
     #[error("no agent {id} (the simulation has {agents})")]
     NoAgent {
