@@ -187,7 +187,8 @@ impl<const N: usize> Accumulator<N> {
     /// [`Event::Dropped`] with [`Error::Version`]: such a frame passed its COBS, length and CRC
     /// checks, so its header is trustworthy and its `seq` can be answered (the device endpoint
     /// answers it with an [`ErrorReply`](super::ErrorReply) of code
-    /// [`VERSION`](super::ErrorReply::VERSION)). `None` after any other event.
+    /// [`VERSION`](super::ErrorReply::VERSION), unless its kind is one a device never answers:
+    /// [`kind::never_answered`](super::kind::never_answered)). `None` after any other event.
     pub const fn foreign_header(&self) -> Option<Header> {
         self.foreign
     }

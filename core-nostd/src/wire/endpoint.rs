@@ -94,7 +94,23 @@ impl<C: Controller, const TX: usize> Core<C, TX> {
         }
     }
 
+    /// Drops a frame that is never answered ([`kind::never_answered`]), counting it.
+    fn ignore(&mut self) -> Todo {
+        bump(&mut self.counters.ignored);
+        Todo::Nothing
+    }
+
+    /// Handles a CRC-valid frame of another protocol version (its header: the payload is
+    /// never looked at).
+    fn on_foreign(&mut self, h: Header) -> Todo {
+        if kind::never_answered(h.kind) {
+            return self.ignore();
+        }
+        Todo::Fail(h, Error::Version { got: h.version })
+    }
+
     /// Handles an intact frame of this protocol version.
+    #[cfg_attr(feature = "small", inline(never))]
     fn on_frame(&mut self, header: Header, payload: &[u8]) -> Todo {
         bump(&mut self.counters.requests);
         let seq = header.seq;
@@ -105,10 +121,7 @@ impl<C: Controller, const TX: usize> Core<C, TX> {
             kind::STATS_REQUEST => {
                 decode_payload::<super::StatsRequest>(payload).map(|_| Todo::Stats(header))
             }
-            k if kind::is_reply(k) || C::Phases::replies(k) => {
-                bump(&mut self.counters.ignored);
-                return Todo::Nothing;
-            }
+            k if kind::never_answered(k) || C::Phases::replies(k) => return self.ignore(),
             k if !C::Phases::serves(k) => Err(Error::UnknownKind { kind: k }),
             _ if !matches!(self.state, SessionState::Open { .. }) => {
                 return Todo::Fail(header, Error::NoSession);
@@ -148,11 +161,13 @@ impl<C: Controller, const TX: usize> Core<C, TX> {
 ///   request's sequence number, in the order the requests arrived; a request the device
 ///   cannot serve gets an [`ErrorReply`];
 /// * garbage is skipped up to the next `0x00`; frames with a bad CRC, bad COBS, too short or
-///   too long (more than `RX` bytes) are dropped unanswered and counted; a CRC-valid frame of
-///   another protocol version is answered with [`ErrorReply::VERSION`], whatever its kind
-///   (reply kinds included) except [`kind::ERROR_REPLY`];
-/// * frames of this version of a reply kind (e.g. another device's replies) are dropped
-///   unanswered and counted;
+///   too long (more than `RX` bytes) are dropped unanswered and counted;
+/// * a reply is never answered: an intact frame of kind `0x00` or of a reply kind
+///   ([`kind::never_answered`]; for this version also the controller's own reply kinds), of
+///   any protocol version, is dropped unanswered and counted in
+///   [`DeviceStats::ignored`];
+/// * a CRC-valid frame of another protocol version of any other kind is answered with
+///   [`ErrorReply::VERSION`];
 /// * controller requests are refused with [`ErrorReply::NO_SESSION`] until `Hello` and
 ///   `Configure`;
 /// * it keeps no per-request state: a repeated request (a host's retry) is served again, and
@@ -254,11 +269,8 @@ impl<C: Controller, const RX: usize, const TX: usize> DeviceEndpoint<C, RX, TX> 
                     error: Error::Version { .. },
                     ..
                 } => match self.rx.foreign_header() {
-                    // Never answer an error with an error (two endpoints could ping-pong).
-                    Some(h) if h.kind != kind::ERROR_REPLY => {
-                        Todo::Fail(h, Error::Version { got: h.version })
-                    }
-                    _ => Todo::Nothing,
+                    Some(h) => self.core.on_foreign(h),
+                    None => Todo::Nothing,
                 },
                 Event::Dropped { .. } => Todo::Nothing,
             };
@@ -305,25 +317,7 @@ impl<C: Controller, const RX: usize, const TX: usize> DeviceEndpoint<C, RX, TX> 
                 let identity = self.identity();
                 self.core.reply(h.seq, &identity)
             }
-            Todo::Configure(h, c) => match core.state {
-                SessionState::Idle => core.error(h.seq, &Error::NoSession),
-                _ if c.params_hash != core.params_hash => {
-                    core.state = SessionState::Greeted;
-                    let e = Error::ParamsMismatch {
-                        device: core.params_hash,
-                        host: c.params_hash,
-                    };
-                    core.error(h.seq, &e)
-                }
-                _ => {
-                    if c.reset_stats {
-                        self.rx.reset_stats();
-                        core.counters = Counters::default();
-                    }
-                    core.state = SessionState::Open { session: c.session };
-                    core.reply(h.seq, &Configured { session: c.session })
-                }
-            },
+            Todo::Configure(h, c) => self.configure(h, c),
             Todo::Ping(h, p) => core.reply(h.seq, &Pong { nonce: p.nonce }),
             Todo::Stats(h) => {
                 let stats = self.stats();
@@ -333,6 +327,31 @@ impl<C: Controller, const RX: usize, const TX: usize> DeviceEndpoint<C, RX, TX> 
         match done {
             Todo::Sent(n) => Some(n),
             _ => None,
+        }
+    }
+
+    /// Handles a `Configure` (10.3).
+    fn configure(&mut self, h: Header, c: Configure) -> Todo {
+        let core = &mut self.core;
+        match core.state {
+            SessionState::Idle => core.error(h.seq, &Error::NoSession),
+            _ if c.params_hash != core.params_hash => {
+                core.state = SessionState::Greeted;
+                let e = Error::ParamsMismatch {
+                    device: core.params_hash,
+                    host: c.params_hash,
+                };
+                core.error(h.seq, &e)
+            }
+            _ => {
+                core.state = SessionState::Open { session: c.session };
+                let done = core.reply(h.seq, &Configured { session: c.session });
+                // After the reply, so that neither the Configure nor its reply is counted.
+                if c.reset_stats {
+                    self.reset_stats();
+                }
+                done
+            }
         }
     }
 
@@ -386,8 +405,13 @@ impl<C: Controller, const RX: usize, const TX: usize> DeviceEndpoint<C, RX, TX> 
     /// Back to power-up: session closed, partial frame forgotten, counters zeroed.
     pub fn reset(&mut self) {
         self.rx.clear();
-        self.rx.reset_stats();
+        self.reset_stats();
         self.core.state = SessionState::Idle;
+    }
+
+    /// Zeroes every counter (link and session).
+    fn reset_stats(&mut self) {
+        self.rx.reset_stats();
         self.core.counters = Counters::default();
     }
 }

@@ -107,8 +107,8 @@ pub struct Configure {
     /// The [`params_hash`] the host computed from its own parameters.
     pub params_hash: u64,
     /// Zero every device counter (link and session), so the statistics of a run are those of
-    /// this session only. Only an accepted `Configure` resets, after it was itself counted and
-    /// before its [`Configured`] is: right after, `replies` is 1 and every other counter 0.
+    /// this session only. Only an accepted `Configure` resets, after its [`Configured`] was
+    /// sent: neither is counted, so right after, every counter is 0.
     pub reset_stats: bool,
 }
 
@@ -161,9 +161,9 @@ pub struct DeviceStats {
     pub errors: u32,
     /// Requests of an unknown kind, or whose payload did not decode (each got an error reply).
     pub decode_errors: u32,
-    /// Intact frames of this protocol version of a reply kind, dropped unanswered (a reply
-    /// kind of another version is answered with an error reply, see
-    /// [`DeviceEndpoint`](super::DeviceEndpoint)).
+    /// Intact frames of kind `0x00` or of a reply kind, of any protocol version, dropped
+    /// unanswered (see [`kind::never_answered`]; a frame of another version is counted in
+    /// `link.version_errors` too, not in `requests`).
     pub ignored: u32,
     /// The open session's id, `None` when no session is open.
     pub session: Option<u32>,

@@ -516,10 +516,10 @@ fn ping_and_stats_work_in_every_state() {
     open(&mut dev, 9);
     let r = replies(&mut dev, &frame_of(3, &StatsRequest));
     let s = decode::<DeviceStats>(&r[0]).1;
-    // Reset by the Configure: only the Configured reply and this request are counted.
-    assert_eq!((s.link.frames_ok, s.requests, s.replies), (1, 1, 1));
+    // Reset by the Configure, which with its Configured is not counted: only this request.
+    assert_eq!((s.link.frames_ok, s.requests, s.replies), (1, 1, 0));
     assert_eq!(s.session, Some(9));
-    assert_eq!(dev.stats().replies, 2);
+    assert_eq!(dev.stats().replies, 1);
 }
 
 #[test]
@@ -644,6 +644,7 @@ fn a_frame_of_another_version_is_answered_with_version() {
     assert_eq!(error_code(&r[0]), (0x1234, ErrorReply::VERSION));
     let s = dev.stats();
     assert_eq!((s.link.version_errors, s.errors, s.requests), (2, 1, 0));
+    assert_eq!(s.ignored, 1); // the ErrorReply
 }
 
 #[test]
@@ -1003,8 +1004,8 @@ proptest! {
             prop_assert!(decode_frame(&mut body).is_ok());
         }
         let s = dev.stats();
-        // (Configure with reset zeroes the counters, then counts its own reply.)
-        prop_assert_eq!(s.replies as usize + s.errors as usize, out.len() + usize::from(open_first));
+        // (Configure with reset zeroes the counters, its own reply included.)
+        prop_assert_eq!(s.replies as usize + s.errors as usize, out.len());
     }
 
     #[test]
@@ -1508,11 +1509,21 @@ mod spec {
         out
     }
 
-    /// Sections 5, 10.4, 10.5: a foreign-version frame of any kind but 0x0F is answered with
-    /// ErrorReply 10 (reply kinds and 0x00 included); in version 2, reply kinds are dropped
-    /// and 0x00 gets ErrorReply 11.
+    /// The kinds a device never answers, whatever the version: 0x00 and the reply kinds.
+    const NEVER_ANSWERED: [u8; 9] = [0x00, 0x02, 0x04, 0x06, 0x08, 0x0f, 0x11, 0x13, 0x21];
+
+    /// Sections 5, 10.4, 10.5: a foreign-version frame of kind 0x00 or of a reply kind is
+    /// dropped unanswered (counted in `ignored`), one of any other kind is answered with
+    /// ErrorReply 10; in version 2, 0x00 and the reply kinds are dropped the same way.
     #[test]
-    fn foreign_version_frames_are_answered_whatever_their_kind() {
+    fn foreign_version_frames_are_answered_unless_never_answered() {
+        assert_eq!(
+            (0..=255u8)
+                .filter(|&k| kind::never_answered(k))
+                .collect::<Vec<_>>(),
+            NEVER_ANSWERED
+        );
+        assert!(NEVER_ANSWERED[1..].iter().all(|&k| kind::is_reply(k)));
         for version in [0u8, 1, 3, 0xff] {
             let mut dev = ant_device::<f32>();
             open(&mut dev, 1);
@@ -1522,33 +1533,79 @@ mod spec {
             let r = replies(&mut dev, &line);
             let answered: Vec<(u16, u8)> = r.iter().map(|f| error_code(f)).collect();
             let expected: Vec<(u16, u8)> = (0..=255u8)
-                .filter(|&k| k != kind::ERROR_REPLY)
+                .filter(|k| !NEVER_ANSWERED.contains(k))
                 .map(|k| (0x4200 | u16::from(k), ErrorReply::VERSION))
                 .collect();
             assert_eq!(answered, expected, "version {version}");
             let s = dev.stats();
-            assert_eq!((s.link.version_errors, s.errors, s.requests), (256, 255, 0));
-            assert_eq!((s.ignored, s.decode_errors), (0, 0));
+            assert_eq!((s.link.version_errors, s.errors, s.requests), (256, 247, 0));
+            assert_eq!((s.ignored, s.decode_errors, s.replies), (9, 0, 0));
         }
-        // The same kinds in version 2: reply kinds dropped, 0x00 is UnknownKind.
+        // The same kinds in version 2: dropped, counted in requests and ignored.
         let mut dev = ant_device::<f32>();
         open(&mut dev, 1);
-        let replies_kinds = [0x02u8, 0x04, 0x06, 0x08, 0x0f, 0x11, 0x13, 0x21];
-        assert!(replies_kinds.iter().all(|&k| kind::is_reply(k)));
-        assert_eq!((0..=255u8).filter(|&k| kind::is_reply(k)).count(), 8);
-        for k in replies_kinds {
+        for k in NEVER_ANSWERED {
             assert!(replies(&mut dev, &frame_of_kind(k, 1, &())).is_empty());
         }
-        let r = replies(&mut dev, &frame_of_kind(0x00, 2, &()));
+        let s = dev.stats();
+        assert_eq!((s.link.frames_ok, s.requests, s.ignored), (9, 9, 9));
+        assert_eq!((s.errors, s.decode_errors, s.replies), (0, 0, 0));
+    }
+
+    /// Sections 5, 10.1, 10.5, case by case, with every counter: version-2 kind 0x00, a
+    /// version-1 Identity, a version-1 kind 0x00 and a version-1 ErrorReply are dropped
+    /// unanswered; a version-1 Ping is answered with ErrorReply 10.
+    #[test]
+    fn a_device_never_answers_a_reply_or_kind_0x00() {
+        let mut dev = ant_device::<f32>();
+        open(&mut dev, 1);
         assert_eq!(
-            r.iter().map(|f| error_code(f)).collect::<Vec<_>>(),
-            vec![(2, 11)]
+            dev.stats(),
+            DeviceStats {
+                session: Some(1),
+                ..DeviceStats::default()
+            }
+        );
+        let mut identity = dev.identity();
+        identity.protocol = 1;
+        let identity = postcard_bytes(&identity);
+        // (frame with seq i + 1, the error code it is answered with)
+        let cases = [
+            (frame_of_kind(0x00, 1, &()), None),
+            (foreign(1, kind::IDENTITY, 2, &identity), None),
+            (foreign(1, 0x00, 3, &[]), None),
+            (foreign(1, kind::PING, 4, &[5]), Some(ErrorReply::VERSION)),
+            (foreign(1, kind::ERROR_REPLY, 5, &[1]), None),
+        ];
+        let mut want = dev.stats();
+        for (i, (frame, answer)) in cases.into_iter().enumerate() {
+            let r = replies(&mut dev, &frame);
+            let seq = u16::try_from(i + 1).unwrap();
+            let expected = answer.map(|code| (seq, code));
+            assert_eq!(r.iter().map(|f| error_code(f)).next(), expected);
+            assert!(r.len() <= 1);
+            if frame[1] == PROTOCOL_VERSION {
+                want.link.frames_ok += 1;
+                want.requests += 1;
+            } else {
+                want.link.version_errors += 1;
+                want.link.bytes_dropped += u32::try_from(frame.len() - 1).unwrap();
+            }
+            match answer {
+                Some(_) => want.errors += 1,
+                None => want.ignored += 1,
+            }
+            assert_eq!(dev.stats(), want, "case {i}");
+        }
+        assert_eq!(
+            (want.link.version_errors, want.ignored, want.errors),
+            (4, 4, 1)
         );
     }
 
     /// 10.1: what `Configure { reset_stats: true }` zeroes, and when.
     #[test]
-    fn reset_stats_zeroes_every_counter_after_counting_the_configure() {
+    fn reset_stats_zeroes_every_counter_with_the_configure() {
         let mut dev = ant_device::<f32>();
         open(&mut dev, 1);
         let mut line = vec![0u8, 0]; // empty frames
@@ -1573,21 +1630,25 @@ mod spec {
         replies(&mut dev, &frame_of(6, &refused));
         assert_eq!(dev.stats().errors, s.errors + 1);
         assert_eq!(dev.stats().session, None);
-        // An accepted one zeroes all 13 counters after counting itself: only its reply counts.
+        // An accepted one zeroes all 13 counters after its reply: neither counts.
         let accepted = Configure {
             session: 3,
             params_hash: hash,
             reset_stats: true,
         };
-        replies(&mut dev, &frame_of(7, &accepted));
-        assert_eq!(
-            dev.stats(),
-            DeviceStats {
-                replies: 1,
-                session: Some(3),
-                ..DeviceStats::default()
-            }
-        );
+        let r = replies(&mut dev, &frame_of(7, &accepted));
+        assert_eq!(decode::<Configured>(&r[0]).1, Configured { session: 3 });
+        let zero = DeviceStats {
+            session: Some(3),
+            ..DeviceStats::default()
+        };
+        assert_eq!(dev.stats(), zero);
+        // The next StatsRequest counts only itself.
+        let r = replies(&mut dev, &frame_of(8, &StatsRequest));
+        let mut want = zero;
+        want.link.frames_ok = 1;
+        want.requests = 1;
+        assert_eq!(decode::<DeviceStats>(&r[0]).1, want);
     }
 
     /// Section 7: a few of the documented checks, at their limits.
