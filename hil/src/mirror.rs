@@ -313,7 +313,7 @@ pub fn mirror<T: Transport>(
         client,
         opts,
         |session, client, tally, chosen| {
-            let step = engine.step();
+            let step = engine.next_step();
             before_step(step)?;
             for phase in 0..engine.phases().len() {
                 engine.decide(phase)?;

@@ -27,7 +27,7 @@ pub trait Engine: Send {
     /// Number of agents.
     fn agents(&self) -> usize;
     /// The next tick to run.
-    fn step(&self) -> u32;
+    fn next_step(&self) -> u32;
     /// Applies a scenario event to object `object` (its index in the scenario).
     fn apply(&mut self, object: u16, action: &Action);
     /// The names of the phases of a tick, in order.

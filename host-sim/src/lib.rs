@@ -23,7 +23,7 @@
 //! let mut engine = models::engine(&sc, sc.seed).unwrap();
 //! assert_eq!((engine.model(), engine.phases()), ("ant", &["plan", "resolve"][..]));
 //! engine.tick().unwrap();
-//! assert_eq!(engine.step(), 1);
+//! assert_eq!(engine.next_step(), 1);
 //! assert_eq!(engine.frame().agents.len(), engine.agents());
 //! ```
 

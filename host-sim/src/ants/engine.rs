@@ -64,7 +64,7 @@ impl Engine for AntSim {
     fn agents(&self) -> usize {
         AntSim::agents(self)
     }
-    fn step(&self) -> u32 {
+    fn next_step(&self) -> u32 {
         self.step
     }
     fn apply(&mut self, object: u16, action: &Action) {

@@ -51,7 +51,7 @@ impl Engine for BeeSim {
     fn agents(&self) -> usize {
         BeeSim::agents(self)
     }
-    fn step(&self) -> u32 {
+    fn next_step(&self) -> u32 {
         self.step
     }
     fn apply(&mut self, object: u16, action: &Action) {

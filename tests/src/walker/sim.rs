@@ -64,7 +64,7 @@ impl<S: SimScalar> Engine for WalkSim<S> {
     fn agents(&self) -> usize {
         self.states.len()
     }
-    fn step(&self) -> u32 {
+    fn next_step(&self) -> u32 {
         self.step
     }
     fn apply(&mut self, _object: u16, _action: &Action) {}
