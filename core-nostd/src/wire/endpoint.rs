@@ -145,7 +145,7 @@ impl<C: Controller, const TX: usize> Core<C, TX> {
 
 /// The device endpoint: feed it the bytes from the line, send what it returns.
 ///
-/// * `C`: the controller and its parameters ([`AntParams<S>`], [`BeeParams<S>`], or any
+/// * `C`: the controller and its parameters ([`AntParams<S>`](crate::ant::AntParams), [`BeeParams<S>`](crate::bee::BeeParams), or any
 ///   [`Controller`]);
 /// * `RX`: the receive buffer, the longest frame accepted without its delimiter
 ///   ([`Controller::MAX_REQUEST_FRAME`] receives every request; at least
@@ -153,7 +153,8 @@ impl<C: Controller, const TX: usize> Core<C, TX> {
 /// * `TX`: the send buffer, at least [`Controller::MAX_REPLY_FRAME`] and
 ///   [`MAX_SESSION_FRAME`] (both checked at compile time).
 ///
-/// [`AntDevice`] and [`BeeDevice`] pick both for you.
+/// [`AntDevice`](crate::ant::AntDevice) and [`BeeDevice`](crate::bee::BeeDevice) pick both
+/// for you.
 ///
 /// Behaviour (`docs/protocol.md`, section 10, is the normative version):
 ///

@@ -62,17 +62,17 @@ pub mod kind {
     pub const DEVICE_STATS: u8 = 0x08;
     /// [`ErrorReply`](super::ErrorReply).
     pub const ERROR_REPLY: u8 = 0x0F;
-    /// [`AntPlanRequest`](super::AntPlanRequest).
+    /// [`AntPlanRequest`](crate::ant::AntPlanRequest).
     pub const ANT_PLAN_REQUEST: u8 = 0x10;
-    /// [`AntPlanReply`](super::AntPlanReply).
+    /// [`AntPlanReply`](crate::ant::AntPlanReply).
     pub const ANT_PLAN_REPLY: u8 = 0x11;
-    /// [`AntResolveRequest`](super::AntResolveRequest).
+    /// [`AntResolveRequest`](crate::ant::AntResolveRequest).
     pub const ANT_RESOLVE_REQUEST: u8 = 0x12;
-    /// [`AntResolveReply`](super::AntResolveReply).
+    /// [`AntResolveReply`](crate::ant::AntResolveReply).
     pub const ANT_RESOLVE_REPLY: u8 = 0x13;
-    /// [`BeeStepRequest`](super::BeeStepRequest).
+    /// [`BeeStepRequest`](crate::bee::BeeStepRequest).
     pub const BEE_STEP_REQUEST: u8 = 0x20;
-    /// [`BeeStepReply`](super::BeeStepReply).
+    /// [`BeeStepReply`](crate::bee::BeeStepReply).
     pub const BEE_STEP_REPLY: u8 = 0x21;
 
     /// The message's name, for logs and reports; `None` for a kind this build does not know.
