@@ -113,9 +113,6 @@ pub enum HilError {
     /// a controller refused a frame, ...).
     #[error("simulation: {0}")]
     Sim(#[from] swarm_sim::SimError),
-    /// The soft device could not be made.
-    #[error("soft device: {0}")]
-    SoftDevice(swarm_core::Error),
     /// A `--inject` fault specification that does not parse.
     #[error("--inject `{spec}`: {problem}")]
     FaultSpec {

@@ -175,22 +175,22 @@ pub struct Device {
 }
 
 impl Device {
-    /// The device running `params`.
+    /// The device running `params`, with a soft device of [`SOFT_FRAME`] buffers.
     ///
     /// # Errors
     ///
     /// [`SimError::Device`] if the parameters cannot be encoded (never for a model's own).
     pub fn of<C: Controller + Send + 'static>(params: &Checked<C>) -> Result<Device> {
+        Device::with(params, soft_endpoint(params, &soft_name::<C>())?)
+    }
+
+    /// The device running `params`, served on the host by `soft`.
+    fn with<C: Controller>(params: &Checked<C>, soft: Box<dyn Endpoint + Send>) -> Result<Device> {
         let p: &C = params;
-        let soft = DeviceEndpoint::<C, SOFT_FRAME, SOFT_FRAME>::new(
-            p.clone(),
-            &format!("soft-{}", C::NAME),
-        )
-        .map_err(SimError::Device)?;
         Ok(Device {
             expected: Identity::of(p, C::MAX_REQUEST_FRAME, "host").map_err(SimError::Device)?,
             params_hash: params_hash(p).map_err(SimError::Device)?,
-            soft: Box::new(soft),
+            soft,
         })
     }
 
@@ -223,8 +223,8 @@ impl Device {
             }
         }
         match first {
-            ByScalar::F32(g) => Device::of(g.params()),
-            ByScalar::Fixed(g) => Device::of(g.params()),
+            ByScalar::F32(g) => Device::with(g.params(), F::soft(g.params())?),
+            ByScalar::Fixed(g) => Device::with(g.params(), X::soft(g.params())?),
         }
     }
 }
@@ -235,6 +235,31 @@ pub trait ModelGroup: AgentGroup {
     type Params: Controller + Send + 'static;
     /// The group's parameters.
     fn params(&self) -> &Checked<Self::Params>;
+    /// The soft device running `params`: by default an endpoint of [`SOFT_FRAME`] buffers; a
+    /// model with firmware gives its firmware's endpoint (the same buffer sizes, so the soft
+    /// device drops and counts what the firmware would).
+    ///
+    /// # Errors
+    ///
+    /// [`SimError::Device`] if the endpoint refuses the parameters.
+    fn soft(params: &Checked<Self::Params>) -> Result<Box<dyn Endpoint + Send>> {
+        soft_endpoint(params, &soft_name::<Self::Params>())
+    }
+}
+
+/// The name a soft device of model `C` reports: `soft-<model>`.
+pub fn soft_name<C: Controller>() -> String {
+    format!("soft-{}", C::NAME)
+}
+
+/// An endpoint of [`SOFT_FRAME`] buffers running `params`, reporting `name`.
+fn soft_endpoint<C: Controller + Send + 'static>(
+    params: &Checked<C>,
+    name: &str,
+) -> Result<Box<dyn Endpoint + Send>> {
+    let p: &C = params;
+    let e = DeviceEndpoint::<C, SOFT_FRAME, SOFT_FRAME>::new(p.clone(), name);
+    Ok(Box::new(e.map_err(SimError::Device)?))
 }
 
 /// The exchanges of `agents` (ids), each made by `exchange` from the agent's world slot
@@ -254,7 +279,9 @@ pub fn exchanges_by_slot(
         .map(|&id| {
             slots
                 .get(id as usize)
-                .and_then(|&slot| exchange(slot))
+                .copied()
+                .flatten()
+                .and_then(&exchange)
                 .ok_or(SimError::NoAgent {
                     id,
                     agents: ids.len(),
@@ -272,11 +299,12 @@ pub fn group_of<G: AgentGroup>(groups: &[G], slot: usize) -> Option<(&G, usize)>
 }
 
 /// The slot of every agent id (slots move when an engine reorders them).
-fn slots_by_id(ids: &[u32]) -> Vec<usize> {
-    let mut out = vec![0; ids.len()];
+/// (`None` for an id no slot holds).
+fn slots_by_id(ids: &[u32]) -> Vec<Option<usize>> {
+    let mut out = vec![None; ids.len()];
     for (slot, &id) in ids.iter().enumerate() {
         if let Some(s) = out.get_mut(id as usize) {
-            *s = slot;
+            *s = Some(slot);
         }
     }
     out

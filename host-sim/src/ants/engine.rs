@@ -2,17 +2,19 @@
 //! summary.
 
 use swarm_core::ant::{
-    AntParams, AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, AntState,
+    AntDevice, AntParams, AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest,
+    AntState,
 };
 use swarm_core::model::{Model, Phases};
+use swarm_core::wire::Endpoint;
 use swarm_core::{Checked, StepCtx};
 
 use super::sense::{plan_frame, resolve_frame};
 use super::sim::{AntEvent, AntGroup, AntSim};
 use super::world::{AntObjectDef, AntObjectKind};
 use crate::by_scalar;
-use crate::engine::{Device, Engine, Exchange, ModelGroup, exchanges_by_slot, group_of};
-use crate::error::Result;
+use crate::engine::{Device, Engine, Exchange, ModelGroup, exchanges_by_slot, group_of, soft_name};
+use crate::error::{Result, SimError};
 use crate::output::{AgentSample, Frame, Summary};
 use crate::scalar::SimScalar;
 use crate::scenario::Action;
@@ -24,13 +26,14 @@ pub const ANT_COLLISION_DISTANCE: f32 = 0.5;
 const PHASES: &[&str] = <<AntParams<f32> as Model>::Phases as Phases<AntParams<f32>>>::NAMES;
 
 impl<S: SimScalar> AntGroup<S> {
-    /// The exchange of the ant in world slot `slot` (of this group) in phase `phase`.
-    fn exchange(&self, sim: &AntSim, slot: usize, phase: usize) -> Exchange {
+    /// The exchange of the ant in world slot `slot` (of this group) in phase `phase` (`None`
+    /// for a phase the ant tick does not have).
+    fn exchange(&self, sim: &AntSim, slot: usize, phase: usize) -> Option<Exchange> {
         let k = slot - self.first;
         let id = self.ids[k];
         let w = &sim.world;
-        let name = PHASES[phase];
-        if phase == 0 {
+        let name = *PHASES.get(phase)?;
+        Some(if phase == 0 {
             let request = AntPlanRequest {
                 state: self.states[k],
                 frame: plan_frame::<S>(w, slot),
@@ -53,7 +56,7 @@ impl<S: SimScalar> AntGroup<S> {
                 state: self.resolved()[k],
             };
             Exchange::new(id, name, &request, &reply)
-        }
+        })
     }
 }
 
@@ -89,7 +92,7 @@ impl Engine for AntSim {
     fn exchanges(&self, phase: usize, agents: &[u32]) -> Result<Vec<Exchange>> {
         exchanges_by_slot(&self.world.sensed.id, agents, |slot| {
             let (g, _) = group_of(&self.groups, slot)?;
-            Some(by_scalar!(g, g => g.exchange(self, slot, phase)))
+            by_scalar!(g, g => g.exchange(self, slot, phase))
         })
     }
     fn device(&self) -> Result<Device> {
@@ -171,5 +174,11 @@ impl<S: SimScalar> ModelGroup for AntGroup<S> {
     type Params = AntParams<S>;
     fn params(&self) -> &Checked<AntParams<S>> {
         &self.params
+    }
+    /// The firmware's endpoint (its buffer sizes).
+    fn soft(params: &Checked<AntParams<S>>) -> Result<Box<dyn Endpoint + Send>> {
+        let p: &AntParams<S> = params;
+        let device = AntDevice::<S>::new(*p, &soft_name::<AntParams<S>>());
+        Ok(Box::new(device.map_err(SimError::Device)?))
     }
 }

@@ -2,15 +2,16 @@
 //! summary.
 
 use swarm_core::Checked;
-use swarm_core::bee::{BeeParams, BeeStepReply, BeeStepRequest};
+use swarm_core::bee::{BeeDevice, BeeParams, BeeStepReply, BeeStepRequest};
 use swarm_core::model::{Model, Phases};
+use swarm_core::wire::Endpoint;
 
 use super::build::bee_frame_samples;
 use super::sense::bee_frame;
 use super::sim::{BeeGroup, BeeSim, bee_frame_time};
 use crate::by_scalar;
-use crate::engine::{Device, Engine, Exchange, ModelGroup, exchanges_by_slot, group_of};
-use crate::error::Result;
+use crate::engine::{Device, Engine, Exchange, ModelGroup, exchanges_by_slot, group_of, soft_name};
+use crate::error::{Result, SimError};
 use crate::output::{Frame, Summary};
 use crate::scalar::SimScalar;
 use crate::scenario::Action;
@@ -101,5 +102,11 @@ impl<S: SimScalar> ModelGroup for BeeGroup<S> {
     type Params = BeeParams<S>;
     fn params(&self) -> &Checked<BeeParams<S>> {
         &self.params
+    }
+    /// The firmware's endpoint (its buffer sizes).
+    fn soft(params: &Checked<BeeParams<S>>) -> Result<Box<dyn Endpoint + Send>> {
+        let p: &BeeParams<S> = params;
+        let device = BeeDevice::<S>::new(*p, &soft_name::<BeeParams<S>>());
+        Ok(Box::new(device.map_err(SimError::Device)?))
     }
 }

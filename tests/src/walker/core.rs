@@ -21,6 +21,17 @@ swarm_core::model_params! {
         speed: real = Range::above(0.0, 10.0), "units/tick";
         half_width: real = Range::above(0.0, 1000.0), "units";
     }
+    together step_fits
+}
+
+impl<S: Scalar> WalkParams<S> {
+    /// A step longer than the box's half width could be reflected and still land outside.
+    fn step_fits(&self) -> Result<()> {
+        if self.speed > self.half_width {
+            return Err(Error::BadParam { field: "speed" });
+        }
+        Ok(())
+    }
 }
 
 impl<S: Scalar> Default for WalkParams<S> {
