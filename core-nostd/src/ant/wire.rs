@@ -54,16 +54,16 @@ wire_type! {
 }
 
 impl<S: Scalar> AntPlanRequest<S> {
-    /// Runs [`plan`](super::plan) on the request: what a device does with it.
+    /// Checks `params`, then runs the [`Plan`] phase on the request.
     pub fn run(&self, params: &AntParams<S>) -> Result<AntPlanReply<S>> {
-        super::plan(&self.state, &self.frame, params, self.ctx).map(|plan| AntPlanReply { plan })
+        Plan::run(&(*params).checked()?, self)
     }
 }
 
 impl<S: Scalar> AntResolveRequest<S> {
-    /// Runs [`resolve`](super::resolve) on the request: what a device does with it.
+    /// Checks `params`, then runs the [`Resolve`] phase on the request.
     pub fn run(&self, params: &AntParams<S>) -> Result<AntResolveReply<S>> {
-        super::resolve(&self.plan, &self.frame, params).map(|state| AntResolveReply { state })
+        Resolve::run(&(*params).checked()?, self)
     }
 }
 

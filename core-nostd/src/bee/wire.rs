@@ -35,10 +35,9 @@ wire_type! {
 }
 
 impl<S: Scalar> BeeStepRequest<S> {
-    /// Runs [`step()`](super::step()) on the request: what a device does with it.
+    /// Checks `params`, then runs the [`Step`] phase on the request.
     pub fn run(&self, params: &BeeParams<S>) -> Result<BeeStepReply<S>> {
-        super::step(&self.state, &self.frame, params)
-            .map(|(decision, state)| BeeStepReply { decision, state })
+        Step::run(&(*params).checked()?, self)
     }
 }
 

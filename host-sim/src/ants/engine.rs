@@ -140,7 +140,6 @@ impl Engine for AntSim {
     fn after_tick(&mut self, summary: &mut Summary) {
         for e in &self.events {
             if let AntEvent::Delivered { nest, .. } = *e {
-                self.delivered += 1;
                 // Deliveries at a way point (an ant on a later leg of a route) count in the
                 // total only.
                 let home = |o: &&AntObjectDef| o.id == nest && o.kind == AntObjectKind::Nest;

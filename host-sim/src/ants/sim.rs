@@ -325,7 +325,7 @@ pub struct AntSim {
     pub moved_out: u64,
     /// What happened in the last tick, in agent order.
     pub events: Vec<AntEvent>,
-    /// Food deliveries counted so far by [`Engine::after_tick`](crate::engine::Engine).
+    /// Food deliveries so far.
     pub delivered: u64,
     /// Whether this tick's predictions stayed within the step bound the plan queries assumed
     /// (then the resolve frames come from the noted ants).
@@ -480,6 +480,10 @@ impl AntSim {
         }
         let events = std::mem::take(&mut self.events);
         self.consume_food(&events);
+        self.delivered += events
+            .iter()
+            .filter(|e| matches!(e, AntEvent::Delivered { .. }))
+            .count() as u64;
         self.events = events;
         self.noted = false;
         self.step += 1;
