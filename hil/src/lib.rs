@@ -12,9 +12,13 @@
 //! * [`loopback`]: the mirror against the soft device, in memory or over a pseudo-terminal.
 //! * `qemu` (Unix): the firmware images in QEMU, on a pseudo-terminal.
 //! * [`soft`]: the soft device, `swarm-core`'s device endpoint served on the host.
+//! * `cli` (Unix): the `swarm-hil` command line, as a function a team's own binary calls
+//!   after registering its models.
 //! * [`wire`]: the frame codec and the session protocol of `swarm_core`, shared with the
 //!   firmware.
 
+#[cfg(unix)]
+pub mod cli;
 pub mod client;
 mod error;
 pub mod loopback;

@@ -7,12 +7,11 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::Result;
-use crate::scenario::Model;
 
 /// What `swarm bench` measures and prints.
 #[derive(Clone, Debug, Serialize)]
 pub struct BenchReport {
-    /// `ants` or `bees`.
+    /// The model (`ant`, `bee`, ...).
     pub model: String,
     /// `cpu` or `gpu`.
     pub backend: String,
@@ -43,7 +42,7 @@ pub struct BenchReport {
 /// [`SimError::EmptyBench`](crate::SimError::EmptyBench) for no agents or no steps, the pool's
 /// error, a controller's refusal.
 pub fn bench(
-    model: Model,
+    model: &str,
     agents: usize,
     steps: u32,
     threads: Option<usize>,
@@ -61,7 +60,7 @@ pub fn bench(
         }
         let seconds = t0.elapsed().as_secs_f64();
         Ok(BenchReport {
-            model: format!("{}s", model.as_str()),
+            model: engine.model().to_owned(),
             backend: engine.backend().into(),
             agents,
             steps,
@@ -108,16 +107,16 @@ mod tests {
 
     #[test]
     fn a_bench_reports_what_ran_and_refuses_an_empty_one() {
-        let r = bench(Model::Ant, 500, 2, Some(1)).unwrap();
+        let r = bench("ant", 500, 2, Some(1)).unwrap();
         assert_eq!(
             (r.model.as_str(), r.agents, r.steps, r.threads),
-            ("ants", 500, 2, 1)
+            ("ant", 500, 2, 1)
         );
         assert!(r.seconds > 0.0 && r.agent_steps_per_s > 0.0);
-        let r = bench(Model::Bee, 200, 1, Some(2)).unwrap();
-        assert_eq!((r.model.as_str(), r.agents, r.threads), ("bees", 200, 2));
+        let r = bench("bee", 200, 1, Some(2)).unwrap();
+        assert_eq!((r.model.as_str(), r.agents, r.threads), ("bee", 200, 2));
         for (agents, steps, threads) in [(0, 5, Some(1)), (10, 0, Some(1)), (10, 5, Some(0))] {
-            let e = bench(Model::Ant, agents, steps, threads)
+            let e = bench("ant", agents, steps, threads)
                 .unwrap_err()
                 .to_string();
             assert!(e.contains("at least"), "{e}");

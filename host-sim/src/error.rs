@@ -55,9 +55,37 @@ pub enum SimError {
     /// The simulation has no agents.
     #[error("the simulation has no agents")]
     NoAgents,
-    /// A model the simulator does not know (not one of [`models::BUILTIN`](crate::models::BUILTIN)).
-    #[error("no model `{0}` (built in: ant, bee)")]
-    UnknownModel(String),
+    /// A model the simulator does not know: neither built in
+    /// ([`models::BUILTIN`](crate::models::BUILTIN)) nor registered
+    /// ([`models::register`](crate::models::register)).
+    #[error("no model `{name}` (known: {known})")]
+    UnknownModel {
+        /// The name asked for.
+        name: String,
+        /// The models there are, comma-separated.
+        known: String,
+    },
+    /// A second, different model registered under a name already taken.
+    #[error("a model called `{0}` is already registered")]
+    ModelTaken(&'static str),
+    /// A group's parameter table that does not read as its model's parameters.
+    #[error("group `{group}`: its `{model}` parameter table: {source}")]
+    ParamsTable {
+        /// The group.
+        group: String,
+        /// Its model.
+        model: String,
+        /// What the reader refused.
+        source: Box<toml::de::Error>,
+    },
+    /// Parameters that do not write as a table ([`Group::set_params`](crate::scenario::Group::set_params)).
+    #[error("group `{group}`: its parameters do not write as a table: {source}")]
+    ParamsWrite {
+        /// The group.
+        group: String,
+        /// What the writer refused.
+        source: Box<toml::ser::Error>,
+    },
     /// An agent id the simulation does not have.
     #[error("no agent {id} (the simulation has {agents})")]
     NoAgent {

@@ -32,6 +32,7 @@ pub use swarm_core;
 pub mod ants;
 pub mod bees;
 pub mod bench;
+pub mod cli;
 pub mod engine;
 mod error;
 pub mod grid;

@@ -1,19 +1,31 @@
-//! The built-in models: the one place in the simulator that names them. Everything else
-//! reaches a model through [`Engine`], and finds it here by name.
+//! The model table: the one place in the simulator that names the built-in models, and where
+//! a team registers its own ([`register`]). Everything else reaches a model through its
+//! [`ModelEntry`], found by the name scenario files give it, and drives it through [`Engine`].
+
+use std::sync::{PoisonError, RwLock};
 
 use crate::ants::{AntSim, bench_ant_world};
 use crate::bees::{BeeSim, bench_bee_world};
 use crate::engine::Engine;
 use crate::error::{Result, SimError};
-use crate::scenario::{Model, Scenario};
+use crate::scenario::{GroupCheck, Problem, Scenario};
 
-/// What the simulator knows of a model: how to build its engine for a scenario, and its
-/// benchmark world.
+/// What the simulator knows of a model: the world it lives in, the rules of its groups, how
+/// to build its engine for a scenario, and its benchmark world.
 #[derive(Clone, Copy, Debug)]
 pub struct ModelEntry {
-    /// The model's name, as scenario files write it (`ant`, `bee`).
+    /// The model's name, as scenario files write it (`model = "ant"`) and as its groups' parameter
+    /// table is called (`ant = { .. }`).
     pub name: &'static str,
-    /// Its engine for a scenario and a seed.
+    /// One line on what it is (paper, world), for listings and `--help`.
+    pub about: &'static str,
+    /// The dimension of its world: 2 (`dim = 2`, `[x, y]`) or 3.
+    pub dim: usize,
+    /// The rules of one of its groups, after those every group follows: the objects it
+    /// names, its parameter table ([`GroupCheck::params`]), the parameters' ranges
+    /// ([`GroupCheck::check_params`]).
+    pub check: fn(&GroupCheck<'_>) -> std::result::Result<(), Problem>,
+    /// Its engine for a scenario (every group of which is of this model) and a seed.
     pub engine: fn(&Scenario, u32) -> Result<Box<dyn Engine>>,
     /// Its synthetic benchmark world of `agents` agents and a seed (`swarm bench`).
     pub bench_world: fn(usize, u32) -> Box<dyn Engine>,
@@ -23,43 +35,108 @@ pub struct ModelEntry {
 pub const BUILTIN: &[ModelEntry] = &[
     ModelEntry {
         name: "ant",
+        about: "ant foraging colonies (xiang2018), 2D",
+        dim: 2,
+        check: crate::ants::scenario::check,
         engine: |sc, seed| Ok(Box::new(AntSim::from_scenario(sc, seed)?)),
         bench_world: |n, seed| Box::new(bench_ant_world(n, seed)),
     },
     ModelEntry {
         name: "bee",
+        about: "bee swarms with visual roll-to-avoid (chen), 3D",
+        dim: 3,
+        check: crate::bees::scenario::check,
         engine: |sc, seed| Ok(Box::new(BeeSim::from_scenario(sc, seed)?)),
         bench_world: |n, seed| Box::new(bench_bee_world(n, seed)),
     },
 ];
 
-/// The built-in model called `name`.
-pub fn find(name: &str) -> Option<&'static ModelEntry> {
-    BUILTIN.iter().find(|m| m.name == name)
-}
+/// The models registered besides the built-ins, in registration order.
+static REGISTERED: RwLock<Vec<&'static ModelEntry>> = RwLock::new(Vec::new());
 
-fn entry(model: Model) -> Result<&'static ModelEntry> {
-    find(model.as_str()).ok_or_else(|| SimError::UnknownModel(model.as_str().into()))
-}
-
-/// The engine of scenario `sc` with seed `seed`.
+/// Adds `entry` to the model table of this process: scenario files may then name it, and
+/// `swarm run`, `swarm bench` and the HIL mirror serve it (call it before
+/// [`cli::main`](crate::cli::main) to build a `swarm` that knows the model). Registering the
+/// same entry again does nothing.
 ///
 /// # Errors
 ///
-/// What building the model's world refuses (see [`AntSim::from_scenario`],
-/// [`BeeSim::from_scenario`]).
-pub fn engine(sc: &Scenario, seed: u32) -> Result<Box<dyn Engine>> {
-    (entry(sc.world.model())?.engine)(sc, seed)
+/// [`SimError::ModelTaken`] when another model has the name.
+pub fn register(entry: &'static ModelEntry) -> Result<()> {
+    let mut registered = REGISTERED.write().unwrap_or_else(PoisonError::into_inner);
+    match find_in(&registered, entry.name) {
+        Some(e) if std::ptr::eq(e, entry) => Ok(()),
+        Some(_) => Err(SimError::ModelTaken(entry.name)),
+        None => {
+            registered.push(entry);
+            Ok(())
+        }
+    }
 }
 
-/// The synthetic benchmark world of `model` with `agents` agents ([`bench_ant_world`],
+fn find_in(registered: &[&'static ModelEntry], name: &str) -> Option<&'static ModelEntry> {
+    BUILTIN
+        .iter()
+        .chain(registered.iter().copied())
+        .find(|m| m.name == name)
+}
+
+/// The model called `name`: built in or registered.
+pub fn find(name: &str) -> Option<&'static ModelEntry> {
+    find_in(
+        &REGISTERED.read().unwrap_or_else(PoisonError::into_inner),
+        name,
+    )
+}
+
+/// Every model: the built-ins, then the registered ones.
+pub fn all() -> Vec<&'static ModelEntry> {
+    let registered = REGISTERED.read().unwrap_or_else(PoisonError::into_inner);
+    BUILTIN.iter().chain(registered.iter().copied()).collect()
+}
+
+/// The models' names: the built-ins, then the registered ones.
+pub fn names() -> Vec<&'static str> {
+    all().iter().map(|m| m.name).collect()
+}
+
+/// The models' names, as an error lists them (`ant, bee`).
+fn known() -> String {
+    names().join(", ")
+}
+
+/// The model called `name`, or [`SimError::UnknownModel`].
+///
+/// # Errors
+///
+/// [`SimError::UnknownModel`], listing the models there are.
+pub fn get(name: &str) -> Result<&'static ModelEntry> {
+    find(name).ok_or_else(|| SimError::UnknownModel {
+        name: name.into(),
+        known: known(),
+    })
+}
+
+/// The engine of scenario `sc` with seed `seed`: its groups' model's.
+///
+/// # Errors
+///
+/// [`SimError::NoAgents`] for a scenario without groups, [`SimError::UnknownModel`], what
+/// building the model's world refuses (see [`AntSim::from_scenario`],
+/// [`BeeSim::from_scenario`]).
+pub fn engine(sc: &Scenario, seed: u32) -> Result<Box<dyn Engine>> {
+    let model = sc.groups.first().ok_or(SimError::NoAgents)?.model.as_str();
+    (get(model)?.engine)(sc, seed)
+}
+
+/// The synthetic benchmark world of model `name` with `agents` agents ([`bench_ant_world`],
 /// [`bench_bee_world`]).
 ///
 /// # Errors
 ///
 /// [`SimError::UnknownModel`] for a model without an entry.
-pub fn bench_engine(model: Model, agents: usize, seed: u32) -> Result<Box<dyn Engine>> {
-    Ok((entry(model)?.bench_world)(agents, seed))
+pub fn bench_engine(name: &str, agents: usize, seed: u32) -> Result<Box<dyn Engine>> {
+    Ok((get(name)?.bench_world)(agents, seed))
 }
 
 #[cfg(test)]
@@ -67,10 +144,23 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_model_of_the_schema_has_its_entry_and_names_itself() {
-        for model in [Model::Ant, Model::Bee] {
-            let e = find(model.as_str()).expect("an entry");
-            assert_eq!((e.bench_world)(10, 1).model(), model.as_str());
+    fn every_built_in_model_names_itself() {
+        for m in BUILTIN {
+            assert_eq!(find(m.name).map(|e| e.name), Some(m.name));
+            assert_eq!((m.bench_world)(10, 1).model(), m.name);
         }
+        assert!(matches!(
+            get("wasp"),
+            Err(SimError::UnknownModel { known, .. }) if known.starts_with("ant, bee")
+        ));
+    }
+
+    #[test]
+    fn a_name_is_registered_once() {
+        static ANT_AGAIN: ModelEntry = BUILTIN[0];
+        assert!(matches!(
+            register(&ANT_AGAIN),
+            Err(SimError::ModelTaken("ant"))
+        ));
     }
 }

@@ -231,7 +231,7 @@ impl Recorder {
                 .npy
                 .then(|| output::NpyWriter::create(out.join(output::POSITIONS_NPY), agents))
                 .transpose()?,
-            attitude: (o.npy && matches!(sc.world, crate::scenario::World::Bees3D { .. }))
+            attitude: (o.npy && matches!(sc.world, crate::scenario::World::Space { .. }))
                 .then(|| {
                     output::NpyWriter::create_of(
                         out.join(output::ATTITUDE_NPY),
@@ -333,8 +333,8 @@ fn progress_bar(show: bool, len: u64) -> ProgressBar {
 /// The scene of a scenario: every object, with the steps it is visible (events included).
 pub fn scene_of(sc: &Scenario) -> Scene {
     let mut scene = match sc.world {
-        World::Ants2D { min, max } => Scene::new_2d(min, max),
-        World::Bees3D { min, max } => Scene::new_3d(min, max),
+        World::Plane { min, max } => Scene::new_2d(min, max),
+        World::Space { min, max } => Scene::new_3d(min, max),
     };
     for o in &sc.objects {
         let mut kind = o.kind.clone();

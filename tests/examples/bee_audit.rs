@@ -11,7 +11,7 @@
 //! `curl` (samples the largest curl-noise force of two Table I columns).
 
 use swarm_core::model::ParamValue;
-use swarm_sim::bees::BeeSim;
+use swarm_sim::bees::{BeeParamsOverride, BeeSim};
 use swarm_sim::scenario::{self, ObjectKind, Scenario};
 
 fn env(name: &str) -> Option<f32> {
@@ -27,13 +27,13 @@ fn tune(sc: &mut Scenario) {
         ("BEE_DT", "dt"),
     ];
     for g in &mut sc.groups {
-        let mut o = g.bee.clone().unwrap_or_default();
+        let mut o: BeeParamsOverride = g.params_as().expect("bee parameters");
         for (var, param) in knobs {
             if let Some(v) = env(var) {
                 assert!(o.overrides.set(param, ParamValue::Real(v)), "{param}");
             }
         }
-        g.bee = Some(o);
+        g.set_params(&o).expect("a table");
     }
 }
 
@@ -121,7 +121,7 @@ fn main() {
             }
         }
         tune(&mut sc);
-        let p = sc.groups[0].bee_params();
+        let p = swarm_sim::bees::bee_params(&sc.groups[0]).unwrap();
         let two_r = 2.0 * f64::from(p.radius);
         let goal = sc.objects.iter().find_map(|o| match o.kind {
             ObjectKind::Target { center, .. } => Some(center.map(f64::from)),

@@ -179,7 +179,12 @@ fn fig12_deliveries_from_the_old_place_stop_after_the_food_moves_then_resume_fro
         .expect("a move");
     let from = center(&sc, "food");
     // An ant that stopped to collect before the move finishes collecting (§4.1).
-    let last_old_collect = moved + u32::from(sc.groups[0].ant_params().collect_ticks);
+    let last_old_collect = moved
+        + u32::from(
+            swarm_sim::ants::ant_params(&sc.groups[0])
+                .unwrap()
+                .collect_ticks,
+        );
     let near_old =
         |p: [f32; 2]| (p[0] - from[0]).hypot(p[1] - from[1]) < (p[0] - to[0]).hypot(p[1] - to[1]);
     // Where each laden ant collected its food (nearer the old centre), and every delivery as

@@ -168,14 +168,18 @@ fn fig14_bees_avoid_the_shafts_by_themselves_hover_and_fly_below_the_speed_limit
         })
         .collect();
     assert_eq!(shafts.len(), 7);
-    let max_speed = f64::from(sc.groups[0].bee_params().max_speed);
+    let max_speed = f64::from(
+        swarm_sim::bees::bee_params(&sc.groups[0])
+            .unwrap()
+            .max_speed,
+    );
     let ceiling = f64::from(sc.world.max()[1]);
     let n = sim.agents() as f64;
     let altitude = |sim: &BeeSim| sim.world.sensed.pos.iter().map(|p| p[1]).sum::<f64>() / n;
     let start_altitude = altitude(&sim);
     let (mut speed_sum, mut at_limit, mut worst_drift) = (0.0, 0usize, 0.0f64);
-    let d0 = f64::from(sc.groups[0].bee_params().d0);
-    let two_r = 2.0 * f64::from(sc.groups[0].bee_params().radius);
+    let d0 = f64::from(swarm_sim::bees::bee_params(&sc.groups[0]).unwrap().d0);
+    let two_r = 2.0 * f64::from(swarm_sim::bees::bee_params(&sc.groups[0]).unwrap().radius);
     let mut rolls = Vec::new();
     let mut min_gap = f64::INFINITY;
     // The shaft field: between the first and last rows of shafts (x) and the outer shafts (z).
@@ -368,7 +372,7 @@ fn fig15_the_distance_to_the_nest_oscillates_instead_of_collapsing() {
         }
         _ => panic!("no nest"),
     };
-    let params = sc.groups[0].bee_params();
+    let params = swarm_sim::bees::bee_params(&sc.groups[0]).unwrap();
     let (bee_radius, dt) = (f64::from(params.radius), f64::from(params.dt));
     let n = sim.agents();
     let (arrival, steps) = (1000usize, 5000usize);
@@ -478,7 +482,7 @@ fn lateral_drift(mut sc: Scenario, seed: u32, steps: usize) -> (f64, f64) {
         Some(&ObjectKind::Target { center, .. }) => center.map(f64::from),
         _ => panic!("no goal"),
     };
-    let two_r = 2.0 * f64::from(sc.groups[0].bee_params().radius);
+    let two_r = 2.0 * f64::from(swarm_sim::bees::bee_params(&sc.groups[0]).unwrap().radius);
     let mut sim = BeeSim::from_scenario(&sc, seed).expect("builds");
     let n = sim.agents() as f64;
     let start = sim.world.sensed.pos.iter().fold([0.0; 3], |a, p| {
@@ -580,7 +584,7 @@ fn fig11_the_grassland_swarm_gathers_off_the_walls_without_overlapping() {
     let (sc, mut sim) = load("bees-fig11-grassland");
     let bound = |v: &[f32]| [0, 1, 2].map(|k| f64::from(v[k]));
     let (min, max) = (bound(sc.world.min()), bound(sc.world.max()));
-    let two_r = 2.0 * f64::from(sc.groups[0].bee_params().radius);
+    let two_r = 2.0 * f64::from(swarm_sim::bees::bee_params(&sc.groups[0]).unwrap().radius);
     let n = sim.agents() as f64;
     let mut worst_off = 1.0f64;
     let mut overlaps = Overlaps::default();

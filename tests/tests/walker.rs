@@ -180,3 +180,146 @@ fn the_mirror_refuses_a_device_with_other_walls() {
     assert!(err.to_string().contains("params hash"), "{err}");
     soft.stop().unwrap();
 }
+
+/// The walker's scenario file (`model = "walker"`, `walker = { .. }`).
+const WALKER_BOX: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/data/walker-box.toml");
+
+/// Runs one of the binaries that register the walker; its output, after checking it exited 0.
+fn registered(bin: &str, args: &[&str]) -> String {
+    let out = std::process::Command::new(bin)
+        .args(args)
+        .output()
+        .expect("the binary runs");
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{bin} {args:?}: {}\n{text}\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    text
+}
+
+#[test]
+fn swarm_run_serves_a_registered_model_from_its_scenario_file() {
+    let swarm = env!("CARGO_BIN_EXE_walker-swarm");
+    assert!(registered(swarm, &["models"]).contains("walker"));
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let out_str = out.to_str().unwrap();
+    registered(swarm, &["run", WALKER_BOX, "--out", out_str, "--quiet"]);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["groups"][0]["model"], "walker");
+    assert_eq!(summary["agents"], 40);
+    assert!(summary["extra"]["walker_bounces"].as_u64().unwrap() > 0);
+    for f in [
+        "positions.npy",
+        "trajectories.csv",
+        "snapshot.png",
+        "run.gif",
+    ] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+    // Same seed, same bits: the file's walkers again.
+    let again = dir.path().join("again");
+    registered(
+        swarm,
+        &[
+            "run",
+            WALKER_BOX,
+            "--out",
+            again.to_str().unwrap(),
+            "--quiet",
+        ],
+    );
+    assert_eq!(
+        std::fs::read(out.join("positions.npy")).unwrap(),
+        std::fs::read(again.join("positions.npy")).unwrap()
+    );
+    let bench = registered(
+        swarm,
+        &[
+            "bench", "--model", "walker", "--agents", "100", "--steps", "3",
+        ],
+    );
+    assert!(bench.contains("\"model\": \"walker\""), "{bench}");
+}
+
+#[test]
+fn swarm_hil_loopback_mirrors_a_registered_model_with_no_mismatch() {
+    let hil = env!("CARGO_BIN_EXE_walker-swarm-hil");
+    let dir = tempfile::tempdir().unwrap();
+    for transport in ["memory", "pty"] {
+        let json = dir.path().join(format!("{transport}.json"));
+        registered(
+            hil,
+            &[
+                "loopback",
+                "--scenario",
+                WALKER_BOX,
+                "--transport",
+                transport,
+                "--agents",
+                "10",
+                "--steps",
+                "60",
+                "--scalar",
+                "fixed",
+                "--quiet",
+                "--json",
+                json.to_str().unwrap(),
+            ],
+        );
+        let r: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        assert_eq!(r["decisions"], 600, "{transport}: {r}");
+        assert_eq!(r["mismatches"], 0, "{transport}: {r}");
+    }
+}
+
+#[test]
+fn the_walker_rules_refuse_what_cannot_work() {
+    swarm_sim::models::register(&swarm_tests::walker::ENTRY).unwrap();
+    let text = std::fs::read_to_string(WALKER_BOX).unwrap();
+    assert!(Scenario::from_str(&text, "walker-box.toml").is_ok());
+    for (from, to, field, says) in [
+        (
+            "half_width = 20",
+            "half_width = 30",
+            "groups[0].walker.half_width",
+            "outside the world",
+        ),
+        (
+            "speed = 0.8",
+            "speed = 30",
+            "groups[0].walker.speed",
+            "invalid walker parameter",
+        ),
+        (
+            "speed = 0.8",
+            "sped = 0.8",
+            "groups[0].walker.sped",
+            "unknown field `sped`",
+        ),
+        (
+            "max = [10, 10]",
+            "max = [22, 10]",
+            "groups[0].spawn",
+            "between the walls",
+        ),
+        (
+            "model = \"walker\"",
+            "model = \"wlaker\"",
+            "groups[0].model",
+            "unknown model `wlaker`",
+        ),
+    ] {
+        let broken = text.replace(from, to);
+        assert_ne!(broken, text, "{from}");
+        let err = Scenario::from_str(&broken, "walker-box.toml").unwrap_err();
+        let d = err.diagnostic().expect("a diagnostic");
+        assert_eq!(d.field, field, "{err}");
+        assert!(d.message.contains(says), "{err}");
+    }
+}

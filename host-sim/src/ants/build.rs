@@ -13,14 +13,18 @@ use crate::{Result, SimError};
 impl AntSim {
     /// The ant simulation of `scenario` (a 2D world), with seed `seed`.
     pub fn from_scenario(scenario: &Scenario, seed: u32) -> Result<AntSim> {
-        let World::Ants2D { min, max } = scenario.world else {
+        let World::Plane { min, max } = scenario.world else {
             return Err(SimError::WrongWorld {
                 scenario: scenario.name.clone(),
                 model: "ant",
                 dim: 2,
             });
         };
-        let params: Vec<AntParams<f32>> = scenario.groups.iter().map(Group::ant_params).collect();
+        let params = scenario
+            .groups
+            .iter()
+            .map(super::ant_params)
+            .collect::<Result<Vec<AntParams<f32>>>>()?;
         let contact = params.iter().map(|p| p.contact_range).fold(0.0, f32::max);
         let collision = params.iter().map(|p| p.collision_range).fold(0.0, f32::max);
         let mut world = AntWorld::new(min, max, contact, collision);

@@ -21,14 +21,18 @@ fn ranges(params: &BeeParams<f32>) -> (f32, f32) {
 impl BeeSim {
     /// The bee simulation of `scenario` (a 3D world), with seed `seed`.
     pub fn from_scenario(scenario: &Scenario, seed: u32) -> Result<BeeSim> {
-        let World::Bees3D { min, max } = scenario.world else {
+        let World::Space { min, max } = scenario.world else {
             return Err(SimError::WrongWorld {
                 scenario: scenario.name.clone(),
                 model: "bee",
                 dim: 3,
             });
         };
-        let params: Vec<BeeParams<f32>> = scenario.groups.iter().map(Group::bee_params).collect();
+        let params = scenario
+            .groups
+            .iter()
+            .map(super::bee_params)
+            .collect::<Result<Vec<BeeParams<f32>>>>()?;
         let (range, sense) = params
             .iter()
             .map(ranges)

@@ -10,6 +10,7 @@
 
 mod build;
 mod engine;
+pub(crate) mod scenario;
 mod sense;
 mod sim;
 mod world;
@@ -18,6 +19,7 @@ mod world;
 mod tests;
 
 pub use build::{FIG11_DENSITY, bee_frame_samples, bench_bee_world};
+pub use scenario::{BeeParamsOverride, BeePreset, bee_params};
 pub use sense::{BeeSimFrame, N, P, bee_frame, neighbour_slots};
 pub use sim::{AnyBeeGroup, BeeGroup, BeeSim, Contacts, bee_frame_time, frame_time};
 pub use world::{

@@ -13,11 +13,13 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use super::diagnostic::DiagnosticKind;
 use super::problem::Problem;
 use super::raw::{
-    KindTag, RawEvent, RawGroup, RawMove, RawObject, RawScenario, RawSpawn, RawWorld,
+    GROUP_FIELDS, KindTag, RawEvent, RawGroup, RawMove, RawObject, RawScenario, RawSpawn, RawWorld,
 };
 use super::rules;
 use super::sanity::Finding;
-use super::types::{Action, Event, Group, Object, ObjectKind, Scenario, Spawn, SpawnRegion, World};
+use super::types::{
+    Action, Event, Group, Model, Object, ObjectKind, Scenario, Spawn, SpawnRegion, World,
+};
 
 /// The typed scenario of `raw` (named `default_name` when the file has no `name`), checked by
 /// every rule, with its warnings; or the first problem and the stage that found it
@@ -123,11 +125,11 @@ impl From<Scenario> for RawScenario {
 impl RawWorld {
     fn convert(self) -> Result<World, Problem> {
         match self.dim {
-            2 => Ok(World::Ants2D {
+            2 => Ok(World::Plane {
                 min: array(&self.min, "min", "[x, y] (a 2D world)")?,
                 max: array(&self.max, "max", "[x, y] (a 2D world)")?,
             }),
-            3 => Ok(World::Bees3D {
+            3 => Ok(World::Space {
                 min: array(&self.min, "min", "[x, y, z] (a 3D world, y up)")?,
                 max: array(&self.max, "max", "[x, y, z] (a 3D world, y up)")?,
             }),
@@ -161,6 +163,28 @@ fn array<const N: usize>(v: &[f32], field: &str, shape: &str) -> Result<[f32; N]
 
 impl RawGroup {
     fn convert(self) -> Result<Group, Problem> {
+        let mut params = None;
+        // A model the rules will not know: they say so at `model`, before anything else.
+        let known = crate::models::find(self.model.as_str()).is_some();
+        for (key, value) in self.other {
+            if known && key != self.model.as_str() {
+                return Err(not_a_group_field(&key, &self.model));
+            }
+            match value {
+                toml::Value::Table(t) => params = Some(t),
+                v => {
+                    return Err(Problem::new(
+                        key,
+                        format!(
+                            "expected a table of `{}` parameters, e.g. `{} = {{ .. }}`, found {}",
+                            self.model,
+                            self.model,
+                            v.type_str()
+                        ),
+                    ));
+                }
+            }
+        }
         Ok(Group {
             name: self.name,
             model: self.model,
@@ -169,14 +193,46 @@ impl RawGroup {
             spawn: self.spawn.convert().map_err(|p| p.under("spawn"))?,
             nest: self.nest,
             goal: self.goal,
-            ant: self.ant,
-            bee: self.bee,
+            params,
         })
+    }
+}
+
+/// The problem of key `key` in a group of `model`: another model's parameter table, or a key
+/// groups do not have.
+fn not_a_group_field(key: &str, model: &Model) -> Problem {
+    let message = if crate::models::find(key).is_some() {
+        format!(
+            "{key} parameters in {} {model} group; this group's parameters go in \
+             `[groups.{model}]`",
+            article(model.as_str())
+        )
+    } else {
+        let fields: Vec<String> = GROUP_FIELDS.iter().map(|f| format!("`{f}`")).collect();
+        format!(
+            "unknown field `{key}`, expected one of {}, or `{model}` (the model's parameters)",
+            fields.join(", ")
+        )
+    };
+    Problem::new(key, message)
+}
+
+/// `a` or `an` before `word`.
+fn article(word: &str) -> &'static str {
+    if word.starts_with(['a', 'e', 'i', 'o', 'u']) {
+        "an"
+    } else {
+        "a"
     }
 }
 
 impl From<Group> for RawGroup {
     fn from(g: Group) -> Self {
+        let other = g
+            .params
+            .map(|t| (g.model.to_string(), toml::Value::Table(t)))
+            .into_iter()
+            .collect();
         RawGroup {
             name: g.name,
             model: g.model,
@@ -185,8 +241,7 @@ impl From<Group> for RawGroup {
             spawn: g.spawn.into(),
             nest: g.nest,
             goal: g.goal,
-            ant: g.ant,
-            bee: g.bee,
+            other,
         }
     }
 }

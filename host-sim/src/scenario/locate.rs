@@ -226,7 +226,7 @@ fn span_of(root: &Spanned<DeTable<'_>>, path: &str) -> Option<Range<usize>> {
 ///
 /// Tables opened by a header (`[[groups]]`) are spanned by the header only, so every branch is
 /// searched, not only those whose span contains the offset.
-fn path_at(root: &Spanned<DeTable<'_>>, offset: usize) -> String {
+pub(crate) fn path_at(root: &Spanned<DeTable<'_>>, offset: usize) -> String {
     fn contains(span: &Range<usize>, offset: usize) -> bool {
         span.contains(&offset) || (span.is_empty() && span.start == offset)
     }

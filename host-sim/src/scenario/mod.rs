@@ -18,12 +18,13 @@
 //!
 //! [[groups]]
 //! name = "colony"
-//! model = "ant"                       # "ant" (2D) or "bee" (3D)
+//! model = "ant"                       # "ant" (2D), "bee" (3D), or a registered model (`swarm models`)
 //! count = 500
 //! scalar = "f32"                      # or "fixed"; default "f32"
 //! nest = "nest"                       # ants: the home nest (required)
 //! spawn = { at = "nest", radius = 12 }   # or { min = [..], max = [..] }; optional heading = [..]
-//! ant = { w0 = 0.6 }                  # any AntParams field; bees: bee = { preset = "grassland", kappa2 = 4 }
+//! ant = { w0 = 0.6 }                  # the model's parameters, under its name: any AntParams field;
+//!                                     # bees: bee = { preset = "grassland", kappa2 = 4 }
 //!
 //! [[objects]]
 //! name = "nest"
@@ -43,9 +44,12 @@
 // the `raw` shapes (plain data), `build` converts them into the `types` and runs the `rules`
 // (then the `sanity` checks); every check reports a `problem::Problem` at a field path, which
 // `locate` places in the text. `params` are the parameter overrides, read by name from each
-// model's parameter table. `types` imports none of `raw`, `build` or `load`.
+// model's parameter table. The rules every group follows are here; a group's model adds its
+// own through its entry in `crate::models` (`check::GroupCheck` is what it sees). `types`
+// imports none of `raw`, `build` or `load`.
 mod build;
 mod builtin;
+mod check;
 mod diagnostic;
 mod load;
 mod locate;
@@ -61,9 +65,11 @@ mod warning;
 mod tests;
 
 pub use builtin::{BUILTINS, Builtin, builtin, builtin_names, resolve, resolve_with_warnings};
+pub use check::GroupCheck;
 pub use diagnostic::{Diagnostic, DiagnosticKind};
 pub use load::check_steps;
-pub use params::{AntParamsOverride, BeeParamsOverride, BeePreset, ParamsOverride};
+pub use params::{ParamsOverride, Preset, PresetOverride};
+pub use problem::Problem;
 pub use types::{
     Action, Event, Group, MAX_AGENTS, MAX_COORD, MAX_TARGET_PARTICLES, Model, Object, ObjectKind,
     Outputs, ScalarType, Scenario, Spawn, SpawnRegion, World,

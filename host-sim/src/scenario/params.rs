@@ -7,11 +7,10 @@ use std::collections::BTreeMap;
 use std::fmt;
 use std::marker::PhantomData;
 
+use serde::de::DeserializeOwned;
 use serde::de::{self, DeserializeSeed, MapAccess, Visitor};
 use serde::ser::SerializeMap;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
-use swarm_core::ant::AntParams;
-use swarm_core::bee::BeeParams;
 use swarm_core::model::{ModelParams, ParamSpec, ParamValue, Range};
 
 /// Overrides of some of the parameters `P` (a model's parameter struct), by their names in
@@ -26,9 +25,6 @@ pub struct ParamsOverride<P: ModelParams> {
     /// Index in `P::SPECS` → value; only values `P::set` accepts.
     values: BTreeMap<usize, ParamValue<P::Scalar>>,
 }
-
-/// `[groups.ant]`: any of the `AntParams` parameters (xiang2018), on top of the defaults.
-pub type AntParamsOverride = ParamsOverride<AntParams<f32>>;
 
 impl<P: ModelParams> ParamsOverride<P> {
     /// No parameter overridden.
@@ -300,29 +296,47 @@ fn unknown_field(field: &str, expected: &[&str]) -> String {
     format!("unknown field `{field}`, expected {names}")
 }
 
-/// `[groups.bee]`: a Table I preset, and any of the `BeeParams` parameters (chen) on top of
-/// it.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct BeeParamsOverride {
-    /// The base the parameters apply to (`preset` in the file; default `optimized`).
-    pub preset: Option<BeePreset>,
-    /// The parameters set on top of the preset.
-    pub overrides: ParamsOverride<BeeParams<f32>>,
+/// A named set of a model's parameters `P` (a column of its paper's table, e.g. chen's
+/// Table I for bees), that a parameter table names with `preset = "..."`.
+pub trait Preset<P>:
+    Copy + Default + PartialEq + fmt::Debug + Serialize + DeserializeOwned
+{
+    /// The preset's parameters.
+    fn params(&self) -> P;
 }
 
-impl BeeParamsOverride {
+/// A preset (`preset` in the file; default: `B::default()`) and overrides of some parameters
+/// on top of it: a table such as `bee = { preset = "grassland", kappa2 = 4 }`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PresetOverride<P: ModelParams, B> {
+    /// The base the parameters apply to.
+    pub preset: Option<B>,
+    /// The parameters set on top of the preset.
+    pub overrides: ParamsOverride<P>,
+}
+
+impl<P: ModelParams, B> Default for PresetOverride<P, B> {
+    fn default() -> Self {
+        PresetOverride {
+            preset: None,
+            overrides: ParamsOverride::new(),
+        }
+    }
+}
+
+impl<P: ModelParams, B: Preset<P>> PresetOverride<P, B> {
     /// `base` with the parameters given here replaced (the preset is not used).
-    pub fn apply(&self, base: BeeParams<f32>) -> BeeParams<f32> {
+    pub fn apply(&self, base: P) -> P {
         self.overrides.apply(base)
     }
 
     /// The preset's parameters with the overrides applied.
-    pub fn params(&self) -> BeeParams<f32> {
+    pub fn params(&self) -> P {
         self.apply(self.preset.unwrap_or_default().params())
     }
 }
 
-impl Serialize for BeeParamsOverride {
+impl<P: ModelParams<Scalar = f32>, B: Serialize> Serialize for PresetOverride<P, B> {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let len = usize::from(self.preset.is_some()) + self.overrides.values.len();
         let mut map = serializer.serialize_map(Some(len))?;
@@ -334,15 +348,23 @@ impl Serialize for BeeParamsOverride {
     }
 }
 
-impl<'de> Deserialize<'de> for BeeParamsOverride {
+impl<'de, P, B> Deserialize<'de> for PresetOverride<P, B>
+where
+    P: ModelParams<Scalar = f32> + Default,
+    B: Preset<P>,
+{
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        struct Table;
+        struct Table<P, B>(PhantomData<(P, B)>);
 
-        impl<'de> Visitor<'de> for Table {
-            type Value = BeeParamsOverride;
+        impl<'de, P, B> Visitor<'de> for Table<P, B>
+        where
+            P: ModelParams<Scalar = f32> + Default,
+            B: Preset<P>,
+        {
+            type Value = PresetOverride<P, B>;
 
             fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-                f.write_str("struct BeeParamsOverride")
+                write!(f, "struct {}Override", struct_name::<P>())
             }
 
             fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<Self::Value, A::Error> {
@@ -354,35 +376,11 @@ impl<'de> Deserialize<'de> for BeeParamsOverride {
                     preset = Some(map.next_value()?);
                     Ok(())
                 })?;
-                Ok(BeeParamsOverride { preset, overrides })
+                Ok(PresetOverride { preset, overrides })
             }
         }
 
-        deserializer.deserialize_map(Table)
-    }
-}
-
-/// A column of chen's Table I.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum BeePreset {
-    /// `"optimized"`: `BeeParams::default()` (h 3, L 2.7, κ 1.4/2.3/1.2, ε 1.7).
-    #[default]
-    Optimized,
-    /// `"grassland"`: `BeeParams::grassland()` (L 2.2, κ 1.5/5/0.9, ε 2).
-    Grassland,
-    /// `"around_nest"`: `BeeParams::around_nest()` (L 2.2, κ 1/2.5/1.7, ε 2).
-    AroundNest,
-}
-
-impl BeePreset {
-    /// The preset's parameters.
-    pub fn params(&self) -> BeeParams<f32> {
-        match self {
-            BeePreset::Optimized => BeeParams::default(),
-            BeePreset::Grassland => BeeParams::grassland(),
-            BeePreset::AroundNest => BeeParams::around_nest(),
-        }
+        deserializer.deserialize_map(Table(PhantomData))
     }
 }
 
@@ -494,22 +492,5 @@ mod tests {
         assert!(o.set("ticks", ParamValue::Int(3)));
         assert_eq!(o.remove("ticks"), Some(ParamValue::Int(3)));
         assert!(o.is_empty());
-    }
-
-    #[test]
-    fn the_bee_preset_is_an_extra_key() {
-        let b: BeeParamsOverride = toml::from_str("kappa2 = 4\npreset = \"grassland\"").unwrap();
-        assert_eq!(b.preset, Some(BeePreset::Grassland));
-        assert_eq!(b.params().kappa2, 4.0);
-        assert_eq!(
-            toml::to_string(&b).unwrap(),
-            "preset = \"grassland\"\nkappa2 = 4.0\n"
-        );
-        let err = toml::from_str::<BeeParamsOverride>("kapa2 = 4").unwrap_err();
-        assert!(
-            err.message()
-                .starts_with("unknown field `kapa2`, expected one of `preset`, `h`, "),
-            "{err}"
-        );
     }
 }

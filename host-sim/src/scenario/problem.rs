@@ -3,9 +3,10 @@
 
 use std::fmt;
 
-/// A problem at a field path (`groups[1].spawn.radius`, or relative while converting).
+/// A problem at a field path (`groups[1].spawn.radius`, or relative while converting): what
+/// every rule reports, the loader then places it in the file.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub(crate) struct Problem {
+pub struct Problem {
     /// Path of the field; empty for the value itself.
     pub path: String,
     /// What was wrong and what was expected.
@@ -13,7 +14,8 @@ pub(crate) struct Problem {
 }
 
 impl Problem {
-    pub(crate) fn new(path: impl Into<String>, message: impl Into<String>) -> Self {
+    /// A problem at `path` saying `message`.
+    pub fn new(path: impl Into<String>, message: impl Into<String>) -> Self {
         Problem {
             path: path.into(),
             message: message.into(),

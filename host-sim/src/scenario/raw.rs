@@ -5,9 +5,12 @@
 //! flat structs of options, so that serde reports unknown fields and wrong types at the exact
 //! key; the conversion reports a field that does not fit its form by name.
 
-use serde::{Deserialize, Serialize};
+use std::fmt;
 
-use super::params::{AntParamsOverride, BeeParamsOverride};
+use serde::de::{self, MapAccess, Visitor};
+use serde::ser::SerializeMap;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
 use super::types::{Model, Outputs, ScalarType};
 
 /// The whole file.
@@ -41,24 +44,90 @@ pub(crate) struct RawWorld {
     pub max: Vec<f32>,
 }
 
-/// `[[groups]]`.
-#[derive(Clone, Debug, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// `[[groups]]`: the fixed fields, and every other key with its value in `other` (a group's
+/// parameter table is under its model's name, which serde cannot know: the conversion keeps
+/// the model's and refuses the rest by name).
+#[derive(Clone, Debug)]
 pub(crate) struct RawGroup {
     pub name: String,
     pub model: Model,
     pub count: u32,
-    #[serde(default)]
     pub scalar: ScalarType,
     pub spawn: RawSpawn,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub nest: Option<String>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub goal: Option<String>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub ant: Option<AntParamsOverride>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub bee: Option<BeeParamsOverride>,
+    pub other: Vec<(String, toml::Value)>,
+}
+
+/// The fixed keys of a group, in the order they are written.
+pub(crate) const GROUP_FIELDS: &[&str] =
+    &["name", "model", "count", "scalar", "spawn", "nest", "goal"];
+
+impl Serialize for RawGroup {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(None)?;
+        map.serialize_entry("name", &self.name)?;
+        map.serialize_entry("model", &self.model)?;
+        map.serialize_entry("count", &self.count)?;
+        map.serialize_entry("scalar", &self.scalar)?;
+        map.serialize_entry("spawn", &self.spawn)?;
+        for (key, value) in [("nest", &self.nest), ("goal", &self.goal)] {
+            if let Some(v) = value {
+                map.serialize_entry(key, v)?;
+            }
+        }
+        for (key, value) in &self.other {
+            map.serialize_entry(key, value)?;
+        }
+        map.end()
+    }
+}
+
+impl<'de> Deserialize<'de> for RawGroup {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Fields;
+
+        impl<'de> Visitor<'de> for Fields {
+            type Value = RawGroup;
+
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("struct RawGroup")
+            }
+
+            fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<RawGroup, A::Error> {
+                let (mut name, mut model, mut count, mut scalar, mut spawn) =
+                    (None, None, None, None, None);
+                let (mut nest, mut goal, mut other) = (None, None, Vec::new());
+                while let Some(key) = map.next_key::<String>()? {
+                    match key.as_str() {
+                        "name" => name = Some(map.next_value()?),
+                        "model" => model = Some(map.next_value()?),
+                        "count" => count = Some(map.next_value()?),
+                        "scalar" => scalar = Some(map.next_value()?),
+                        "spawn" => spawn = Some(map.next_value()?),
+                        "nest" => nest = Some(map.next_value()?),
+                        "goal" => goal = Some(map.next_value()?),
+                        _ => {
+                            let value = map.next_value()?;
+                            other.push((key, value));
+                        }
+                    }
+                }
+                Ok(RawGroup {
+                    name: name.ok_or_else(|| de::Error::missing_field("name"))?,
+                    model: model.ok_or_else(|| de::Error::missing_field("model"))?,
+                    count: count.ok_or_else(|| de::Error::missing_field("count"))?,
+                    scalar: scalar.unwrap_or_default(),
+                    spawn: spawn.ok_or_else(|| de::Error::missing_field("spawn"))?,
+                    nest,
+                    goal,
+                    other,
+                })
+            }
+        }
+
+        deserializer.deserialize_map(Fields)
+    }
 }
 
 /// `spawn = { at = "nest", radius = 10 }` or `spawn = { min = [..], max = [..] }`, either with

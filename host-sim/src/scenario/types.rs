@@ -6,11 +6,11 @@
 
 use std::path::PathBuf;
 
-use serde::{Deserialize, Serialize};
-use swarm_core::ant::AntParams;
-use swarm_core::bee::BeeParams;
+use std::borrow::Cow;
+use std::fmt;
 
-use super::params::{AntParamsOverride, BeeParamsOverride};
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
 
 /// Largest number of agents in one group, and in a whole scenario.
 pub const MAX_AGENTS: u32 = 10_000_000;
@@ -37,7 +37,7 @@ pub struct Scenario {
     pub seed: u32,
     /// Number of steps (ticks) to run.
     pub steps: u32,
-    /// World bounds; their dimension decides the model (2D ants, 3D bees).
+    /// World bounds; their dimension must be the groups' models' (2D ants, 3D bees).
     pub world: World,
     /// Agent groups, at least one.
     pub groups: Vec<Group>,
@@ -92,15 +92,16 @@ impl Scenario {
 /// World bounds, tagged by `dim` in the file.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum World {
-    /// `{ dim = 2, min = [x, y], max = [x, y] }`: a 2D ant arena, in ant body lengths.
-    Ants2D {
+    /// `{ dim = 2, min = [x, y], max = [x, y] }`: a plane (the ants' arena, in ant body
+    /// lengths).
+    Plane {
         /// Lower corner.
         min: [f32; 2],
         /// Upper corner.
         max: [f32; 2],
     },
-    /// `{ dim = 3, min = [x, y, z], max = [x, y, z] }`: a 3D bee volume, y up.
-    Bees3D {
+    /// `{ dim = 3, min = [x, y, z], max = [x, y, z] }`: a volume, y up (the bees' meadow).
+    Space {
         /// Lower corner.
         min: [f32; 3],
         /// Upper corner.
@@ -112,32 +113,24 @@ impl World {
     /// 2 or 3.
     pub fn dim(&self) -> usize {
         match self {
-            World::Ants2D { .. } => 2,
-            World::Bees3D { .. } => 3,
-        }
-    }
-
-    /// The model that lives in this world.
-    pub fn model(&self) -> Model {
-        match self {
-            World::Ants2D { .. } => Model::Ant,
-            World::Bees3D { .. } => Model::Bee,
+            World::Plane { .. } => 2,
+            World::Space { .. } => 3,
         }
     }
 
     /// Lower corner (`dim` numbers).
     pub fn min(&self) -> &[f32] {
         match self {
-            World::Ants2D { min, .. } => min,
-            World::Bees3D { min, .. } => min,
+            World::Plane { min, .. } => min,
+            World::Space { min, .. } => min,
         }
     }
 
     /// Upper corner (`dim` numbers).
     pub fn max(&self) -> &[f32] {
         match self {
-            World::Ants2D { max, .. } => max,
-            World::Bees3D { max, .. } => max,
+            World::Plane { max, .. } => max,
+            World::Space { max, .. } => max,
         }
     }
 
@@ -150,23 +143,34 @@ impl World {
     }
 }
 
-/// Which controller drives a group.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Model {
-    /// `"ant"`: xiang2018, 2D worlds.
-    Ant,
-    /// `"bee"`: chen, 3D worlds.
-    Bee,
-}
+/// The name of the model that drives a group (`model = "ant"` in the file): a built-in model
+/// (`ant`, `bee`) or one registered with [`models::register`](crate::models::register). The
+/// scenario's rules find it in the model table ([`models::find`](crate::models::find)).
+#[derive(Clone, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct Model(Cow<'static, str>);
 
 impl Model {
-    /// `"ant"` or `"bee"`.
-    pub fn as_str(&self) -> &'static str {
-        match self {
-            Model::Ant => "ant",
-            Model::Bee => "bee",
-        }
+    /// The model called `name`.
+    pub const fn new(name: &'static str) -> Model {
+        Model(Cow::Borrowed(name))
+    }
+
+    /// The name, as the file writes it.
+    pub fn as_str(&self) -> &str {
+        &self.0
+    }
+}
+
+impl From<String> for Model {
+    fn from(name: String) -> Model {
+        Model(Cow::Owned(name))
+    }
+}
+
+impl fmt::Display for Model {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
     }
 }
 
@@ -196,7 +200,7 @@ impl ScalarType {
 pub struct Group {
     /// Name, unique in the scenario.
     pub name: String,
-    /// `ant` or `bee`.
+    /// The model that drives it (`ant`, `bee`, or a registered model).
     pub model: Model,
     /// Number of agents, 1 to [`MAX_AGENTS`].
     pub count: u32,
@@ -204,29 +208,50 @@ pub struct Group {
     pub scalar: ScalarType,
     /// Where the agents start.
     pub spawn: Spawn,
-    /// Ants: the name of their home nest (a `nest` object). Required for ants.
+    /// The object the group calls home, for models that have one (ants: their nest, required).
     pub nest: Option<String>,
-    /// Bees: the name of a `target` object they fly toward (optional).
+    /// The object the group heads for, for models that have one (bees: a `target`, optional).
     pub goal: Option<String>,
-    /// Ants: parameter overrides on top of `AntParams::default()`.
-    pub ant: Option<AntParamsOverride>,
-    /// Bees: preset and parameter overrides.
-    pub bee: Option<BeeParamsOverride>,
+    /// The model's parameter table, under the model's name in the file (`ant = { w0 = 0.6 }`,
+    /// `[groups.bee]`), as written; the model reads it ([`Group::params_as`]) and its rules
+    /// check it.
+    pub params: Option<toml::Table>,
 }
 
 impl Group {
-    /// The ant parameters of this group: `AntParams::default()` with the overrides applied.
-    pub fn ant_params(&self) -> AntParams<f32> {
-        let base = AntParams::default();
-        self.ant.as_ref().map_or(base, |o| o.apply(base))
+    /// The parameter table read as `T` (the model's override type); `T::default()` when the
+    /// group has none.
+    ///
+    /// # Errors
+    ///
+    /// [`SimError::ParamsTable`](crate::SimError::ParamsTable) when the table does not read as
+    /// `T` (a loaded scenario's tables have been read by their model's rules already).
+    pub fn params_as<T: DeserializeOwned + Default>(&self) -> crate::Result<T> {
+        match &self.params {
+            None => Ok(T::default()),
+            Some(table) => toml::Value::Table(table.clone())
+                .try_into()
+                .map_err(|source| crate::SimError::ParamsTable {
+                    group: self.name.clone(),
+                    model: self.model.to_string(),
+                    source: Box::new(source),
+                }),
+        }
     }
 
-    /// The bee parameters of this group: the preset (default `optimized`) with the overrides
-    /// applied.
-    pub fn bee_params(&self) -> BeeParams<f32> {
-        self.bee
-            .as_ref()
-            .map_or_else(BeeParams::default, BeeParamsOverride::params)
+    /// Sets the parameter table to `params` (the model's override type) written out.
+    ///
+    /// # Errors
+    ///
+    /// [`SimError::ParamsWrite`](crate::SimError::ParamsWrite) when `params` is not a table.
+    pub fn set_params<T: Serialize>(&mut self, params: &T) -> crate::Result<()> {
+        let table =
+            toml::Table::try_from(params).map_err(|source| crate::SimError::ParamsWrite {
+                group: self.name.clone(),
+                source: Box::new(source),
+            })?;
+        self.params = Some(table);
+        Ok(())
     }
 }
 

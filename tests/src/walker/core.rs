@@ -25,6 +25,14 @@ swarm_core::model_params! {
 }
 
 impl<S: Scalar> WalkParams<S> {
+    /// The same parameters in scalar `T` (through `f32`).
+    pub fn cast<T: Scalar>(&self) -> WalkParams<T> {
+        WalkParams {
+            speed: T::from_f32(self.speed.to_f32()),
+            half_width: T::from_f32(self.half_width.to_f32()),
+        }
+    }
+
     /// A step longer than the box's half width could be reflected and still land outside.
     fn step_fits(&self) -> Result<()> {
         if self.speed > self.half_width {

@@ -24,13 +24,22 @@ impl<S: SimScalar> WalkSim<S> {
     /// `n` walkers spread on a line through the middle, heading +x.
     pub fn new(params: Checked<WalkParams<S>>, n: usize, seed: u32) -> Self {
         let w = params.half_width.to_f32();
-        let states: Vec<WalkState<S>> = (0..n)
+        let states = (0..n)
             .map(|i| WalkState {
                 pos: Vec2::from_f32(-w + 2.0 * w * (i as f32 + 0.5) / n as f32, 0.0),
                 heading: Vec2::from_f32(1.0, 0.0),
                 bounces: 0,
             })
             .collect();
+        Self::with_states(params, states, seed)
+    }
+
+    /// Walkers starting in `states` (agent id = index).
+    pub fn with_states(
+        params: Checked<WalkParams<S>>,
+        states: Vec<WalkState<S>>,
+        seed: u32,
+    ) -> Self {
         WalkSim {
             params,
             next: states.clone(),

@@ -67,7 +67,7 @@ fn validate_world(world: &World) -> Result<(), Problem> {
 }
 
 /// The object `name` refers to, or a problem at `path` listing the names there are.
-pub(super) fn lookup<'s>(
+pub(crate) fn lookup<'s>(
     s: &'s Scenario,
     objects: &HashMap<&str, usize>,
     name: &str,

@@ -9,6 +9,8 @@ use swarm_core::model::ParamValue;
 
 use super::*;
 use crate::SimError;
+use crate::ants::AntParamsOverride;
+use crate::bees::{BeeParamsOverride, BeePreset, bee_params};
 
 mod sanity;
 
@@ -144,7 +146,7 @@ fn the_test_scenarios_are_valid() {
     assert_eq!(s.name, "test");
     assert_eq!(
         s.world,
-        World::Ants2D {
+        World::Plane {
             min: [0.0, 0.0],
             max: [100.0, 50.0]
         }
@@ -161,9 +163,9 @@ fn the_test_scenarios_are_valid() {
     assert_eq!(s.outputs, Outputs::default());
     let b = Scenario::from_str(BEES, "dir/bees-small.toml").unwrap();
     assert_eq!(b.name, "bees-small", "the name defaults to the file stem");
-    assert_eq!(b.groups[0].bee_params().kappa2, 3.0);
+    assert_eq!(bee_params(&b.groups[0]).unwrap().kappa2, 3.0);
     assert_eq!(
-        b.groups[0].bee_params().kappa1,
+        bee_params(&b.groups[0]).unwrap().kappa1,
         BeeParams::<f32>::around_nest().kappa1
     );
 }
@@ -188,15 +190,15 @@ fn every_builtin_loads() {
             b.name
         );
         assert!(!b.summary.is_empty() && !b.summary.contains('\n'));
-        let model = s.world.model();
-        assert!(s.groups.iter().all(|g| g.model == model));
-        let prefix = if model == Model::Ant {
+        let model = &s.groups[0].model;
+        assert!(s.groups.iter().all(|g| g.model == *model));
+        let prefix = if *model == Model::new("ant") {
             "ants-"
         } else {
             "bees-"
         };
         assert!(b.name.starts_with(prefix));
-        let range = if model == Model::Ant {
+        let range = if *model == Model::new("ant") {
             3000..=6000
         } else {
             1000..=2000
@@ -280,10 +282,16 @@ fn builtins_say_what_the_figures_show() {
 
     let grass = get("bees-fig11-grassland");
     assert_eq!(grass.agent_count(), 1000);
-    assert_eq!(grass.groups[0].bee_params(), BeeParams::grassland());
+    assert_eq!(
+        bee_params(&grass.groups[0]).unwrap(),
+        BeeParams::grassland()
+    );
     let nest = get("bees-fig15-nest");
     assert_eq!(nest.agent_count(), 350);
-    assert_eq!(nest.groups[0].bee_params(), BeeParams::around_nest());
+    assert_eq!(
+        bee_params(&nest.groups[0]).unwrap(),
+        BeeParams::around_nest()
+    );
     assert_eq!(nest.groups[0].goal.as_deref(), Some("nest"));
     let shafts = get("bees-fig14-shafts");
     assert!(
@@ -546,7 +554,13 @@ fn group_rules() {
     // Models and worlds.
     let text = edit(ANTS, "model = \"ant\"", "model = \"bee\"");
     expect_error(&text, line_of(&text, "\"bee\""), "groups[0].model", "3D");
+    // (Without its bee parameter table, which an ant group would refuse first.)
     let text = edit(BEES, "model = \"bee\"", "model = \"ant\"");
+    let text = edit(
+        &text,
+        "bee = { preset = \"around_nest\", kappa2 = 3.0 }",
+        "",
+    );
     expect_error(&text, line_of(&text, "\"ant\""), "groups[0].model", "2D");
     let text = edit(BEES, "goal = \"nest\"", "goal = \"pole\"");
     expect_error(
@@ -618,8 +632,8 @@ fn parameter_overrides_are_validated_by_the_controllers() {
     );
     let ok = edit(BEES, "kappa2 = 3.0", "damping = 2.5");
     assert_eq!(
-        Scenario::from_str(&ok, FILE).unwrap().groups[0]
-            .bee_params()
+        bee_params(&Scenario::from_str(&ok, FILE).unwrap().groups[0])
+            .unwrap()
             .damping,
         2.5
     );
@@ -1026,11 +1040,11 @@ fn target_particles_cover_the_sphere() {
 
 #[test]
 fn worlds_and_kinds() {
-    let w = World::Bees3D {
+    let w = World::Space {
         min: [0.0; 3],
         max: [10.0; 3],
     };
-    assert_eq!((w.dim(), w.model()), (3, Model::Bee));
+    assert_eq!(w.dim(), 3);
     assert!(w.contains(&[5.0, 10.0, 0.0]));
     assert!(!w.contains(&[5.0, 10.1, 0.0]));
     assert!(!w.contains(&[5.0, 5.0]));
