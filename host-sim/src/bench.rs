@@ -61,7 +61,7 @@ pub fn bench(
         }
         let seconds = t0.elapsed().as_secs_f64();
         Ok(BenchReport {
-            model: format!("{}s", model.as_str()),
+            model: engine.plural(),
             backend: engine.backend().into(),
             agents,
             steps,
