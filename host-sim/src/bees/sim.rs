@@ -216,8 +216,8 @@ pub struct BeeSim {
     pub last_contacts: Contacts,
     /// Corrections made since the start.
     pub contacts: Contacts,
-    /// Bees closer than this count as a collision in the summary ([`collision_distance()`] of
-    /// the groups' radii).
+    /// Bees closer than this count as a collision in the summary: `collision_distance` of the
+    /// groups' radii (two capsules of radius r touch when their centres are 2r apart).
     pub collision_distance: f32,
 }
 
