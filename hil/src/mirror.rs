@@ -8,7 +8,7 @@ use std::time::Instant;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 use swarm_core::wire::{DeviceStats, ErrorReply, Identity};
-use swarm_sim::engine::{Engine, Exchange};
+use swarm_sim::engine::{Engine, Exchange, apply_due_events};
 use swarm_sim::scenario::Scenario;
 
 use crate::client::{Client, Expect, Partial, RawRequest};
@@ -88,7 +88,7 @@ pub struct ImageSize {
 pub struct MirrorReport {
     /// Scenario name.
     pub scenario: String,
-    /// The model (`ants`, `bees`, ...).
+    /// The model (`ant`, `bee`, ...: [`Engine::model`]).
     pub model: String,
     /// The device's identity.
     pub device: String,
@@ -275,26 +275,55 @@ fn bar(show: bool, steps: u32) -> ProgressBar {
 }
 
 /// Mirrors scenario `sc` on the device behind `client`: the scenario's engine
-/// ([`swarm_sim::models::engine`]) runs on the host, and every step each chosen agent's
-/// requests go to the device, calling `before_step` before each step.
+/// ([`swarm_sim::models::engine`]) runs on the host with the scenario's timed events (see
+/// [`mirror_with_events`]), and every step each chosen agent's requests go to the device,
+/// calling `before_step` before each step.
 pub fn mirror_scenario<T: Transport>(
     sc: &Scenario,
     client: &mut Client<T>,
     opts: &MirrorOptions,
     before_step: &mut dyn FnMut(u32) -> Result<()>,
 ) -> Result<MirrorReport> {
-    let engine = swarm_sim::models::engine(sc, sc.seed)?;
-    mirror(&sc.name, engine, client, opts, before_step)
+    let mut engine = swarm_sim::models::engine(sc, sc.seed)?;
+    mirror_with_events(sc, &mut *engine, client, opts, before_step)
 }
 
 /// Mirrors the simulation `engine` (of any model; its groups must share one parameter set in
 /// one scalar type) on the device behind `client`: handshake, configure, then every step, for
 /// each phase of the model's tick, the chosen agents' requests, whose answers are compared
 /// with the decisions the engine made. `before_step(step)` runs before each step (e.g. to
-/// reset the board mid-run in a test).
+/// reset the board mid-run in a test). No scenario events are applied: for an engine built
+/// from a scenario with events, use [`mirror_with_events`].
 pub fn mirror<T: Transport>(
     name: &str,
     mut engine: Box<dyn Engine>,
+    client: &mut Client<T>,
+    opts: &MirrorOptions,
+    before_step: &mut dyn FnMut(u32) -> Result<()>,
+) -> Result<MirrorReport> {
+    mirror_steps(name, &mut *engine, None, client, opts, before_step)
+}
+
+/// [`mirror`] of `engine`, built from scenario `sc`, applying the scenario's timed events
+/// before the steps they are scheduled for, as `swarm run` does
+/// ([`apply_due_events`]): a mirrored scenario whose objects are added, removed or moved, or
+/// whose disturbances start, decides what its run decides. The engine is borrowed: after the
+/// run it is at the step the mirror reached.
+pub fn mirror_with_events<T: Transport>(
+    sc: &Scenario,
+    engine: &mut dyn Engine,
+    client: &mut Client<T>,
+    opts: &MirrorOptions,
+    before_step: &mut dyn FnMut(u32) -> Result<()>,
+) -> Result<MirrorReport> {
+    mirror_steps(&sc.name, engine, Some(sc), client, opts, before_step)
+}
+
+/// The mirror run of `engine`, with the timed events of `events` if given.
+fn mirror_steps<T: Transport>(
+    name: &str,
+    engine: &mut dyn Engine,
+    events: Option<&Scenario>,
     client: &mut Client<T>,
     opts: &MirrorOptions,
     before_step: &mut dyn FnMut(u32) -> Result<()>,
@@ -306,7 +335,7 @@ pub fn mirror<T: Transport>(
         device: identity,
         chosen: pick_agents(engine.agents(), opts.agents),
     };
-    let model = format!("{}s", engine.model());
+    let model = engine.model();
     run.finish(
         name,
         &model,
@@ -315,6 +344,9 @@ pub fn mirror<T: Transport>(
         |session, client, tally, chosen| {
             let step = engine.next_step();
             before_step(step)?;
+            if let Some(sc) = events {
+                apply_due_events(engine, sc);
+            }
             for phase in 0..engine.phases().len() {
                 engine.decide(phase)?;
                 let exchanges = engine.exchanges(phase, chosen)?;

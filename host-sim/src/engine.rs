@@ -10,15 +10,14 @@
 //! phase ran on and the reply the engine computed: what a mirror sends to a device and compares
 //! its answer with.
 
-use serde::Serialize;
-use serde::de::DeserializeOwned;
 use swarm_core::Checked;
+use swarm_core::model::{Model, Phase};
 use swarm_core::wire::{Controller, DeviceEndpoint, Endpoint, Identity, Message, params_hash};
 
 use crate::error::{Result, SimError};
 use crate::output::{Frame, Summary};
 use crate::scalar::{AgentGroup, ByScalar};
-use crate::scenario::Action;
+use crate::scenario::{Action, Event, Scenario};
 
 /// A model's whole simulation, as the generic code drives it.
 pub trait Engine: Send {
@@ -28,7 +27,8 @@ pub trait Engine: Send {
     fn agents(&self) -> usize;
     /// The next tick to run.
     fn next_step(&self) -> u32;
-    /// Applies a scenario event to object `object` (its index in the scenario).
+    /// Applies a scenario event to object `object` (its index in the scenario). The run loop
+    /// and the mirror apply a scenario's events through [`apply_due_events`].
     fn apply(&mut self, object: u16, action: &Action);
     /// The names of the phases of a tick, in order.
     fn phases(&self) -> &'static [&'static str];
@@ -106,24 +106,32 @@ pub struct Payload {
 
 impl Payload {
     /// `msg`, encoded.
-    pub fn of<M: Message + Serialize + DeserializeOwned>(msg: &M) -> Payload {
+    ///
+    /// # Errors
+    ///
+    /// [`SimError::Encode`] if postcard cannot encode it (a message type postcard cannot
+    /// describe: none of the models' own).
+    pub fn of<M: Message>(msg: &M) -> Result<Payload> {
         fn decodes<M: Message>(b: &[u8]) -> bool {
             swarm_core::wire::decode_payload::<M>(b).is_ok()
         }
-        fn json<M: Message + Serialize>(b: &[u8]) -> serde_json::Value {
+        fn json<M: Message>(b: &[u8]) -> serde_json::Value {
             swarm_core::wire::decode_payload::<M>(b)
                 .ok()
                 .and_then(|m| serde_json::to_value(m).ok())
                 .unwrap_or(serde_json::Value::Null)
         }
-        Payload {
+        let bytes = postcard::to_allocvec(msg).map_err(|source| SimError::Encode {
+            message: std::any::type_name::<M>(),
             kind: M::KIND,
-            // A postcard encoding into a Vec fails only for types postcard cannot describe,
-            // which no message is.
-            bytes: postcard::to_allocvec(msg).unwrap_or_default(),
+            source,
+        })?;
+        Ok(Payload {
+            kind: M::KIND,
+            bytes,
             decodes: decodes::<M>,
             json: json::<M>,
-        }
+        })
     }
 
     /// This payload as JSON.
@@ -146,19 +154,50 @@ pub struct Exchange {
 }
 
 impl Exchange {
-    /// Agent `agent`'s exchange in phase `phase`.
-    pub fn new<Q, A>(agent: u32, phase: &'static str, request: &Q, reply: &A) -> Exchange
+    /// Agent `agent`'s exchange in phase `Ph` of model `M`: the phase's request and its
+    /// reply, so a request is never paired with another phase's reply, and the phase's name
+    /// (`Exchange::of::<AntParams<S>, Plan>(id, &request, &reply)`).
+    ///
+    /// # Errors
+    ///
+    /// [`SimError::Encode`] if a message cannot be encoded (see [`Payload::of`]).
+    pub fn of<M, Ph>(agent: u32, request: &Ph::Request, reply: &Ph::Reply) -> Result<Exchange>
     where
-        Q: Message + Serialize + DeserializeOwned,
-        A: Message + Serialize + DeserializeOwned,
+        M: Model,
+        Ph: Phase<M>,
+        Ph::Request: Message,
+        Ph::Reply: Message,
     {
-        Exchange {
+        Ok(Exchange {
             agent,
-            phase,
-            request: Payload::of(request),
-            reply: Payload::of(reply),
+            phase: Ph::NAME,
+            request: Payload::of(request)?,
+            reply: Payload::of(reply)?,
+        })
+    }
+}
+
+/// Applies the events of `sc` due before the engine's next tick ([`Engine::next_step`]), in
+/// the scenario's order, and returns them (to log): what `swarm run` does before each tick
+/// ([`run`](crate::run)'s loop, which applies them the same way), and what the mirror does,
+/// so a mirrored scenario sees its objects added, removed and moved and its disturbances
+/// started at the same steps as its run. An event naming an object the scenario does not
+/// have is skipped (a validated scenario has none). The events must be in step order, as a
+/// validated scenario's are.
+pub fn apply_due_events<'s, E: Engine + ?Sized>(
+    engine: &mut E,
+    sc: &'s Scenario,
+) -> Vec<&'s Event> {
+    let step = engine.next_step();
+    let from = sc.events.partition_point(|e| e.step < step);
+    let mut applied = Vec::new();
+    for e in sc.events[from..].iter().take_while(|e| e.step == step) {
+        if let Some(id) = sc.object_id(e.action.object()) {
+            engine.apply(id, &e.action);
+            applied.push(e);
         }
     }
+    applied
 }
 
 /// The largest frame a soft device receives and sends: larger than any model's message.
@@ -267,11 +306,12 @@ fn soft_endpoint<C: Controller + Send + 'static>(
 ///
 /// # Errors
 ///
-/// [`SimError::NoAgent`] for an id no slot has.
+/// [`SimError::NoAgent`] for an id no slot has; `exchange`'s error (a message that cannot be
+/// encoded).
 pub fn exchanges_by_slot(
     ids: &[u32],
     agents: &[u32],
-    exchange: impl Fn(usize) -> Option<Exchange>,
+    exchange: impl Fn(usize) -> Option<Result<Exchange>>,
 ) -> Result<Vec<Exchange>> {
     let slots = slots_by_id(ids);
     agents
@@ -282,10 +322,10 @@ pub fn exchanges_by_slot(
                 .copied()
                 .flatten()
                 .and_then(&exchange)
-                .ok_or(SimError::NoAgent {
+                .unwrap_or(Err(SimError::NoAgent {
                     id,
                     agents: ids.len(),
-                })
+                }))
         })
         .collect()
 }
@@ -308,4 +348,129 @@ fn slots_by_id(ids: &[u32]) -> Vec<Option<usize>> {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use swarm_core::ant::{AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest};
+
+    use super::*;
+
+    /// An engine of no agents that records the events applied to it.
+    #[derive(Default)]
+    struct Recorder {
+        step: u32,
+        applied: Vec<(u16, &'static str)>,
+    }
+
+    impl Engine for Recorder {
+        fn model(&self) -> &'static str {
+            "recorder"
+        }
+        fn agents(&self) -> usize {
+            0
+        }
+        fn next_step(&self) -> u32 {
+            self.step
+        }
+        fn apply(&mut self, object: u16, action: &Action) {
+            self.applied.push((object, action.verb()));
+        }
+        fn phases(&self) -> &'static [&'static str] {
+            &["tick"]
+        }
+        fn decide(&mut self, _phase: usize) -> Result<()> {
+            Ok(())
+        }
+        fn publish(&mut self, _phase: usize) -> Result<()> {
+            self.step += 1;
+            Ok(())
+        }
+        fn exchanges(&self, _phase: usize, _agents: &[u32]) -> Result<Vec<Exchange>> {
+            Ok(Vec::new())
+        }
+        fn device(&self) -> Result<Device> {
+            Err(SimError::NoAgents)
+        }
+        fn frame(&self) -> Frame {
+            Frame::default()
+        }
+        fn collision_distance(&self) -> f32 {
+            0.0
+        }
+        fn closing(&self, _summary: &mut Summary) -> String {
+            String::new()
+        }
+    }
+
+    #[test]
+    fn the_events_due_at_the_next_step_are_applied_in_order_and_no_others() {
+        // Fig. 11: rocks 1-3 (objects 2-4) added at 1500, removed at 2500, 3000, 3500.
+        let mut sc = crate::scenario::builtin("ants-fig11-dynamic-obstacles").unwrap();
+        sc.events.insert(
+            3,
+            Event {
+                step: 1500,
+                action: Action::Start("no-such-object".into()),
+            },
+        );
+        let mut e = Recorder::default();
+        for step in [0, 1499, 1501, 2499] {
+            e.step = step;
+            assert!(apply_due_events(&mut e, &sc).is_empty(), "{step}");
+        }
+        e.step = 1500;
+        let applied = apply_due_events(&mut e, &sc);
+        assert_eq!(applied.len(), 3, "the unknown object is skipped");
+        assert_eq!(e.applied, [(2, "add"), (3, "add"), (4, "add")]);
+        e.step = 3000;
+        assert_eq!(apply_due_events(&mut e, &sc), [&sc.events[5]]);
+        assert_eq!(e.applied[3..], [(4, "remove")]);
+    }
+
+    /// A message postcard cannot encode.
+    #[derive(serde::Deserialize)]
+    struct Unencodable;
+
+    impl serde::Serialize for Unencodable {
+        fn serialize<S: serde::Serializer>(&self, _: S) -> std::result::Result<S::Ok, S::Error> {
+            Err(serde::ser::Error::custom("refused"))
+        }
+    }
+
+    impl Message for Unencodable {
+        const KIND: u8 = 0xF0;
+    }
+
+    #[test]
+    fn a_message_that_cannot_be_encoded_is_an_error_naming_it() {
+        let e = Payload::of(&Unencodable).unwrap_err();
+        assert!(matches!(e, SimError::Encode { kind: 0xF0, .. }), "{e}");
+        let msg = e.to_string();
+        assert!(msg.contains("Unencodable") && msg.contains("0xf0"), "{msg}");
+    }
+
+    #[test]
+    fn an_exchange_is_typed_and_named_by_its_phase() {
+        let sc = crate::scenario::builtin("ants-fig7a-single-colony").unwrap();
+        let mut engine = crate::models::engine(&sc, sc.seed).unwrap();
+        for (phase, name) in engine.phases().iter().enumerate() {
+            engine.decide(phase).unwrap();
+            let ex = engine.exchanges(phase, &[3]).unwrap();
+            assert_eq!((ex.len(), ex[0].agent, ex[0].phase), (1, 3, *name));
+            let kinds = (ex[0].request.kind, ex[0].reply.kind);
+            let want = match phase {
+                0 => (
+                    <AntPlanRequest<f32> as Message>::KIND,
+                    <AntPlanReply<f32> as Message>::KIND,
+                ),
+                _ => (
+                    <AntResolveRequest<f32> as Message>::KIND,
+                    <AntResolveReply<f32> as Message>::KIND,
+                ),
+            };
+            assert_eq!(kinds, want, "{name}");
+            engine.publish(phase).unwrap();
+        }
+    }
 }

@@ -97,6 +97,17 @@ pub enum SimError {
     /// A device for the simulation's parameters could not be made.
     #[error("device: {0}")]
     Device(swarm_core::Error),
+    /// A message of an exchange (a request or a reply sent to or compared with a device)
+    /// could not be encoded.
+    #[error("cannot encode a {message} (message kind {kind:#04x}): {source}")]
+    Encode {
+        /// The message's type.
+        message: &'static str,
+        /// Its kind.
+        kind: u8,
+        /// postcard's error.
+        source: postcard::Error,
+    },
     /// A scenario given to a model that does not live in its world (an ant simulation of a
     /// 3D world, ...).
     #[error("scenario `{scenario}` is not a {dim}D world: the {model} model cannot run it")]

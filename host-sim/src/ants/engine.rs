@@ -3,7 +3,7 @@
 
 use swarm_core::ant::{
     AntDevice, AntParams, AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest,
-    AntState,
+    AntState, Plan, Resolve,
 };
 use swarm_core::model::{Model, Phases};
 use swarm_core::wire::Endpoint;
@@ -28,35 +28,38 @@ const PHASES: &[&str] = <<AntParams<f32> as Model>::Phases as Phases<AntParams<f
 impl<S: SimScalar> AntGroup<S> {
     /// The exchange of the ant in world slot `slot` (of this group) in phase `phase` (`None`
     /// for a phase the ant tick does not have).
-    fn exchange(&self, sim: &AntSim, slot: usize, phase: usize) -> Option<Exchange> {
+    fn exchange(&self, sim: &AntSim, slot: usize, phase: usize) -> Option<Result<Exchange>> {
         let k = slot - self.first;
         let id = self.ids[k];
         let w = &sim.world;
-        let name = *PHASES.get(phase)?;
-        Some(if phase == 0 {
-            let request = AntPlanRequest {
-                state: self.states[k],
-                frame: plan_frame::<S>(w, slot),
-                ctx: StepCtx {
-                    seed: sim.seed,
-                    agent: id,
-                    step: sim.step,
-                },
-            };
-            let reply = AntPlanReply {
-                plan: self.plans()[k],
-            };
-            Exchange::new(id, name, &request, &reply)
-        } else {
-            let request = AntResolveRequest {
-                plan: self.plans()[k],
-                frame: resolve_frame::<S>(w, slot),
-            };
-            let reply = AntResolveReply {
-                state: self.resolved()[k],
-            };
-            Exchange::new(id, name, &request, &reply)
-        })
+        match phase {
+            0 => {
+                let request = AntPlanRequest {
+                    state: self.states[k],
+                    frame: plan_frame::<S>(w, slot),
+                    ctx: StepCtx {
+                        seed: sim.seed,
+                        agent: id,
+                        step: sim.step,
+                    },
+                };
+                let reply = AntPlanReply {
+                    plan: self.plans()[k],
+                };
+                Some(Exchange::of::<AntParams<S>, Plan>(id, &request, &reply))
+            }
+            1 => {
+                let request = AntResolveRequest {
+                    plan: self.plans()[k],
+                    frame: resolve_frame::<S>(w, slot),
+                };
+                let reply = AntResolveReply {
+                    state: self.resolved()[k],
+                };
+                Some(Exchange::of::<AntParams<S>, Resolve>(id, &request, &reply))
+            }
+            _ => None,
+        }
     }
 }
 

@@ -2,7 +2,7 @@
 //! summary.
 
 use swarm_core::Checked;
-use swarm_core::bee::{BeeDevice, BeeParams, BeeStepReply, BeeStepRequest};
+use swarm_core::bee::{BeeDevice, BeeParams, BeeStepReply, BeeStepRequest, Step};
 use swarm_core::model::{Model, Phases};
 use swarm_core::wire::Endpoint;
 
@@ -21,7 +21,7 @@ const PHASES: &[&str] = <<BeeParams<f32> as Model>::Phases as Phases<BeeParams<f
 
 impl<S: SimScalar> BeeGroup<S> {
     /// The exchange of the bee in world slot `slot` (of this group) this step.
-    fn exchange(&self, sim: &BeeSim, slot: usize) -> Exchange {
+    fn exchange(&self, sim: &BeeSim, slot: usize) -> Result<Exchange> {
         let k = slot - self.first;
         let id = self.ids[k];
         let w = &sim.world;
@@ -41,7 +41,7 @@ impl<S: SimScalar> BeeGroup<S> {
             decision: self.decisions[k],
             state: self.decided()[k],
         };
-        Exchange::new(id, PHASES[0], &request, &reply)
+        Exchange::of::<BeeParams<S>, Step>(id, &request, &reply)
     }
 }
 

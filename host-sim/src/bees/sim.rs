@@ -216,9 +216,16 @@ pub struct BeeSim {
     pub last_contacts: Contacts,
     /// Corrections made since the start.
     pub contacts: Contacts,
-    /// Bees closer than this count as a collision in the summary: two capsules of radius r
-    /// touch when their centres are 2r apart (the largest r of the groups).
+    /// Bees closer than this count as a collision in the summary: `collision_distance` of the
+    /// groups' radii (two capsules of radius r touch when their centres are 2r apart).
     pub collision_distance: f32,
+}
+
+/// The distance under which two bees of bodies of radii `radii` (the groups') count as a
+/// collision in the summary: two capsules of radius r touch when their centres are 2r apart,
+/// with r the largest radius (0 for none).
+pub fn collision_distance(radii: impl IntoIterator<Item = f32>) -> f32 {
+    2.0 * radii.into_iter().fold(0.0, f32::max)
 }
 
 impl BeeSim {
@@ -243,11 +250,11 @@ impl BeeSim {
             contacts: Contacts::default(),
             collision_distance: 0.0,
         };
-        sim.collision_distance = sim
-            .groups
-            .iter()
-            .map(|g| by_scalar!(g, g => 2.0 * g.params.radius.to_f32()))
-            .fold(0.0, f32::max);
+        sim.collision_distance = collision_distance(
+            sim.groups
+                .iter()
+                .map(|g| by_scalar!(g, g => g.params.radius.to_f32())),
+        );
         // Spatial slot order from the start (changes no result).
         sim.reorder();
         sim

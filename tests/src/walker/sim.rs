@@ -107,12 +107,7 @@ impl<S: SimScalar> Engine for WalkSim<S> {
                 let reply = WalkReply {
                     state: self.next[k],
                 };
-                Ok(Exchange::new(
-                    id,
-                    self.phases()[0],
-                    &self.request(k),
-                    &reply,
-                ))
+                Exchange::of::<WalkParams<S>, Walk>(id, &self.request(k), &reply)
             })
             .collect()
     }
