@@ -236,7 +236,8 @@ mod tests {
         BeeDecision, BeeNeighbor, BeeParams, BeeState, BeeStepReply, BeeStepRequest, MAX_BEE_FRAME,
         MAX_BEE_REPLY_PAYLOAD, ObstacleSense, WireBeeFrame,
     };
-    use crate::wire::{Accumulator, Event, Header, encode_frame, encode_message};
+    use crate::wire::test_util::{frame_of, hex, payload_len, through_the_wire};
+    use crate::wire::{encode_frame, encode_message};
     use crate::{Fx, Rect, Vec2, Vec3};
     use crate::{Scalar, StepCtx};
     use serde::de::DeserializeOwned;
@@ -246,26 +247,6 @@ mod tests {
     }
     fn v3<S: Scalar>(x: f32, y: f32, z: f32) -> Vec3<S> {
         Vec3::new(S::from_f32(x), S::from_f32(y), S::from_f32(z))
-    }
-
-    /// Encodes `msg`, receives it through an accumulator, decodes it back.
-    fn through_the_wire<M: Message + PartialEq + core::fmt::Debug>(seq: u16, msg: &M) -> M {
-        let mut line = [0u8; MAX_FRAME];
-        let n = encode_message(seq, msg, &mut line).unwrap();
-        assert!(n <= MAX_FRAME);
-        let mut rx = Accumulator::<MAX_FRAME>::new();
-        let (ev, rest) = rx.feed(&line[..n]).unwrap();
-        assert!(rest.is_empty());
-        let Event::Frame(frame) = ev else {
-            panic!("{ev:?}")
-        };
-        assert_eq!(frame.header, Header::new(M::KIND, seq));
-        frame.message::<M>().unwrap()
-    }
-
-    fn payload_len<T: Serialize>(msg: &T) -> usize {
-        let mut buf = [0u8; 2 * MAX_PAYLOAD];
-        postcard::to_slice(msg, &mut buf).unwrap().len()
     }
 
     #[test]
@@ -465,20 +446,6 @@ mod tests {
 
     // ---- pinned vectors (docs/protocol.md, section 8), computed with the Python reference ----
 
-    fn hex(s: &str) -> Vec<u8> {
-        let s: String = s.split_whitespace().collect();
-        (0..s.len())
-            .step_by(2)
-            .map(|i| u8::from_str_radix(&s[i..i + 2], 16).unwrap())
-            .collect()
-    }
-
-    fn wire_bytes<M: Message>(seq: u16, msg: &M) -> Vec<u8> {
-        let mut line = [0u8; MAX_FRAME];
-        let n = encode_message(seq, msg, &mut line).unwrap();
-        line[..n].to_vec()
-    }
-
     fn vector_state<S: Scalar>() -> AntResolveReply<S> {
         AntResolveReply {
             state: AntState {
@@ -505,7 +472,7 @@ mod tests {
 
     #[test]
     fn vector_6_error_reply() {
-        let wire = wire_bytes(
+        let wire = frame_of(
             7,
             &ErrorReply {
                 code: ErrorReply::NON_FINITE,
@@ -525,7 +492,7 @@ mod tests {
                  00 00 b0 40 00 00 40 c0 01 00 00 00 3f 00 00 00 40 01 01 00 00 c0 bf
                  00 01 01 ac 02 02")
         );
-        let wire = wire_bytes(0x0100, &msg);
+        let wire = frame_of(0x0100, &msg);
         assert_eq!(
             wire,
             hex(
@@ -549,7 +516,7 @@ mod tests {
                  01 01 ff ff 0b 00 01 01 ac 02 02"
             )
         );
-        let wire = wire_bytes(0x0100, &msg);
+        let wire = frame_of(0x0100, &msg);
         assert_eq!(
             wire,
             hex(
@@ -596,7 +563,7 @@ mod tests {
                  01 00 00 40 41 00 00 a4 41
                  01 00 00 20 41 00 00 ac 41 00 00 00 00 00 00 80 bf")
         );
-        let wire = wire_bytes(0x0102, &msg);
+        let wire = frame_of(0x0102, &msg);
         assert_eq!(
             wire,
             hex(
@@ -624,7 +591,7 @@ mod tests {
                  01 80 80 60 80 80 a4 01
                  01 80 80 50 80 80 ac 01 00 ff ff 07")
         );
-        let wire = wire_bytes(0x0102, &msg);
+        let wire = frame_of(0x0102, &msg);
         assert_eq!(
             wire,
             hex(

@@ -89,6 +89,8 @@ mod message;
 mod serve;
 mod session;
 #[cfg(test)]
+mod test_util;
+#[cfg(test)]
 mod tests;
 
 pub use accumulator::{Accumulator, Event, Stats};

@@ -6,6 +6,7 @@ use proptest::prelude::*;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 
+use super::test_util::{code_bytes, frame_of, hex};
 use super::*;
 use crate::ant::{
     self, AntNeighbor, AntObject, AntParams, AntPlan, AntState, Label, MotionState, StopReason,
@@ -16,21 +17,6 @@ use crate::rand::rand;
 use crate::{Error, Fx, Rect, Scalar, StepCtx, Vec2, Vec3};
 
 // ---- helpers ----
-
-fn hex(s: &str) -> Vec<u8> {
-    let s: String = s.split_whitespace().collect();
-    (0..s.len())
-        .step_by(2)
-        .map(|i| u8::from_str_radix(&s[i..i + 2], 16).unwrap())
-        .collect()
-}
-
-fn frame_of<M: Message>(seq: u16, msg: &M) -> Vec<u8> {
-    let mut out = vec![0u8; 2 * MAX_FRAME];
-    let n = encode_message(seq, msg, &mut out).unwrap();
-    out.truncate(n);
-    out
-}
 
 /// Every reply frame the device sends for `input`, in order.
 fn replies<C: Controller, const RX: usize, const TX: usize>(
@@ -915,17 +901,6 @@ fn piece() -> impl Strategy<Value = Piece> {
             .prop_map(|(a, b, c)| Piece::Corrupt(a, b, c)),
         (any::<u32>(), any::<prop::sample::Index>()).prop_map(|(a, b)| Piece::Truncated(a, b)),
     ]
-}
-
-/// COBS code-byte positions of an encoded frame body.
-fn code_bytes(body: &[u8]) -> Vec<usize> {
-    let mut v = Vec::new();
-    let mut i = 0;
-    while i < body.len() {
-        v.push(i);
-        i += body[i] as usize;
-    }
-    v
 }
 
 /// Builds the line; returns it with the frames that are intact, in order.
