@@ -106,42 +106,30 @@ fn fixed_point_decisions_agree_with_f32_within_tolerance() {
     );
 }
 
+/// Runs the demo colony of `n` ants (`seed`) for `ticks` ticks: its hash and deliveries.
+fn demo_run<S: Scalar>(n: usize, seed: u32, ticks: u32) -> (u64, u32) {
+    let mut w = World::<S>::demo(n, seed);
+    for _ in 0..ticks {
+        w.step();
+    }
+    (w.hash(), w.deliveries)
+}
+
 #[test]
 fn fixed_point_run_is_bit_identical_across_runs() {
-    let run = || {
-        let mut w = World::<Fx>::demo(100, 77);
-        for _ in 0..300 {
-            w.step();
-        }
-        (w.hash(), w.deliveries)
-    };
-    let first = run();
-    assert_eq!(first, run());
-    assert_eq!(first, run());
+    let first = demo_run::<Fx>(100, 77, 300);
+    assert_eq!(first, demo_run::<Fx>(100, 77, 300));
+    assert_eq!(first, demo_run::<Fx>(100, 77, 300));
 }
 
 #[test]
 fn f32_run_is_bit_identical_across_runs() {
-    let run = || {
-        let mut w = World::<f32>::demo(100, 77);
-        for _ in 0..300 {
-            w.step();
-        }
-        w.hash()
-    };
-    assert_eq!(run(), run());
+    assert_eq!(demo_run::<f32>(100, 77, 300), demo_run::<f32>(100, 77, 300));
 }
 
 #[test]
 fn a_colony_forages_in_both_scalars() {
-    fn deliveries<S: Scalar>() -> u32 {
-        let mut w = World::<S>::demo(150, 9);
-        for _ in 0..1500 {
-            w.step();
-        }
-        w.deliveries
-    }
     // Food reaches the nest through the controller alone, in both number types.
-    assert!(deliveries::<f32>() > 20);
-    assert!(deliveries::<Fx>() > 20);
+    assert!(demo_run::<f32>(150, 9, 1500).1 > 20);
+    assert!(demo_run::<Fx>(150, 9, 1500).1 > 20);
 }

@@ -5,9 +5,10 @@ use std::time::Duration;
 
 use swarm_core::ant::AntParams;
 use swarm_core::wire::{self, Accumulator, AntDevice, AntPlanReply, Event, kind};
+use swarm_hil::client::machine::RawPayload;
 use swarm_hil::client::{Client, ClientOptions, RtoOptions};
 use swarm_hil::loopback::{Line, LinkKind, loopback, with_scalar};
-use swarm_hil::mirror::{MirrorOptions, mirror, pick_agents};
+use swarm_hil::mirror::{MirrorOptions, MirrorReport, mirror, pick_agents};
 use swarm_hil::soft::{SoftDevice, serve};
 use swarm_hil::transport::{FaultSpec, Transport, memory_pair};
 use swarm_hil::{HilError, Result};
@@ -25,6 +26,18 @@ fn opts(agents: usize, steps: u32) -> MirrorOptions {
         session: 42,
         progress: false,
     }
+}
+
+/// Mirrors `agents` ants of `sc` for `steps` steps on the device behind `client`.
+fn mirror_ants<T: Transport>(
+    sc: &Scenario,
+    client: &mut Client<T>,
+    agents: usize,
+    steps: u32,
+) -> Result<MirrorReport> {
+    let sim = AntSim::from_scenario(sc, sc.seed).unwrap();
+    let opts = opts(agents, steps);
+    mirror(&sc.name, Box::new(sim), client, &opts, &mut |_| Ok(()))
 }
 
 #[test]
@@ -110,7 +123,6 @@ fn faults_on_the_line_are_survived_and_reported() {
 #[test]
 fn a_device_with_other_parameters_is_refused_at_the_handshake() {
     let sc = fig7a();
-    let sim = AntSim::from_scenario(&sc, sc.seed).unwrap();
     let other = AntParams::<f32> {
         w0: 0.5,
         ..AntParams::default()
@@ -119,14 +131,7 @@ fn a_device_with_other_parameters_is_refused_at_the_handshake() {
     let (dev_end, host_end) = memory_pair();
     let soft = SoftDevice::spawn(move |stop| serve(Box::new(device), dev_end, stop).map(|_| ()));
     let mut client = Client::new(host_end, ClientOptions::default());
-    let err = mirror(
-        &sc.name,
-        Box::new(sim),
-        &mut client,
-        &opts(5, 5),
-        &mut |_| Ok(()),
-    )
-    .unwrap_err();
+    let err = mirror_ants(&sc, &mut client, 5, 5).unwrap_err();
     let msg = err.to_string();
     assert!(matches!(err, HilError::Handshake(_)), "{msg}");
     assert!(
@@ -134,20 +139,6 @@ fn a_device_with_other_parameters_is_refused_at_the_handshake() {
         "{msg}"
     );
     soft.stop().unwrap();
-}
-
-/// A payload passed through unchanged: postcard writes a tuple of `u8` byte for byte.
-struct RawPayload<'a>(&'a [u8]);
-
-impl serde::Serialize for RawPayload<'_> {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        use serde::ser::SerializeTuple;
-        let mut t = s.serialize_tuple(self.0.len())?;
-        for b in self.0 {
-            t.serialize_element(b)?;
-        }
-        t.end()
-    }
 }
 
 #[test]
@@ -208,7 +199,6 @@ fn a_planted_wrong_decision_is_reported_with_its_step_and_agent() {
 #[test]
 fn a_device_reset_mid_run_is_re_handshaken_and_reported() {
     let sc = with_scalar(&fig7a(), ScalarType::Fixed);
-    let sim = AntSim::from_scenario(&sc, sc.seed).unwrap();
     // The scenario's parameters are f32 numbers, cast to fixed point.
     let params = AntParams::<f32>::default().cast::<swarm_core::Fx>();
     let mut device = AntDevice::<swarm_core::Fx>::new(params, "resetting-ant").unwrap();
@@ -239,14 +229,7 @@ fn a_device_reset_mid_run_is_re_handshaken_and_reported() {
         Ok(())
     });
     let mut client = Client::new(host_end, ClientOptions::default());
-    let r = mirror(
-        &sc.name,
-        Box::new(sim),
-        &mut client,
-        &opts(20, 10),
-        &mut |_| Ok(()),
-    )
-    .unwrap();
+    let r = mirror_ants(&sc, &mut client, 20, 10).unwrap();
     soft.stop().unwrap();
     assert_eq!(r.decisions, 400);
     assert_eq!(r.mismatches, 0, "{}", r.human());
@@ -275,6 +258,7 @@ fn steps_zero_on_the_command_line_is_refused_like_steps_zero_in_a_file() {
 
 /// What a [`Scripted`] device link does with the `n`-th plan reply (counted from 0, retries
 /// included), given that reply.
+#[derive(Clone, Copy)]
 enum Act {
     /// Sends it as it is.
     Pass,
@@ -350,9 +334,8 @@ impl<F: FnMut(u32, &AntPlanReply<f32>) -> Act + Send> Transport for Scripted<F> 
 fn scripted(
     script: impl FnMut(u32, &AntPlanReply<f32>) -> Act + Send + 'static,
     client: ClientOptions,
-) -> Result<swarm_hil::mirror::MirrorReport> {
+) -> Result<MirrorReport> {
     let sc = with_scalar(&fig7a(), ScalarType::F32);
-    let sim = AntSim::from_scenario(&sc, sc.seed).unwrap();
     let device = AntDevice::<f32>::new(AntParams::default(), "soft-ant").unwrap();
     let (dev_end, host_end) = memory_pair();
     let link = Scripted {
@@ -364,15 +347,19 @@ fn scripted(
     };
     let soft = SoftDevice::spawn(move |stop| serve(Box::new(device), link, stop).map(|_| ()));
     let mut client = Client::new(host_end, client);
-    let r = mirror(
-        &sc.name,
-        Box::new(sim),
-        &mut client,
-        &opts(10, 6),
-        &mut |_| Ok(()),
-    );
+    let r = mirror_ants(&sc, &mut client, 10, 6);
     soft.stop().unwrap();
     r
+}
+
+/// [`scripted`] with the default client options, a script that does `act` to the `n`-th plan
+/// reply and passes the others, and a run that completes.
+fn scripted_once(n: u32, act: Act) -> MirrorReport {
+    scripted(
+        move |i, _| if i == n { act } else { Act::Pass },
+        ClientOptions::default(),
+    )
+    .unwrap()
 }
 
 #[test]
@@ -421,11 +408,7 @@ fn a_mismatch_before_the_line_goes_silent_is_in_the_report_with_the_link_failure
 
 #[test]
 fn a_crc_valid_reply_that_does_not_decode_is_asked_again() {
-    let r = scripted(
-        |n, _| if n == 7 { Act::Garbled } else { Act::Pass },
-        ClientOptions::default(),
-    )
-    .unwrap();
+    let r = scripted_once(7, Act::Garbled);
     assert_eq!((r.decisions, r.mismatches), (120, 0), "{}", r.human());
     assert_eq!(r.undecodable, 1);
     assert!(r.passed(), "line damage is not the device's fault");
@@ -433,11 +416,7 @@ fn a_crc_valid_reply_that_does_not_decode_is_asked_again() {
 
 #[test]
 fn a_device_wrong_then_right_when_asked_again_is_flaky_not_passed() {
-    let r = scripted(
-        |n, _| if n == 13 { Act::Wrong } else { Act::Pass },
-        ClientOptions::default(),
-    )
-    .unwrap();
+    let r = scripted_once(13, Act::Wrong);
     assert_eq!(
         (r.decisions, r.mismatches, r.reasked),
         (120, 0, 1),

@@ -3,44 +3,52 @@
 
 mod common;
 
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use tempfile::TempDir;
+
 use common::{entries, fails, identify, leftovers, ok, run_cmd, swarm};
 
 const SCENARIO: &str = "ants-fig7a-single-colony";
 const STEPS_ZERO: &str = "expected at least 1 step, found 0";
 
-/// A small ant scenario; `{nest}` and `{food}` are the centres of its nest and food source,
-/// next to a rock of radius 10 at [60, 50].
+/// The ant world of the scenario sanity tests (a nest at [20, 50], food at [180, 50], a rock
+/// of radius 10 at [60, 50] and a concave polygon) with its nest and food moved to `nest` and
+/// `food`.
 fn scenario(nest: &str, food: &str) -> String {
-    format!(
-        r#"steps = 20
-world = {{ dim = 2, min = [0, 0], max = [200, 100] }}
+    include_str!("../src/scenario/tests/ant_world.toml")
+        .replacen("center = [20, 50]", &format!("center = {nest}"), 1)
+        .replacen("center = [180, 50]", &format!("center = {food}"), 1)
+}
 
-[[groups]]
-name = "colony"
-model = "ant"
-count = 10
-nest = "nest"
-spawn = {{ at = "nest", radius = 2 }}
+/// Writes [`scenario`] with its nest and food at `nest` and `food` to the file `name` of a new
+/// temporary folder: the folder and the command that runs the file into its `out`.
+fn scenario_run(name: &str, nest: &str, food: &str) -> (TempDir, Command) {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join(name);
+    std::fs::write(&file, scenario(nest, food)).unwrap();
+    let run = run_cmd(file.to_str().unwrap(), &dir.path().join("out"), &[]);
+    (dir, run)
+}
 
-[[objects]]
-name = "nest"
-kind = "nest"
-center = {nest}
-radius = 3
+/// Runs the built-in [`SCENARIO`] for `steps` steps with `seed` into `out`; it succeeds.
+fn run_ok(out: &Path, steps: u32, seed: u32) -> Output {
+    let (steps, seed) = (steps.to_string(), seed.to_string());
+    ok(&mut run_cmd(
+        SCENARIO,
+        out,
+        &["--steps", &steps, "--seed", &seed],
+    ))
+}
 
-[[objects]]
-name = "food"
-kind = "food"
-center = {food}
-radius = 3
-
-[[objects]]
-name = "boulder"
-kind = "rock"
-center = [60, 50]
-radius = 10
-"#
-    )
+/// A new temporary folder with a run of 30 steps (seed 1) in its `run`: the folder and the
+/// run's path.
+fn first_run() -> (TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    run_ok(&out, 30, 1);
+    (dir, out)
 }
 
 #[test]
@@ -53,7 +61,7 @@ fn steps_zero_is_refused_like_steps_zero_in_a_file() {
     let file = dir.path().join("zero.toml");
     std::fs::write(
         &file,
-        scenario("[20, 50]", "[180, 50]").replace("steps = 20", "steps = 0"),
+        scenario("[20, 50]", "[180, 50]").replace("steps = 100", "steps = 0"),
     )
     .unwrap();
     let err = fails(&mut run_cmd(file.to_str().unwrap(), &out, &[]));
@@ -68,11 +76,8 @@ fn steps_zero_is_refused_like_steps_zero_in_a_file() {
 
 #[test]
 fn food_inside_an_obstacle_is_refused_before_anything_is_written() {
-    let dir = tempfile::tempdir().unwrap();
-    let file = dir.path().join("buried.toml");
-    std::fs::write(&file, scenario("[20, 50]", "[58, 52]")).unwrap();
-    let out = dir.path().join("out");
-    let err = fails(&mut run_cmd(file.to_str().unwrap(), &out, &[]));
+    let (dir, mut run) = scenario_run("buried.toml", "[20, 50]", "[58, 52]");
+    let err = fails(&mut run);
     assert!(
         err.contains("buried.toml:20:")
             && err.contains("`objects[1].center`")
@@ -80,44 +85,31 @@ fn food_inside_an_obstacle_is_refused_before_anything_is_written() {
             && err.contains("`boulder`"),
         "{err}"
     );
-    assert!(!out.exists());
+    assert!(!dir.path().join("out").exists());
 }
 
 #[test]
 fn warnings_are_printed_and_logged_and_the_run_goes_on() {
-    let dir = tempfile::tempdir().unwrap();
-    let file = dir.path().join("close.toml");
-    std::fs::write(&file, scenario("[52, 50]", "[180, 50]")).unwrap();
-    let out = dir.path().join("out");
-    let o = ok(&mut run_cmd(file.to_str().unwrap(), &out, &[]));
+    let (dir, mut run) = scenario_run("close.toml", "[52, 50]", "[180, 50]");
+    let o = ok(&mut run);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
         err.contains("close.toml:14:10: warning in `objects[0].center`")
             && err.contains("`boulder`"),
         "{err}"
     );
-    let log = std::fs::read_to_string(out.join("run.log")).unwrap();
+    let log = std::fs::read_to_string(dir.path().join("out/run.log")).unwrap();
     assert!(log.contains("warning in `objects[0].center`"), "{log}");
     assert!(log.contains("warning in `groups[0].spawn`"), "{log}");
 }
 
 #[test]
 fn a_rerun_replaces_the_whole_folder_and_render_redraws_it() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("run");
-    ok(&mut run_cmd(
-        SCENARIO,
-        &out,
-        &["--steps", "30", "--seed", "1"],
-    ));
+    let (dir, out) = first_run();
     // A file a second run does not write disappears with the first run; stale temporary
     // files of a killed render go too.
     std::fs::write(out.join(".run.gif.Ab12Cd.tmp"), "stale").unwrap();
-    ok(&mut run_cmd(
-        SCENARIO,
-        &out,
-        &["--steps", "20", "--seed", "2"],
-    ));
+    run_ok(&out, 20, 2);
     assert_eq!(identify(&out).map(|r| (r.seed, r.steps)), Ok((2, 20)));
     std::fs::write(out.join(".snapshot.png.Xy34Zw.tmp"), "stale").unwrap();
     let o = ok(swarm().arg("render").arg(&out));
@@ -143,13 +135,7 @@ fn a_folder_with_files_no_run_writes_is_refused_and_left_alone() {
 #[cfg(unix)]
 #[test]
 fn a_failed_write_leaves_the_old_run_and_records_the_error() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("run");
-    ok(&mut run_cmd(
-        SCENARIO,
-        &out,
-        &["--steps", "30", "--seed", "1"],
-    ));
+    let (dir, out) = first_run();
     let before = identify(&out).unwrap();
     // `trap '' XFSZ`: the write fails with EFBIG instead of the signal killing the process.
     let o = std::process::Command::new("sh")
@@ -182,10 +168,6 @@ fn a_failed_write_leaves_the_old_run_and_records_the_error() {
         "{log}"
     );
     // The next run removes the failed run's folder.
-    ok(&mut run_cmd(
-        SCENARIO,
-        &out,
-        &["--steps", "20", "--seed", "4"],
-    ));
+    run_ok(&out, 20, 4);
     assert_eq!(leftovers(dir.path()), Vec::<String>::new());
 }

@@ -5,7 +5,7 @@ use std::collections::HashMap;
 
 use swarm_core::Scalar;
 use swarm_sim::ants::{AntEvent, AntSim, AnyAntGroup};
-use swarm_sim::scenario::{self, Scenario};
+use swarm_sim::scenario::{self, Event, Scenario};
 
 fn load(name: &str) -> (Scenario, AntSim) {
     let sc = scenario::builtin(name).expect("built-in scenario");
@@ -237,31 +237,21 @@ fn fig12_deliveries_from_the_old_place_stop_after_the_food_moves_then_resume_fro
     );
 }
 
+/// The scenario's first event whose action is `verb` (`"start"`, `"stop"`, ...).
+fn first_event<'a>(sc: &'a Scenario, verb: &str) -> &'a Event {
+    sc.events
+        .iter()
+        .find(|e| e.action.verb() == verb)
+        .unwrap_or_else(|| panic!("no `{verb}` event"))
+}
+
 #[test]
 fn fig13_no_ant_lingers_inside_an_active_disturbance() {
     let (sc, mut sim) = load("ants-fig13-disturbance");
-    let start = sc
-        .events
-        .iter()
-        .find(|e| e.action.verb() == "start")
-        .expect("start")
-        .step;
-    let stop = sc
-        .events
-        .iter()
-        .find(|e| e.action.verb() == "stop")
-        .expect("stop")
-        .step;
-    let d = sc
-        .object(
-            sc.events
-                .iter()
-                .find(|e| e.action.verb() == "start")
-                .unwrap()
-                .action
-                .object(),
-        )
-        .unwrap();
+    let start = first_event(&sc, "start");
+    let stop = first_event(&sc, "stop").step;
+    let d = sc.object(start.action.object()).unwrap();
+    let start = start.step;
     let (c, r) = (d.kind.center().unwrap().to_vec(), d.kind.radius().unwrap());
     let mut inside_since: HashMap<u32, u32> = HashMap::new();
     let mut longest = 0;

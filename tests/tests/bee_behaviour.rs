@@ -67,6 +67,13 @@ impl Overlaps {
     fn fraction(&self) -> f64 {
         self.overlapping as f64 / self.bee_steps.max(1) as f64
     }
+
+    /// Checks that bodies overlapped in under 1 % of the bee-steps.
+    #[track_caller]
+    fn assert_rare(&self) {
+        let f = self.fraction();
+        assert!(f < 0.01, "body overlap in {f} of the bee-steps");
+    }
 }
 
 /// One avoiding bee-step seen from outside the controller (chen eq. 6-7): whether the shaft
@@ -268,11 +275,7 @@ fn fig14_bees_avoid_the_shafts_by_themselves_hover_and_fly_below_the_speed_limit
         through >= 0.5,
         "only {through} of the bees flew through the shaft field"
     );
-    assert!(
-        overlaps.fraction() < 0.01,
-        "body overlap in {} of the bee-steps",
-        overlaps.fraction()
-    );
+    overlaps.assert_rare();
     assert_eq!(
         sim.contacts.obstacle, 0,
         "the world had to put bees back out of a shaft: {:?}",
@@ -460,11 +463,7 @@ fn fig15_the_distance_to_the_nest_oscillates_instead_of_collapsing() {
         closest > r + bee_radius,
         "a bee reached the nest's particle sphere: {closest}"
     );
-    assert!(
-        overlaps.fraction() < 0.01,
-        "body overlap in {} of the bee-steps",
-        overlaps.fraction()
-    );
+    overlaps.assert_rare();
     assert!(
         lowest_mean > 4.5,
         "the swarm collapsed onto the nest: {lowest_mean}"
@@ -507,6 +506,19 @@ fn lateral_drift(mut sc: Scenario, seed: u32, steps: usize) -> (f64, f64) {
     (sum / count.max(1) as f64, overlaps.fraction())
 }
 
+/// Moves the centre of the target `name` of `sc` to `center`.
+fn move_target(sc: &mut Scenario, name: &str, center: [f32; 3]) {
+    match sc
+        .objects
+        .iter_mut()
+        .find(|o| o.name == name)
+        .map(|o| &mut o.kind)
+    {
+        Some(ObjectKind::Target { center: c, .. }) => *c = center,
+        _ => panic!("no target `{name}`"),
+    }
+}
+
 /// Issue 12: with no obstacle and a goal straight ahead the swarm does not sway as one. Each
 /// bee runs eq. 3-4 on its own clock (`bee_time`) and its sway is the roll's deviation from
 /// its period mean, so the swarm's mean lateral drift during the approach (600 steps, 30 s) is
@@ -525,14 +537,7 @@ fn with_no_obstacle_the_swarm_does_not_drift_sideways() {
     let mut variants = vec![("100 bees, +x", sc.clone())];
     let mut side = sc.clone();
     side.groups[0].count = 30;
-    if let Some(ObjectKind::Target { center, .. }) = side
-        .objects
-        .iter_mut()
-        .find(|o| o.name == "goal")
-        .map(|o| &mut o.kind)
-    {
-        *center = [36.0, 14.0, 60.0];
-    }
+    move_target(&mut side, "goal", [36.0, 14.0, 60.0]);
     // Spawned in the middle of the world's width, so that the crowd's pressure spreads it
     // evenly (a swarm spawned beside a wall spreads away from it: a drift that is not sway).
     side.groups[0].spawn.region = SpawnRegion::Box {
@@ -544,14 +549,7 @@ fn with_no_obstacle_the_swarm_does_not_drift_sideways() {
     back.groups[0].count = 250;
     back.groups[0].scalar = ScalarType::Fixed;
     // Start near the far end and fly back toward x = 8.
-    if let Some(ObjectKind::Target { center, .. }) = back
-        .objects
-        .iter_mut()
-        .find(|o| o.name == "goal")
-        .map(|o| &mut o.kind)
-    {
-        *center = [8.0, 14.0, 30.0];
-    }
+    move_target(&mut back, "goal", [8.0, 14.0, 30.0]);
     back.groups[0].spawn.region = SpawnRegion::Box {
         min: vec![52.0, 8.0, 18.0],
         max: vec![66.0, 20.0, 42.0],
@@ -612,9 +610,5 @@ fn fig11_the_grassland_swarm_gathers_off_the_walls_without_overlapping() {
         worst_off >= 0.9,
         "only {worst_off} of the bees off the walls"
     );
-    assert!(
-        overlaps.fraction() < 0.01,
-        "body overlap in {} of the bee-steps",
-        overlaps.fraction()
-    );
+    overlaps.assert_rare();
 }

@@ -49,6 +49,31 @@ fn neighbour(id: u32, label: Label, nest: u16, at: Vec2<F>, arrival: Vec2<F>) ->
         arrival,
     }
 }
+/// A frame of the test arena with `neighbours` and `objects`.
+fn frame_with(
+    neighbours: impl IntoIterator<Item = AntNeighbor<F>>,
+    objects: impl IntoIterator<Item = AntObject<F>>,
+) -> Frame {
+    let mut f = Frame::new(arena());
+    for n in neighbours {
+        f.neighbours.push(n).unwrap();
+    }
+    for o in objects {
+        f.objects.push(o).unwrap();
+    }
+    f
+}
+
+/// The food source `id`, a disc of `radius` around `center`.
+fn food(id: u16, center: Vec2<F>, radius: F) -> AntObject<F> {
+    AntObject::Food { id, center, radius }
+}
+
+/// The nest `id`, a disc of `radius` around `center`.
+fn nest(id: u16, center: Vec2<F>, radius: F) -> AntObject<F> {
+    AntObject::Nest { id, center, radius }
+}
+
 fn plan_with(a: &AntState<F>, f: &Frame, p: &AntParams<F>) -> AntPlan<F> {
     plan(a, f, p, active_ctx(p)).unwrap()
 }
@@ -69,10 +94,7 @@ fn transfer_case(i: Label, j: Label, j_nest: u16) -> bool {
     let p = no_turn();
     let a = ant(i);
     let target = v(50.0, 90.0); // straight "north" of the ant
-    let mut f = Frame::new(arena());
-    f.neighbours
-        .push(neighbour(2, j, j_nest, v(51.0, 50.0), target))
-        .unwrap();
+    let f = frame_with([neighbour(2, j, j_nest, v(51.0, 50.0), target)], []);
     let out = plan_with(&a, &f, &p);
     let turned = angle_between(out.state.heading, v(0.0, 1.0)) < 1e-3;
     assert_eq!(turned, out.state.motion == MotionState::InteractNeighbors);
@@ -117,17 +139,15 @@ fn table1_non_situations_transfer_nothing() {
 fn nearest_informer_wins_and_range_is_respected() {
     let p = no_turn();
     let a = ant(Label::Nest);
-    let mut f = Frame::new(arena());
     // Far informer (beyond contact range) points south, near one north-east, middle one west.
-    f.neighbours
-        .push(neighbour(5, Label::Food, 0, v(50.0, 53.0), v(50.0, 0.0)))
-        .unwrap();
-    f.neighbours
-        .push(neighbour(6, Label::Food, 0, v(50.5, 50.5), v(90.0, 90.0)))
-        .unwrap();
-    f.neighbours
-        .push(neighbour(7, Label::Food, 0, v(48.5, 50.0), v(0.0, 50.0)))
-        .unwrap();
+    let mut f = frame_with(
+        [
+            neighbour(5, Label::Food, 0, v(50.0, 53.0), v(50.0, 0.0)),
+            neighbour(6, Label::Food, 0, v(50.5, 50.5), v(90.0, 90.0)),
+            neighbour(7, Label::Food, 0, v(48.5, 50.0), v(0.0, 50.0)),
+        ],
+        [],
+    );
     let out = plan_with(&a, &f, &p);
     assert!(angle_between(out.state.heading, v(1.0, 1.0)) < 1e-3);
     // Only the out-of-range one left: nothing happens.
@@ -276,11 +296,7 @@ fn environment_priority_food_stop_then_obstacle_then_disturbance() {
         center: v(45.0, 45.0),
         radius: 20.0,
     };
-    let food = AntObject::Food {
-        id: 7,
-        center: v(50.0, 50.0),
-        radius: 3.0,
-    };
+    let food = food(7, v(50.0, 50.0), 3.0);
     // Inside the food, the ant stops to collect whatever else is around (a stop runs into
     // nothing).
     let mut f = Frame::new(arena());
@@ -303,14 +319,7 @@ fn collecting_then_dropping_food_relabels_after_the_stop() {
     let p = AntParams::<F>::default();
     let mut a = ant(Label::Nest);
     a.arrival = v(1.0, 1.0);
-    let mut f = Frame::new(arena());
-    f.objects
-        .push(AntObject::Food {
-            id: 9,
-            center: v(50.5, 50.0),
-            radius: 2.0,
-        })
-        .unwrap();
+    let f = frame_with([], [food(9, v(50.5, 50.0), 2.0)]);
     let rf = ResolveFrame::<F, 8>::new(arena());
     let mut s = resolve(&plan_with(&a, &f, &p), &rf, &p).unwrap();
     assert_eq!(s.stop.unwrap().reason, StopReason::CollectingFood);
@@ -332,15 +341,9 @@ fn collecting_then_dropping_food_relabels_after_the_stop() {
     // Laden, at another colony's nest: nothing; at its own nest: drop, then S_nest.
     let mut laden = ant(Label::Food);
     laden.pos = v(20.0, 20.0);
-    let nest = |id| AntObject::Nest {
-        id,
-        center: v(20.0, 21.0),
-        radius: 2.0,
-    };
-    let mut f = Frame::new(arena());
-    f.objects.push(nest(4)).unwrap();
+    let mut f = frame_with([], [nest(4, v(20.0, 21.0), 2.0)]);
     assert!(!plan_with(&laden, &f, &p).state.is_stopped());
-    f.objects[0] = nest(0);
+    f.objects[0] = nest(0, v(20.0, 21.0), 2.0);
     let mut s = resolve(&plan_with(&laden, &f, &p), &rf, &p).unwrap();
     assert_eq!(s.stop.unwrap().reason, StopReason::DroppingFood);
     let mut t = 0;
@@ -356,25 +359,14 @@ fn nothing_ant_at_its_nest_becomes_nest_without_stopping() {
     let p = AntParams::<F>::default();
     let mut a = ant(Label::Nothing);
     a.origin = 0;
-    let mut f = Frame::new(arena());
-    f.objects
-        .push(AntObject::Nest {
-            id: 0,
-            center: v(50.0, 51.0),
-            radius: 2.0,
-        })
-        .unwrap();
+    let mut f = frame_with([], [nest(0, v(50.0, 51.0), 2.0)]);
     let out = plan_with(&a, &f, &p);
     assert_eq!(out.state.label, Label::Nest);
     assert_eq!(out.state.motion, MotionState::InteractEnvironment);
     assert!(!out.state.is_stopped());
     assert!((out.predicted - a.pos).length() > 0.99);
     // Another colony's nest does nothing.
-    f.objects[0] = AntObject::Nest {
-        id: 1,
-        center: v(50.0, 51.0),
-        radius: 2.0,
-    };
+    f.objects[0] = nest(1, v(50.0, 51.0), 2.0);
     assert_eq!(plan_with(&a, &f, &p).state.label, Label::Nothing);
 }
 
@@ -512,13 +504,13 @@ fn bad_input_is_a_typed_error_naming_the_field() {
         Err(Error::Inconsistent { .. })
     ));
 
-    let mut f = Frame::new(arena());
-    f.neighbours
-        .push(neighbour(4, Label::Food, 0, v(50.0, 51.0), v(0.0, 0.0)))
-        .unwrap();
-    f.neighbours
-        .push(neighbour(4, Label::Food, 0, v(50.0, 52.0), v(0.0, 0.0)))
-        .unwrap();
+    let mut f = frame_with(
+        [
+            neighbour(4, Label::Food, 0, v(50.0, 51.0), v(0.0, 0.0)),
+            neighbour(4, Label::Food, 0, v(50.0, 52.0), v(0.0, 0.0)),
+        ],
+        [],
+    );
     assert_eq!(
         plan(&a, &f, &p, c).unwrap_err(),
         Error::Inconsistent {
@@ -531,15 +523,13 @@ fn bad_input_is_a_typed_error_naming_the_field() {
         plan(&a, &f, &p, c).is_err(),
         "the ant itself among its neighbours"
     );
-    let mut f = Frame::new(arena());
-    f.objects.push(rock(a.pos, v(1.0, 1.0))).unwrap();
-    f.objects
-        .push(AntObject::Food {
-            id: 0,
-            center: v(1.0, f32::INFINITY),
-            radius: 1.0,
-        })
-        .unwrap();
+    let f = frame_with(
+        [],
+        [
+            rock(a.pos, v(1.0, 1.0)),
+            food(0, v(1.0, f32::INFINITY), 1.0),
+        ],
+    );
     assert_eq!(
         plan(&a, &f, &p, c).unwrap_err(),
         Error::NonFinite {
@@ -640,14 +630,7 @@ fn an_ant_outside_the_arena_is_rejected() {
 fn arriving_at_food_holds_the_orientation() {
     let p = AntParams::<F>::default(); // full θ: the turn would change the heading
     let a = ant(Label::Nest);
-    let mut f = Frame::new(arena());
-    f.objects
-        .push(AntObject::Food {
-            id: 9,
-            center: v(50.0, 50.0),
-            radius: 2.0,
-        })
-        .unwrap();
+    let f = frame_with([], [food(9, v(50.0, 50.0), 2.0)]);
     for step in 0..50 {
         let out = plan(&a, &f, &p, ctx(step)).unwrap();
         if out

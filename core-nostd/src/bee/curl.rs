@@ -47,13 +47,9 @@ mod tests {
     use super::*;
     use crate::Fx;
 
+    /// The curl tests' points, from their own seed.
     fn points(n: usize, span: f32) -> impl Iterator<Item = Vec3<f32>> {
-        let mut s = 0xdead_beefu32;
-        let mut next = move || {
-            s = crate::rand::mix32(s.wrapping_add(0x9e37_79b9));
-            (s as f32 / u32::MAX as f32 * 2.0 - 1.0) * span
-        };
-        (0..n).map(move |_| Vec3::new(next(), next(), next()))
+        crate::bee::perlin::test_points(0xdead_beef, n, span)
     }
 
     /// Central differences of F_curl (f32, step 1e-3, 100 points in [−20, 20]³) give a

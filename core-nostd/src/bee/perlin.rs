@@ -209,19 +209,26 @@ pub fn perlin<S: Scalar>(p: Vec3<S>, seed: u8) -> Noise<S> {
     Lattice::new(p).noise(seed)
 }
 
+/// `n` deterministic test points in [−span, span]³ drawn from `seed` (the inputs of the noise
+/// and curl tests).
+#[cfg(test)]
+pub(crate) fn test_points(seed: u32, n: usize, span: f32) -> impl Iterator<Item = Vec3<f32>> {
+    let mut s = seed;
+    let mut next = move || {
+        s = crate::rand::mix32(s.wrapping_add(0x9e37_79b9));
+        (s as f32 / u32::MAX as f32 * 2.0 - 1.0) * span
+    };
+    (0..n).map(move |_| Vec3::new(next(), next(), next()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::Fx;
 
-    /// A small deterministic generator for test points.
+    /// The noise tests' points, from their own seed.
     fn points(n: usize, span: f32) -> impl Iterator<Item = Vec3<f32>> {
-        let mut s = 0x1234_5678u32;
-        let mut next = move || {
-            s = crate::rand::mix32(s.wrapping_add(0x9e37_79b9));
-            (s as f32 / u32::MAX as f32 * 2.0 - 1.0) * span
-        };
-        (0..n).map(move |_| Vec3::new(next(), next(), next()))
+        test_points(0x1234_5678, n, span)
     }
 
     #[test]

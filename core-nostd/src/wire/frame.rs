@@ -230,6 +230,7 @@ mod tests {
     //! and a from-scratch COBS encoder.
     use super::*;
     use crate::wire::Accumulator;
+    use crate::wire::test_util::{code_bytes, hex};
     use proptest::prelude::*;
     use serde::Deserialize;
 
@@ -251,14 +252,6 @@ mod tests {
         assert_eq!(*last, 0);
         let mut body = body.to_vec();
         decode_frame(&mut body).map(|f| (f.header, f.payload.to_vec()))
-    }
-
-    fn hex(s: &str) -> Vec<u8> {
-        let s: String = s.split_whitespace().collect();
-        (0..s.len())
-            .step_by(2)
-            .map(|i| u8::from_str_radix(&s[i..i + 2], 16).unwrap())
-            .collect()
     }
 
     #[test]
@@ -531,17 +524,6 @@ mod tests {
     }
 
     // ---- properties ----
-
-    /// Indices of the COBS code bytes of an encoded frame (without its delimiter).
-    fn code_bytes(body: &[u8]) -> Vec<usize> {
-        let mut v = Vec::new();
-        let mut i = 0;
-        while i < body.len() {
-            v.push(i);
-            i += body[i] as usize;
-        }
-        v
-    }
 
     proptest! {
         #[test]

@@ -236,7 +236,8 @@ mod tests {
         BeeDecision, BeeNeighbor, BeeParams, BeeState, BeeStepReply, BeeStepRequest, MAX_BEE_FRAME,
         MAX_BEE_REPLY_PAYLOAD, ObstacleSense, WireBeeFrame,
     };
-    use crate::wire::{Accumulator, Event, Header, encode_frame, encode_message};
+    use crate::wire::test_util::{frame_of, hex, payload_len, through_the_wire};
+    use crate::wire::{encode_frame, encode_message};
     use crate::{Fx, Rect, Vec2, Vec3};
     use crate::{Scalar, StepCtx};
     use serde::de::DeserializeOwned;
@@ -246,26 +247,6 @@ mod tests {
     }
     fn v3<S: Scalar>(x: f32, y: f32, z: f32) -> Vec3<S> {
         Vec3::new(S::from_f32(x), S::from_f32(y), S::from_f32(z))
-    }
-
-    /// Encodes `msg`, receives it through an accumulator, decodes it back.
-    fn through_the_wire<M: Message + PartialEq + core::fmt::Debug>(seq: u16, msg: &M) -> M {
-        let mut line = [0u8; MAX_FRAME];
-        let n = encode_message(seq, msg, &mut line).unwrap();
-        assert!(n <= MAX_FRAME);
-        let mut rx = Accumulator::<MAX_FRAME>::new();
-        let (ev, rest) = rx.feed(&line[..n]).unwrap();
-        assert!(rest.is_empty());
-        let Event::Frame(frame) = ev else {
-            panic!("{ev:?}")
-        };
-        assert_eq!(frame.header, Header::new(M::KIND, seq));
-        frame.message::<M>().unwrap()
-    }
-
-    fn payload_len<T: Serialize>(msg: &T) -> usize {
-        let mut buf = [0u8; 2 * MAX_PAYLOAD];
-        postcard::to_slice(msg, &mut buf).unwrap().len()
     }
 
     #[test]
@@ -384,22 +365,10 @@ mod tests {
     }
 
     #[test]
-    fn ant_messages_round_trip_f32() {
+    fn model_messages_round_trip_in_both_scalars() {
         ant_round_trip::<f32>();
-    }
-
-    #[test]
-    fn ant_messages_round_trip_fx() {
         ant_round_trip::<Fx>();
-    }
-
-    #[test]
-    fn bee_messages_round_trip_f32() {
         bee_round_trip::<f32>();
-    }
-
-    #[test]
-    fn bee_messages_round_trip_fx() {
         bee_round_trip::<Fx>();
     }
 
@@ -465,19 +434,28 @@ mod tests {
 
     // ---- pinned vectors (docs/protocol.md, section 8), computed with the Python reference ----
 
-    fn hex(s: &str) -> Vec<u8> {
-        let s: String = s.split_whitespace().collect();
-        (0..s.len())
-            .step_by(2)
-            .map(|i| u8::from_str_radix(&s[i..i + 2], 16).unwrap())
-            .collect()
+    /// Checks a pinned vector: the payload of `msg` is `payload`, its frame with sequence
+    /// number `seq` is `frame` (both in hex), and it comes back from the wire unchanged.
+    #[track_caller]
+    fn pinned<M: Message + PartialEq + core::fmt::Debug>(
+        msg: &M,
+        seq: u16,
+        payload: &str,
+        frame: &str,
+    ) {
+        let mut buf = [0u8; MAX_PAYLOAD];
+        assert_eq!(postcard::to_slice(msg, &mut buf).unwrap(), hex(payload));
+        assert_eq!(frame_of(seq, msg), hex(frame));
+        assert_eq!(through_the_wire(seq, msg), *msg);
     }
 
-    fn wire_bytes<M: Message>(seq: u16, msg: &M) -> Vec<u8> {
-        let mut line = [0u8; MAX_FRAME];
-        let n = encode_message(seq, msg, &mut line).unwrap();
-        line[..n].to_vec()
-    }
+    /// The payload of [`vector_state`] in `f32` (vector 7), which vector 9 starts with.
+    const STATE_F32: &str = "00 00 20 41 00 00 a0 41 00 00 80 3f 00 00 00 00 02 01 01
+        00 00 b0 40 00 00 40 c0 01 00 00 00 3f 00 00 00 40 01 01 00 00 c0 bf
+        00 01 01 ac 02 02";
+    /// The payload of [`vector_state`] in fixed point (vector 8), which vector 9 starts with.
+    const STATE_FX: &str = "80 80 50 80 80 a0 01 80 80 08 00 02 01 01 80 80 2c ff ff 17
+        01 80 80 04 80 80 10 01 01 ff ff 0b 00 01 01 ac 02 02";
 
     fn vector_state<S: Scalar>() -> AntResolveReply<S> {
         AntResolveReply {
@@ -505,7 +483,7 @@ mod tests {
 
     #[test]
     fn vector_6_error_reply() {
-        let wire = wire_bytes(
+        let wire = frame_of(
             7,
             &ErrorReply {
                 code: ErrorReply::NON_FINITE,
@@ -516,48 +494,25 @@ mod tests {
 
     #[test]
     fn vector_7_ant_resolve_reply_f32() {
-        let msg = vector_state::<f32>();
-        let mut payload = [0u8; 96];
-        let n = postcard::to_slice(&msg, &mut payload).unwrap().len();
-        assert_eq!(
-            payload[..n],
-            hex("00 00 20 41 00 00 a0 41 00 00 80 3f 00 00 00 00 02 01 01
-                 00 00 b0 40 00 00 40 c0 01 00 00 00 3f 00 00 00 40 01 01 00 00 c0 bf
-                 00 01 01 ac 02 02")
-        );
-        let wire = wire_bytes(0x0100, &msg);
-        assert_eq!(
-            wire,
-            hex(
-                "03 02 13 02 01 01 03 20 41 01 03 a0 41 01 03 80 3f 01 01 01 04 02 01 01
+        pinned(
+            &vector_state::<f32>(),
+            0x0100,
+            STATE_F32,
+            "03 02 13 02 01 01 03 20 41 01 03 a0 41 01 03 80 3f 01 01 01 04 02 01 01
                  01 03 b0 40 01 04 40 c0 01 01 01 02 3f 01 01 04 40 01 01 01 03 c0 bf
-                 08 01 01 ac 02 02 16 97 00"
-            )
+                 08 01 01 ac 02 02 16 97 00",
         );
-        assert_eq!(through_the_wire(0x0100, &msg), msg);
     }
 
     #[test]
     fn vector_8_ant_resolve_reply_fx() {
-        let msg = vector_state::<Fx>();
-        let mut payload = [0u8; 96];
-        let n = postcard::to_slice(&msg, &mut payload).unwrap().len();
-        assert_eq!(
-            payload[..n],
-            hex(
-                "80 80 50 80 80 a0 01 80 80 08 00 02 01 01 80 80 2c ff ff 17 01 80 80 04 80 80 10
-                 01 01 ff ff 0b 00 01 01 ac 02 02"
-            )
+        pinned(
+            &vector_state::<Fx>(),
+            0x0100,
+            STATE_FX,
+            "03 02 13 0c 01 80 80 50 80 80 a0 01 80 80 08 16 02 01 01 80 80 2c ff ff 17
+                 01 80 80 04 80 80 10 01 01 ff ff 0b 08 01 01 ac 02 02 2b 76 00",
         );
-        let wire = wire_bytes(0x0100, &msg);
-        assert_eq!(
-            wire,
-            hex(
-                "03 02 13 0c 01 80 80 50 80 80 a0 01 80 80 08 16 02 01 01 80 80 2c ff ff 17
-                 01 80 80 04 80 80 10 01 01 ff ff 0b 08 01 01 ac 02 02 2b 76 00"
-            )
-        );
-        assert_eq!(through_the_wire(0x0100, &msg), msg);
     }
 
     /// Vector 9: a resolve request around vector 7's state, with one neighbour and one
@@ -583,58 +538,41 @@ mod tests {
 
     #[test]
     fn vector_9_ant_resolve_request_f32() {
-        let msg = vector_resolve_request::<f32>();
-        let mut payload = [0u8; 128];
-        let n = postcard::to_slice(&msg, &mut payload).unwrap().len();
-        assert_eq!(
-            payload[..n],
-            hex("00 00 20 41 00 00 a0 41 00 00 80 3f 00 00 00 00 02 01 01
-                 00 00 b0 40 00 00 40 c0 01 00 00 00 3f 00 00 00 40 01 01 00 00 c0 bf
-                 00 01 01 ac 02 02
+        pinned(
+            &vector_resolve_request::<f32>(),
+            0x0102,
+            &format!(
+                "{STATE_F32}
                  00 00 20 41 00 00 a0 41
                  00 00 00 00 00 00 00 00 00 00 c8 42 00 00 c8 42
                  01 00 00 40 41 00 00 a4 41
-                 01 00 00 20 41 00 00 ac 41 00 00 00 00 00 00 80 bf")
-        );
-        let wire = wire_bytes(0x0102, &msg);
-        assert_eq!(
-            wire,
-            hex(
-                "05 02 12 02 01 01 03 20 41 01 03 a0 41 01 03 80 3f 01 01 01 04 02 01 01
+                 01 00 00 20 41 00 00 ac 41 00 00 00 00 00 00 80 bf"
+            ),
+            "05 02 12 02 01 01 03 20 41 01 03 a0 41 01 03 80 3f 01 01 01 04 02 01 01
                  01 03 b0 40 01 04 40 c0 01 01 01 02 3f 01 01 04 40 01 01 01 03 c0 bf
                  06 01 01 ac 02 02 01 03 20 41 01 03 a0 41 01 01 01 01 01 01 01 01 01 03
                  c8 42 01 04 c8 42 01 01 03 40 41 01 04 a4 41 01 01 03 20 41 01 03 ac 41
-                 01 01 01 01 01 05 80 bf fd 64 00"
-            )
+                 01 01 01 01 01 05 80 bf fd 64 00",
         );
-        assert_eq!(through_the_wire(0x0102, &msg), msg);
     }
 
     #[test]
     fn vector_9_ant_resolve_request_fx() {
-        let msg = vector_resolve_request::<Fx>();
-        let mut payload = [0u8; 128];
-        let n = postcard::to_slice(&msg, &mut payload).unwrap().len();
-        assert_eq!(
-            payload[..n],
-            hex("80 80 50 80 80 a0 01 80 80 08 00 02 01 01 80 80 2c ff ff 17
-                 01 80 80 04 80 80 10 01 01 ff ff 0b 00 01 01 ac 02 02
+        pinned(
+            &vector_resolve_request::<Fx>(),
+            0x0102,
+            &format!(
+                "{STATE_FX}
                  80 80 50 80 80 a0 01
                  00 00 80 80 a0 06 80 80 a0 06
                  01 80 80 60 80 80 a4 01
-                 01 80 80 50 80 80 ac 01 00 ff ff 07")
-        );
-        let wire = wire_bytes(0x0102, &msg);
-        assert_eq!(
-            wire,
-            hex(
-                "0f 02 12 02 01 80 80 50 80 80 a0 01 80 80 08 16 02 01 01 80 80 2c ff ff 17
+                 01 80 80 50 80 80 ac 01 00 ff ff 07"
+            ),
+            "0f 02 12 02 01 80 80 50 80 80 a0 01 80 80 08 16 02 01 01 80 80 2c ff ff 17
                  01 80 80 04 80 80 10 01 01 ff ff 0b 0d 01 01 ac 02 02 80 80 50 80 80 a0 01
                  01 19 80 80 a0 06 80 80 a0 06 01 80 80 60 80 80 a4 01 01 80 80 50 80 80 ac
-                 01 06 ff ff 07 0c d1 00"
-            )
+                 01 06 ff ff 07 0c d1 00",
         );
-        assert_eq!(through_the_wire(0x0102, &msg), msg);
     }
 
     // ---- sizes ----

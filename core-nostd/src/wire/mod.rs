@@ -89,6 +89,8 @@ mod message;
 mod serve;
 mod session;
 #[cfg(test)]
+mod test_util;
+#[cfg(test)]
 mod tests;
 
 pub use accumulator::{Accumulator, Event, Stats};
@@ -143,16 +145,62 @@ impl<T: serde::Serialize + serde::de::DeserializeOwned> Encodable for T {}
 /// swarm_core::message_kinds! { Hop = 0x90; }
 /// assert_eq!(<Hop<f32> as swarm_core::wire::Message>::KIND, 0x90);
 /// ```
+///
+/// The kinds are checked at compile time ([`check_model_kinds`]): two messages of one
+/// invocation never share a kind,
+///
+/// ```compile_fail
+/// #[derive(serde::Serialize, serde::Deserialize)]
+/// struct Up<S> { by: S }
+/// #[derive(serde::Serialize, serde::Deserialize)]
+/// struct Down<S> { by: S }
+/// swarm_core::message_kinds! { Up = 0x90; Down = 0x90; } // error: two messages share a kind
+/// ```
+///
+/// and none takes a kind of the session protocol (`0x00-0x0F`, see [`kind`]):
+///
+/// ```compile_fail
+/// #[derive(serde::Serialize, serde::Deserialize)]
+/// struct Hop<S> { height: S }
+/// swarm_core::message_kinds! { Hop = swarm_core::wire::kind::PING; } // error: a session kind
+/// ```
 #[macro_export]
 macro_rules! message_kinds {
-    ($($ty:ident = $kind:expr;)*) => {$(
-        impl<S> $crate::wire::Message for $ty<S>
-        where
-            $ty<S>: $crate::wire::Encodable,
-        {
-            const KIND: u8 = $kind;
+    ($($ty:ident = $kind:expr;)*) => {
+        $(
+            impl<S> $crate::wire::Message for $ty<S>
+            where
+                $ty<S>: $crate::wire::Encodable,
+            {
+                const KIND: u8 = $kind;
+            }
+        )*
+        const _: () = $crate::wire::check_model_kinds(&[$($kind),*]);
+    };
+}
+
+/// The compile-time check of [`message_kinds!`](crate::message_kinds) (it writes
+/// `const _: () = check_model_kinds(&[...]);`): panics, so fails the build, if two of `kinds`
+/// are equal or one is a kind of the session protocol (`0x00-0x0F`: never used, the session
+/// messages, their reserved range and [`ErrorReply`]; see [`kind`]).
+pub const fn check_model_kinds(kinds: &[u8]) {
+    let mut i = 0;
+    while i < kinds.len() {
+        // ERROR_REPLY (0x0F) ends the session protocol's range.
+        assert!(
+            kinds[i] > kind::ERROR_REPLY,
+            "message_kinds!: a kind of the session protocol (0x00-0x0F)"
+        );
+        let mut j = i + 1;
+        while j < kinds.len() {
+            assert!(
+                kinds[i] != kinds[j],
+                "message_kinds!: two messages share a kind"
+            );
+            j += 1;
         }
-    )*};
+        i += 1;
+    }
 }
 
 /// Encodes `msg` as a complete frame (kind `M::KIND`, sequence number `seq`) into `out` and

@@ -6,6 +6,7 @@ use proptest::prelude::*;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 
+use super::test_util::{code_bytes, frame_of, hex};
 use super::*;
 use crate::ant::{
     self, AntNeighbor, AntObject, AntParams, AntPlan, AntState, Label, MotionState, StopReason,
@@ -16,21 +17,6 @@ use crate::rand::rand;
 use crate::{Error, Fx, Rect, Scalar, StepCtx, Vec2, Vec3};
 
 // ---- helpers ----
-
-fn hex(s: &str) -> Vec<u8> {
-    let s: String = s.split_whitespace().collect();
-    (0..s.len())
-        .step_by(2)
-        .map(|i| u8::from_str_radix(&s[i..i + 2], 16).unwrap())
-        .collect()
-}
-
-fn frame_of<M: Message>(seq: u16, msg: &M) -> Vec<u8> {
-    let mut out = vec![0u8; 2 * MAX_FRAME];
-    let n = encode_message(seq, msg, &mut out).unwrap();
-    out.truncate(n);
-    out
-}
 
 /// Every reply frame the device sends for `input`, in order.
 fn replies<C: Controller, const RX: usize, const TX: usize>(
@@ -44,6 +30,34 @@ fn replies<C: Controller, const RX: usize, const TX: usize>(
     })
     .unwrap();
     out
+}
+
+/// The refusal in `r`, as its variant and the field it names (for the errors that name one).
+fn refusal<T>(r: Result<T>) -> Option<(&'static str, &'static str)> {
+    match r {
+        Err(Error::NonFinite { field, .. }) => Some(("NonFinite", field)),
+        Err(Error::OutOfRange { field, .. }) => Some(("OutOfRange", field)),
+        Err(Error::Inconsistent { field, .. }) => Some(("Inconsistent", field)),
+        _ => None,
+    }
+}
+
+/// Arbitrary numbers without end: `words` over and over, each read by `from_bits`.
+fn arbitrary<'a, S>(words: &'a [u32], from_bits: impl Fn(u32) -> S + 'a) -> impl FnMut() -> S + 'a {
+    let mut w = words.iter().copied().cycle();
+    move || from_bits(w.next().unwrap_or(0))
+}
+
+/// The one reply frame the device sends for `req` (sequence number `seq`).
+#[track_caller]
+fn reply_to<C: Controller, const RX: usize, const TX: usize, M: Message>(
+    dev: &mut DeviceEndpoint<C, RX, TX>,
+    seq: u16,
+    req: &M,
+) -> Vec<u8> {
+    let mut r = replies(dev, &frame_of(seq, req));
+    assert_eq!(r.len(), 1, "one reply");
+    r.remove(0)
 }
 
 /// Decodes one reply frame (with its delimiter) as `M`.
@@ -452,36 +466,28 @@ fn configure_with_other_params_is_refused() {
 
 #[test]
 fn identity_says_what_the_device_runs() {
+    use crate::{MathBackend, ScalarKind};
     let ant = ant_device::<Fx>().identity();
-    assert_eq!(ant.controller, ControllerKind::ANT);
-    assert_eq!(ant.scalar, crate::ScalarKind::I16F16);
-    assert_eq!(ant.math, crate::MathBackend::Integer);
-    assert_eq!(
-        ant.capacities,
-        Capacities {
-            neighbours: 8,
-            objects: 4,
-            targets: 0
-        }
+    let bee = bee_device::<f32>().identity();
+    // What each runs (controller, scalar, math backend) and its capacities (neighbours,
+    // objects, targets).
+    let ant_runs = (
+        ControllerKind::ANT,
+        ScalarKind::I16F16,
+        MathBackend::Integer,
     );
+    let bee_runs = (ControllerKind::BEE, ScalarKind::F32, MathBackend::F32);
+    for (id, runs, capacities) in [(&ant, ant_runs, (8, 4, 0)), (&bee, bee_runs, (16, 0, 16))] {
+        let c = id.capacities;
+        assert_eq!((id.controller, id.scalar, id.math), runs);
+        assert_eq!((c.neighbours, c.objects, c.targets), capacities);
+    }
     assert_eq!(usize::from(ant.max_frame), MAX_ANT_FRAME + 1);
     // The buffer sizes of docs/protocol.md, section 10.7.
     assert_eq!((MAX_ANT_FRAME, MAX_BEE_FRAME), (450, 941));
     assert_eq!((MAX_ANT_REPLY_FRAME, MAX_BEE_REPLY_FRAME), (82, 130));
     assert_eq!(usize::from(bee_device::<Fx>().identity().max_frame), 942);
     assert_eq!(ant.name, "ant-test");
-    let bee = bee_device::<f32>().identity();
-    assert_eq!(bee.controller, ControllerKind::BEE);
-    assert_eq!(bee.scalar, crate::ScalarKind::F32);
-    assert_eq!(bee.math, crate::MathBackend::F32);
-    assert_eq!(
-        bee.capacities,
-        Capacities {
-            neighbours: 16,
-            objects: 0,
-            targets: 16
-        }
-    );
     assert_eq!(
         bee.params_hash,
         params_hash(&BeeParams::<f32>::default()).unwrap()
@@ -727,6 +733,25 @@ fn reset_goes_back_to_power_up() {
     assert_eq!(dev.stats(), DeviceStats::default());
 }
 
+// ---- the kinds message_kinds! accepts ----
+
+#[test]
+fn model_kinds_are_distinct_and_outside_the_session_protocol() {
+    check_model_kinds(&[]);
+    check_model_kinds(&[kind::ANT_PLAN_REQUEST, kind::ANT_PLAN_REPLY, 0x80, 0xff]);
+    for (kinds, says) in [
+        (&[0x90, 0x91, 0x90][..], "share a kind"),
+        (&[0x90, kind::ERROR_REPLY][..], "session protocol"),
+        (&[0x00][..], "session protocol"),
+    ] {
+        let err = std::panic::catch_unwind(|| check_model_kinds(kinds)).unwrap_err();
+        let msg = (err.downcast_ref::<&str>().map(|m| m.to_string()))
+            .or_else(|| err.downcast_ref::<String>().cloned())
+            .unwrap_or_default();
+        assert!(msg.contains(says), "{kinds:?}: {msg}");
+    }
+}
+
 // ---- the endpoint decides exactly what the controllers decide ----
 
 fn ant_agrees<S: Scalar + Serialize + DeserializeOwned>(seed: u32, n: usize) {
@@ -742,10 +767,8 @@ fn ant_agrees<S: Scalar + Serialize + DeserializeOwned>(seed: u32, n: usize) {
             req.state.heading = Vec2::new(S::ZERO, S::ZERO); // refused: not a unit heading
         }
         let direct = ant::plan(&req.state, &req.frame, &params, req.ctx);
-        let r = replies(&mut dev, &frame_of(seq, &req));
-        assert_eq!(r.len(), 1);
         assert_eq!(
-            r[0],
+            reply_to(&mut dev, seq, &req),
             expected(seq, direct.map(|plan| AntPlanReply { plan })),
             "plan {i}"
         );
@@ -776,12 +799,8 @@ fn ant_agrees<S: Scalar + Serialize + DeserializeOwned>(seed: u32, n: usize) {
 }
 
 #[test]
-fn ant_endpoint_equals_direct_calls_f32() {
+fn ant_endpoint_equals_direct_calls_in_both_scalars() {
     ant_agrees::<f32>(11, 400);
-}
-
-#[test]
-fn ant_endpoint_equals_direct_calls_fx() {
     ant_agrees::<Fx>(12, 400);
 }
 
@@ -799,10 +818,8 @@ fn bee_agrees<S: Scalar + Serialize + DeserializeOwned>(seed: u32, n: usize) {
         }
         let direct = bee::step(&req.state, &req.frame, &params);
         served += usize::from(direct.is_ok());
-        let r = replies(&mut dev, &frame_of(seq, &req));
-        assert_eq!(r.len(), 1);
         assert_eq!(
-            r[0],
+            reply_to(&mut dev, seq, &req),
             expected(
                 seq,
                 direct.map(|(decision, state)| BeeStepReply { decision, state })
@@ -814,12 +831,8 @@ fn bee_agrees<S: Scalar + Serialize + DeserializeOwned>(seed: u32, n: usize) {
 }
 
 #[test]
-fn bee_endpoint_equals_direct_calls_f32() {
+fn bee_endpoint_equals_direct_calls_in_both_scalars() {
     bee_agrees::<f32>(21, 200);
-}
-
-#[test]
-fn bee_endpoint_equals_direct_calls_fx() {
     bee_agrees::<Fx>(22, 200);
 }
 
@@ -915,17 +928,6 @@ fn piece() -> impl Strategy<Value = Piece> {
             .prop_map(|(a, b, c)| Piece::Corrupt(a, b, c)),
         (any::<u32>(), any::<prop::sample::Index>()).prop_map(|(a, b)| Piece::Truncated(a, b)),
     ]
-}
-
-/// COBS code-byte positions of an encoded frame body.
-fn code_bytes(body: &[u8]) -> Vec<usize> {
-    let mut v = Vec::new();
-    let mut i = 0;
-    while i < body.len() {
-        v.push(i);
-        i += body[i] as usize;
-    }
-    v
 }
 
 /// Builds the line; returns it with the frames that are intact, in order.
@@ -1042,10 +1044,8 @@ proptest! {
         seed: u32,
     ) {
         // A valid request whose numbers are then replaced by arbitrary bits.
-        let mut g = Gen::new(seed);
-        let mut req = ant_plan_request::<Fx>(&mut g);
-        let mut w = words.iter().copied().cycle();
-        let mut next = || Fx::from_bits(w.next().unwrap_or(0) as i32);
+        let mut req = ant_plan_request::<Fx>(&mut Gen::new(seed));
+        let mut next = arbitrary(&words, |bits| Fx::from_bits(bits as i32));
         req.state.pos = Vec2::new(next(), next());
         req.state.heading = Vec2::new(next(), next());
         for n in req.frame.neighbours.iter_mut() {
@@ -1054,10 +1054,7 @@ proptest! {
         req.frame.bounds = Rect::new(Vec2::new(next(), next()), Vec2::new(next(), next()));
         let mut dev = ant_device::<Fx>();
         open(&mut dev, 1);
-        let r = replies(&mut dev, &frame_of(1, &req));
-        prop_assert_eq!(r.len(), 1);
-        let direct = req.run(&AntParams::default());
-        prop_assert_eq!(&r[0], &expected(1, direct));
+        prop_assert_eq!(reply_to(&mut dev, 1, &req), expected(1, req.run(&AntParams::default())));
     }
 
     #[test]
@@ -1065,10 +1062,8 @@ proptest! {
         words in proptest::collection::vec(any::<u32>(), 40),
         seed: u32,
     ) {
-        let mut g = Gen::new(seed);
-        let mut req = bee_request::<f32>(&mut g);
-        let mut w = words.iter().copied().cycle();
-        let mut next = || f32::from_bits(w.next().unwrap_or(0));
+        let mut req = bee_request::<f32>(&mut Gen::new(seed));
+        let mut next = arbitrary(&words, f32::from_bits);
         req.state.pos = Vec3::new(next(), next(), next());
         req.state.vel = Vec3::new(next(), next(), next());
         req.frame.t = next();
@@ -1078,10 +1073,7 @@ proptest! {
         }
         let mut dev = bee_device::<f32>();
         open(&mut dev, 1);
-        let r = replies(&mut dev, &frame_of(1, &req));
-        prop_assert_eq!(r.len(), 1);
-        let direct = req.run(&BeeParams::default());
-        prop_assert_eq!(&r[0], &expected(1, direct));
+        prop_assert_eq!(reply_to(&mut dev, 1, &req), expected(1, req.run(&BeeParams::default())));
     }
 }
 
@@ -1666,48 +1658,31 @@ mod spec {
         let plan = |s: &AntState<f32>, f: &WirePlanFrame<f32>| ant::plan(s, f, &p, ctx);
         let frame = WirePlanFrame::new(bounds);
         assert!(plan(&state, &frame).is_ok());
-        // heading: x² + y² strictly inside (0.9801, 1.0201).
         let with_heading = |x: f32| AntState {
             heading: Vec2::new(x, 0.0),
             ..state
         };
-        assert!(with_heading(0.995).validate().is_ok());
-        assert!(matches!(
-            with_heading(0.98).validate(),
-            Err(Error::OutOfRange {
-                field: "state.heading",
-                ..
-            })
-        ));
-        assert!(matches!(
-            with_heading(f32::NAN).validate(),
-            Err(Error::NonFinite {
-                field: "state.heading",
-                ..
-            })
-        ));
-        // Coordinates: ±16384 included.
         let at = |x: f32| AntState {
             pos: Vec2::new(x, 5.0),
             ..state
         };
-        assert!(at(16384.0).validate().is_ok());
-        assert!(matches!(
-            at(16385.0).validate(),
-            Err(Error::OutOfRange {
-                field: "state.pos",
-                ..
-            })
-        ));
+        for (s, refused) in [
+            // heading: x² + y² strictly inside (0.9801, 1.0201).
+            (with_heading(0.995), None),
+            (with_heading(0.98), Some(("OutOfRange", "state.heading"))),
+            (with_heading(f32::NAN), Some(("NonFinite", "state.heading"))),
+            // Coordinates: ±16384 included.
+            (at(16384.0), None),
+            (at(16385.0), Some(("OutOfRange", "state.pos"))),
+        ] {
+            assert_eq!(refusal(s.validate()), refused, "{s:?}");
+        }
         // pos inside bounds: checked by plan (after the frame), not by resolve.
         let outside = at(-1.0);
-        assert!(matches!(
-            plan(&outside, &frame),
-            Err(Error::OutOfRange {
-                field: "state.pos",
-                ..
-            })
-        ));
+        assert_eq!(
+            refusal(plan(&outside, &frame)),
+            Some(("OutOfRange", "state.pos"))
+        );
         let resolve_frame = WireResolveFrame::new(bounds);
         let out_plan = AntPlan {
             state: outside,
@@ -1726,13 +1701,10 @@ mod spec {
                 arrival: Vec2::from_f32(5.5, 5.0),
             })
             .unwrap();
-        assert!(matches!(
-            plan(&state, &f),
-            Err(Error::Inconsistent {
-                field: "neighbours.id",
-                ..
-            })
-        ));
+        assert_eq!(
+            refusal(plan(&state, &f)),
+            Some(("Inconsistent", "neighbours.id"))
+        );
         // Disc radius: from the scalar's smallest step.
         let disc = |radius: f32| {
             let mut f = frame.clone();
@@ -1747,13 +1719,10 @@ mod spec {
             plan(&state, &f)
         };
         assert!(disc(f32::EPSILON).is_ok());
-        assert!(matches!(
-            disc(f32::EPSILON / 2.0),
-            Err(Error::OutOfRange {
-                field: "objects.radius",
-                ..
-            })
-        ));
+        assert_eq!(
+            refusal(disc(f32::EPSILON / 2.0)),
+            Some(("OutOfRange", "objects.radius"))
+        );
         // Stop rules.
         let stopped = |motion, stop| AntState {
             motion,
@@ -1772,27 +1741,20 @@ mod spec {
                 .validate()
                 .is_ok()
         );
-        assert!(matches!(
-            stopped(MotionState::Stop, timer(StopReason::Casual, 0, 0)).validate(),
-            Err(Error::OutOfRange {
-                field: "state.stop.remaining",
-                ..
-            })
-        ));
-        assert!(matches!(
-            stopped(MotionState::BasicMovement, timer(StopReason::Casual, 1, 0)).validate(),
-            Err(Error::Inconsistent {
-                field: "state.stop",
-                ..
-            })
-        ));
-        assert!(matches!(
-            stopped(MotionState::Stop, timer(StopReason::DroppingFood, 1, 0)).validate(),
-            Err(Error::Inconsistent {
-                field: "state.stop.reason",
-                ..
-            })
-        ));
+        assert_eq!(
+            refusal(stopped(MotionState::Stop, timer(StopReason::Casual, 0, 0)).validate()),
+            Some(("OutOfRange", "state.stop.remaining"))
+        );
+        assert_eq!(
+            refusal(
+                stopped(MotionState::BasicMovement, timer(StopReason::Casual, 1, 0)).validate()
+            ),
+            Some(("Inconsistent", "state.stop"))
+        );
+        assert_eq!(
+            refusal(stopped(MotionState::Stop, timer(StopReason::DroppingFood, 1, 0)).validate()),
+            Some(("Inconsistent", "state.stop.reason"))
+        );
     }
 
     /// Section 7 and 10.8: how a bee step reads `forward` (and ignores density, u0, roll,
@@ -1856,12 +1818,9 @@ mod spec {
             density: -1.0,
             ..moving
         };
-        assert!(matches!(
-            bad.validate(),
-            Err(Error::OutOfRange {
-                field: "state.density",
-                ..
-            })
-        ));
+        assert_eq!(
+            refusal(bad.validate()),
+            Some(("OutOfRange", "state.density"))
+        );
     }
 }

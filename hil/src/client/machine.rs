@@ -447,12 +447,11 @@ impl Machine {
             };
             let seq = self.fresh_seq();
             let mut frame = vec![0; max_frame_len(job.payload.len())];
-            let n = wire::encode_frame(job.kind, seq, &Raw(&job.payload), &mut frame).map_err(
-                |source| HilError::Encode {
+            let n = wire::encode_frame(job.kind, seq, &RawPayload(&job.payload), &mut frame)
+                .map_err(|source| HilError::Encode {
                     message: kind_name(job.kind),
                     source,
-                },
-            )?;
+                })?;
             frame.truncate(n);
             let order = self.take_order();
             self.send(frame.clone());
@@ -552,10 +551,12 @@ impl Machine {
 }
 
 /// A payload already in postcard bytes, written through unchanged (postcard writes a tuple of
-/// `u8` byte for byte).
-struct Raw<'a>(&'a [u8]);
+/// `u8` byte for byte): what [`wire::encode_frame`] takes to frame a payload it already holds
+/// encoded, as the machine does when it sends a request again.
+#[derive(Clone, Copy, Debug)]
+pub struct RawPayload<'a>(pub &'a [u8]);
 
-impl serde::Serialize for Raw<'_> {
+impl serde::Serialize for RawPayload<'_> {
     fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
         use serde::ser::SerializeTuple;
         let mut t = s.serialize_tuple(self.0.len())?;

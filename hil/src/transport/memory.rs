@@ -65,19 +65,16 @@ impl Transport for MemoryTransport {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::transport::recv_exactly;
 
     #[test]
     fn bytes_cross_in_order_and_a_quiet_link_times_out() {
         let (mut a, mut b) = memory_pair();
         a.send(b"hello ").unwrap();
         a.send(b"world").unwrap();
-        let mut buf = [0u8; 4];
-        let mut got = Vec::new();
-        while got.len() < 11 {
-            let n = b.recv(&mut buf, Duration::from_millis(100)).unwrap();
-            got.extend_from_slice(&buf[..n]);
-        }
+        let got = recv_exactly(&mut b, 11, Duration::from_millis(100));
         assert_eq!(got, b"hello world");
+        let mut buf = [0u8; 4];
         assert_eq!(b.recv(&mut buf, Duration::from_millis(5)).unwrap(), 0);
         drop(a);
         assert!(matches!(

@@ -6,7 +6,7 @@ use std::time::Duration;
 
 use serialport::SerialPort;
 
-use super::Transport;
+use super::{Transport, received};
 use crate::{HilError, Result};
 
 /// An open serial port.
@@ -88,12 +88,7 @@ impl Transport for SerialTransport {
                 })?;
             self.timeout = t;
         }
-        match self.port.read(buf) {
-            Ok(n) => Ok(n),
-            Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock) => Ok(0),
-            Err(e) if e.kind() == ErrorKind::Interrupted => Ok(0),
-            Err(e) => Err(HilError::io(&self.path, "receiving", e)),
-        }
+        received(&self.path, self.port.read(buf))
     }
 
     fn name(&self) -> String {
@@ -124,6 +119,7 @@ pub fn pty_pair(baud: u32) -> Result<(SerialTransport, SerialTransport)> {
 #[cfg(all(test, unix))]
 mod tests {
     use super::*;
+    use crate::transport::recv_exactly;
 
     #[test]
     fn a_pty_pair_carries_raw_bytes_both_ways() {
@@ -131,21 +127,9 @@ mod tests {
         // Every byte value, the frame delimiter and terminal control characters included.
         let all: Vec<u8> = (0..=255u8).collect();
         host.send(&all).unwrap();
-        let mut got = Vec::new();
-        let mut buf = [0u8; 64];
-        while got.len() < all.len() {
-            let n = device.recv(&mut buf, Duration::from_secs(2)).unwrap();
-            assert!(n > 0, "timed out after {} bytes", got.len());
-            got.extend_from_slice(&buf[..n]);
-        }
-        assert_eq!(got, all);
+        let timeout = Duration::from_secs(2);
+        assert_eq!(recv_exactly(&mut device, all.len(), timeout), all);
         device.send(&all).unwrap();
-        got.clear();
-        while got.len() < all.len() {
-            let n = host.recv(&mut buf, Duration::from_secs(2)).unwrap();
-            assert!(n > 0, "timed out after {} bytes", got.len());
-            got.extend_from_slice(&buf[..n]);
-        }
-        assert_eq!(got, all);
+        assert_eq!(recv_exactly(&mut host, all.len(), timeout), all);
     }
 }

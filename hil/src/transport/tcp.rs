@@ -1,10 +1,10 @@
 //! TCP: QEMU's `-serial tcp:HOST:PORT,server` chardev, or any socket bridge to a device.
 
-use std::io::{ErrorKind, Read, Write};
+use std::io::{Read, Write};
 use std::net::{TcpStream, ToSocketAddrs};
 use std::time::Duration;
 
-use super::Transport;
+use super::{Transport, received};
 use crate::{HilError, Result};
 
 /// A TCP connection to a device.
@@ -59,10 +59,7 @@ impl Transport for TcpTransport {
             .map_err(|e| HilError::io(&self.addr, "setting up", e))?;
         match self.stream.read(buf) {
             Ok(0) if !buf.is_empty() => Err(HilError::Closed(self.addr.clone())),
-            Ok(n) => Ok(n),
-            Err(e) if matches!(e.kind(), ErrorKind::WouldBlock | ErrorKind::TimedOut) => Ok(0),
-            Err(e) if e.kind() == ErrorKind::Interrupted => Ok(0),
-            Err(e) => Err(HilError::io(&self.addr, "receiving", e)),
+            read => received(&self.addr, read),
         }
     }
 
@@ -74,6 +71,7 @@ impl Transport for TcpTransport {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::transport::recv_exactly;
     use std::net::TcpListener;
 
     #[test]
@@ -89,15 +87,10 @@ mod tests {
             assert_eq!(&buf[..n], b"pong");
         });
         let mut c = TcpTransport::connect(&addr, Duration::from_secs(5)).unwrap();
-        let mut buf = [0u8; 8];
-        let mut got = Vec::new();
-        while got.len() < 4 {
-            let n = c.recv(&mut buf, Duration::from_secs(5)).unwrap();
-            got.extend_from_slice(&buf[..n]);
-        }
-        assert_eq!(got, b"ping");
+        assert_eq!(recv_exactly(&mut c, 4, Duration::from_secs(5)), b"ping");
         c.send(b"pong").unwrap();
         server.join().unwrap();
+        let mut buf = [0u8; 8];
         assert!(matches!(
             c.recv(&mut buf, Duration::from_millis(200)),
             Err(HilError::Closed(_)) | Ok(0)

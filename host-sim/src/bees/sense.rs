@@ -305,7 +305,9 @@ pub fn bee_frame<S: SimScalar>(
     group_goal: Option<[f32; 3]>,
     t: S,
 ) -> BeeSimFrame<S> {
-    frame_with(w, i, &neighbours(w, i), group_goal, t)
+    let mut frame = BeeFrame::new(t);
+    fill_with(w, i, &neighbours(w, i), group_goal, t, &mut frame);
+    frame
 }
 
 /// [`bee_frame`] with the neighbours found through `cache` (the same frame, faster).
@@ -333,18 +335,6 @@ pub(crate) fn fill_frame<S: SimScalar>(
 ) {
     let near = cache.neighbours(w, i);
     fill_with(w, i, &near, group_goal, t, frame);
-}
-
-fn frame_with<S: SimScalar>(
-    w: &BeeWorld,
-    i: usize,
-    near: &Selected<N>,
-    group_goal: Option<[f32; 3]>,
-    t: S,
-) -> BeeSimFrame<S> {
-    let mut frame = BeeFrame::new(t);
-    fill_with(w, i, near, group_goal, t, &mut frame);
-    frame
 }
 
 fn fill_with<S: SimScalar>(
@@ -571,14 +561,7 @@ mod tests {
                 false,
             ),
         ];
-        w.targets = vec![BeeTarget {
-            id: 3,
-            name: "nest".into(),
-            center: [10.0, 5.0, 14.0],
-            radius: 1.5,
-            particles: 100,
-            active: true,
-        }];
+        w.targets = vec![BeeTarget::new(3, "nest", [10.0, 5.0, 14.0], 1.5, 100)];
         w.size_grids(1);
         w.index_positions();
         w.index_targets();

@@ -364,14 +364,7 @@ mod tests {
                 true,
             ),
         ];
-        w.targets = vec![BeeTarget {
-            id: 3,
-            name: "nest".into(),
-            center: [28.0, 8.0, 20.0],
-            radius: 2.0,
-            particles: 150,
-            active: true,
-        }];
+        w.targets = vec![BeeTarget::new(3, "nest", [28.0, 8.0, 20.0], 2.0, 150)];
         let spawn = |i: usize| {
             let r = |k| swarm_core::rand::rand(3, i as u32, u32::MAX, k) as f32 / 4.3e9;
             [4.0 + 12.0 * r(0), 3.0 + 12.0 * r(1), 8.0 + 24.0 * r(2)]

@@ -96,14 +96,7 @@ where
         params.h + 2.0 * params.radius,
         2.0 * params.d0,
     );
-    w.targets = vec![BeeTarget {
-        id: 0,
-        name: "nest".into(),
-        center: [30.0, 15.0, 30.0],
-        radius: 2.5,
-        particles: 300,
-        active: true,
-    }];
+    w.targets = vec![BeeTarget::new(0, "nest", [30.0, 15.0, 30.0], 2.5, 300)];
     let bee = BeeState::new(
         Vec3::from_f32(pos[0], pos[1], pos[2]),
         Vec3::from_f32(vel[0], vel[1], vel[2]),

@@ -389,6 +389,25 @@ pub struct BeeTarget {
 }
 
 impl BeeTarget {
+    /// A target present from the start: `particles` virtual particles on the sphere of
+    /// `radius` around `center`.
+    pub fn new(
+        id: u16,
+        name: impl Into<String>,
+        center: [f32; 3],
+        radius: f32,
+        particles: u32,
+    ) -> Self {
+        BeeTarget {
+            id,
+            name: name.into(),
+            center,
+            radius,
+            particles,
+            active: true,
+        }
+    }
+
     /// Its virtual particles (the scenario's Fibonacci sphere).
     pub fn sample(&self) -> Vec<[f32; 3]> {
         ObjectKind::Target {

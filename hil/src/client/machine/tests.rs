@@ -65,6 +65,12 @@ fn deliver() -> Script {
     Box::new(|_, _, _| Fate::Deliver)
 }
 
+/// A script that gives the frames `picked(kind, seq, nth transmission)` chooses `fate` and
+/// delivers the others.
+fn only(picked: impl Fn(u8, u16, u32) -> bool + 'static, fate: Fate) -> Script {
+    Box::new(move |k, s, n| if picked(k, s, n) { fate } else { Fate::Deliver })
+}
+
 impl World {
     fn new(opts: ClientOptions, one_way: Duration, service: Duration) -> Self {
         World {
@@ -229,6 +235,14 @@ impl World {
         }
     }
 
+    /// Submits `n` requests, runs until the machine is idle (at most `limit`) and checks that
+    /// every one got its own answer.
+    fn serve_all(&mut self, n: u32, limit: Duration) {
+        let jobs = self.submit(n);
+        self.run(limit).unwrap();
+        self.assert_all_right(&jobs);
+    }
+
     /// Every job answered with the `Configured` of its own request.
     fn assert_all_right(&self, jobs: &[JobId]) {
         assert_eq!(self.answers.len(), jobs.len());
@@ -264,15 +278,18 @@ fn push(q: &mut Vec<(Duration, Vec<u8>)>, at: Duration, mut frame: Vec<u8>, fate
 
 /// A pseudo-terminal: ~20 µs each way, ~10 µs of device time.
 fn pty() -> World {
-    World::new(ClientOptions::default(), us(20), us(10))
+    pty_with(ClientOptions::default())
+}
+
+/// A pseudo-terminal ([`pty`]) with the client options `opts`.
+fn pty_with(opts: ClientOptions) -> World {
+    World::new(opts, us(20), us(10))
 }
 
 #[test]
 fn a_clean_line_needs_no_retry_and_one_probe_per_batch() {
     let mut w = pty();
-    let jobs = w.submit(100);
-    w.run(ms(100)).unwrap();
-    w.assert_all_right(&jobs);
+    w.serve_all(100, ms(100));
     let r = w.m.report();
     assert_eq!((r.retries, r.timeouts, r.stale_replies), (0, 0, 0), "{r:?}");
     assert_eq!(r.probes, 1, "the tail probe");
@@ -283,16 +300,11 @@ fn a_clean_line_needs_no_retry_and_one_probe_per_batch() {
 #[test]
 fn a_lost_request_is_sent_again_when_the_next_answer_overtakes_it() {
     let mut w = pty();
-    w.up = Box::new(|k, s, n| {
-        if k == kind::CONFIGURE && s == 3 && n == 0 {
-            Fate::Drop
-        } else {
-            Fate::Deliver
-        }
-    });
-    let jobs = w.submit(20);
-    w.run(ms(100)).unwrap();
-    w.assert_all_right(&jobs);
+    w.up = only(
+        |k, s, n| k == kind::CONFIGURE && s == 3 && n == 0,
+        Fate::Drop,
+    );
+    w.serve_all(20, ms(100));
     let r = w.m.report();
     assert_eq!((r.retries, r.timeouts), (1, 0), "{r:?}");
     let resent = w.sends[&3][1] - w.sends[&3][0];
@@ -303,16 +315,11 @@ fn a_lost_request_is_sent_again_when_the_next_answer_overtakes_it() {
 fn a_lost_reply_is_asked_again_and_the_last_of_a_batch_is_caught_by_the_probe() {
     let mut w = pty();
     // Seq 3's reply and the last request's reply, lost once each.
-    w.down = Box::new(|k, s, n| {
-        if k == kind::CONFIGURED && (s == 3 || s == 10) && n == 0 {
-            Fate::Drop
-        } else {
-            Fate::Deliver
-        }
-    });
-    let jobs = w.submit(10);
-    w.run(ms(100)).unwrap();
-    w.assert_all_right(&jobs);
+    w.down = only(
+        |k, s, n| k == kind::CONFIGURED && (s == 3 || s == 10) && n == 0,
+        Fate::Drop,
+    );
+    w.serve_all(10, ms(100));
     let r = w.m.report();
     assert_eq!((r.retries, r.timeouts), (2, 0), "{r:?}");
     assert!(r.probes >= 2, "{r:?}");
@@ -323,10 +330,8 @@ fn a_lost_reply_is_asked_again_and_the_last_of_a_batch_is_caught_by_the_probe() 
 fn duplicated_replies_are_discarded() {
     let mut w = pty();
     w.down = Box::new(|_, _, _| Fate::Duplicate);
-    let jobs = w.submit(30);
-    w.run(ms(100)).unwrap();
+    w.serve_all(30, ms(100));
     w.flush();
-    w.assert_all_right(&jobs);
     let r = w.m.report();
     assert_eq!(r.retries, 0, "{r:?}");
     assert_eq!(
@@ -340,36 +345,24 @@ fn a_reordered_reply_still_answers_its_own_request() {
     let mut w = pty();
     // Seq 3's reply comes 1 ms late, after 4's: 3 is sent again, the retry's reply answers it
     // (Karn: no round trip sampled) and the late one is stale.
-    w.down = Box::new(|k, s, n| {
-        if k == kind::CONFIGURED && s == 3 && n == 0 {
-            Fate::Delay(ms(1))
-        } else {
-            Fate::Deliver
-        }
-    });
-    let jobs = w.submit(10);
-    w.run(ms(100)).unwrap();
+    w.down = only(
+        |k, s, n| k == kind::CONFIGURED && s == 3 && n == 0,
+        Fate::Delay(ms(1)),
+    );
+    w.serve_all(10, ms(100));
     w.flush();
-    w.assert_all_right(&jobs);
     let r = w.m.report();
     assert_eq!((r.retries, r.stale_replies), (1, 1), "{r:?}");
 }
 
 #[test]
 fn timeouts_back_off_exponentially_until_the_line_answers_again() {
-    let opts = ClientOptions {
+    let mut w = pty_with(ClientOptions {
         dead_after: ms(20_000),
         ..ClientOptions::default()
-    };
-    let mut w = World::new(opts, us(20), us(10));
-    // One request; nothing comes back for its first five sends, probes included.
-    w.down = Box::new(|k, _, _| {
-        if k == kind::CONFIGURED {
-            Fate::Deliver
-        } else {
-            Fate::Drop
-        }
     });
+    // One request; nothing comes back for its first five sends, probes included.
+    w.down = only(|k, _, _| k != kind::CONFIGURED, Fate::Drop);
     w.up = {
         let mut n_up = 0;
         Box::new(move |k, _, _| {
@@ -380,9 +373,7 @@ fn timeouts_back_off_exponentially_until_the_line_answers_again() {
             if n_up <= 5 { Fate::Drop } else { Fate::Deliver }
         })
     };
-    let jobs = w.submit(1);
-    w.run(ms(10_000)).unwrap();
-    w.assert_all_right(&jobs);
+    w.serve_all(1, ms(10_000));
     let sends = &w.sends[&1];
     assert_eq!(sends.len(), 6);
     let gaps: Vec<Duration> = sends.windows(2).map(|p| p[1] - p[0]).collect();
@@ -401,11 +392,10 @@ fn timeouts_back_off_exponentially_until_the_line_answers_again() {
 
 #[test]
 fn a_dead_link_is_declared_after_dead_after_and_the_machine_recovers() {
-    let opts = ClientOptions {
+    let mut w = pty_with(ClientOptions {
         dead_after: ms(3000),
         ..ClientOptions::default()
-    };
-    let mut w = World::new(opts, us(20), us(10));
+    });
     w.down = Box::new(|_, _, _| Fate::Drop);
     w.submit(16);
     let err = w.run(ms(10_000)).unwrap_err();
@@ -438,9 +428,7 @@ fn the_window_bounds_what_is_in_flight() {
             ..ClientOptions::default()
         };
         let mut w = World::new(opts, us(50), us(10));
-        let jobs = w.submit(100);
-        w.run(ms(1000)).unwrap();
-        w.assert_all_right(&jobs);
+        w.serve_all(100, ms(1000));
         assert_eq!(w.max_flight, window, "window {window}");
         assert_eq!(w.m.report().retries, 0);
     }
@@ -453,9 +441,7 @@ fn the_window_bounds_what_is_in_flight() {
         us(50),
         us(10),
     );
-    let jobs = w.submit(5);
-    w.run(ms(1000)).unwrap();
-    w.assert_all_right(&jobs);
+    w.serve_all(5, ms(1000));
     assert_eq!(w.max_flight, 1);
 }
 
@@ -465,9 +451,7 @@ fn a_slow_device_with_a_94_ms_round_trip_is_never_asked_twice() {
     // 8 × 94 ms for its answer. Timers start at the previous answer and the timeout follows
     // the measured round trip: no retry at all.
     let mut w = World::new(ClientOptions::default(), ms(2), ms(90));
-    let jobs = w.submit(200);
-    w.run(ms(60_000)).unwrap();
-    w.assert_all_right(&jobs);
+    w.serve_all(200, ms(60_000));
     let r = w.m.report();
     assert_eq!((r.retries, r.timeouts), (0, 0), "{r:?}");
     assert!((85_000..100_000).contains(&r.srtt_us), "{r:?}");
@@ -497,28 +481,19 @@ fn a_crc_valid_answer_that_does_not_decode_is_asked_again() {
             out[..len].to_vec()
         }
     }));
-    let jobs = w.submit(6);
-    w.run(ms(100)).unwrap();
-    w.assert_all_right(&jobs);
+    w.serve_all(6, ms(100));
     let r = w.m.report();
     assert_eq!((r.undecodable, r.retries), (2, 2), "{r:?}");
 }
 
 #[test]
 fn a_request_that_never_gets_through_is_given_up() {
-    let opts = ClientOptions {
+    let mut w = pty_with(ClientOptions {
         retries: 50,
         ..ClientOptions::default()
-    };
-    let mut w = World::new(opts, us(20), us(10));
-    // Seq 2 never reaches the device; everything else does (the probes show the line lives).
-    w.up = Box::new(|k, s, _| {
-        if k == kind::CONFIGURE && s == 2 {
-            Fate::Corrupt
-        } else {
-            Fate::Deliver
-        }
     });
+    // Seq 2 never reaches the device; everything else does (the probes show the line lives).
+    w.up = only(|k, s, _| k == kind::CONFIGURE && s == 2, Fate::Corrupt);
     w.submit(5);
     let err = w.run(ms(10_000)).unwrap_err();
     assert!(
@@ -553,9 +528,7 @@ fn a_noisy_line_is_repaired_at_the_pace_of_round_trips() {
     let (mut rand, mut rand2) = (third(0x2545_f491_4f6c_dd1d), third(0x9e37_79b9_7f4a_7c15));
     w.up = Box::new(move |_, _, _| if rand() { Fate::Corrupt } else { Fate::Deliver });
     w.down = Box::new(move |_, _, _| if rand2() { Fate::Drop } else { Fate::Deliver });
-    let jobs = w.submit(500);
-    w.run(ms(60_000)).unwrap();
-    w.assert_all_right(&jobs);
+    w.serve_all(500, ms(60_000));
     let r = w.m.report();
     assert!(r.retries > 300, "{r:?}");
     assert!(w.now < ms(2000), "took {:?}: {r:?}", w.now);

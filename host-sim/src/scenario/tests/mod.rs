@@ -15,93 +15,10 @@ use crate::bees::{BeeParamsOverride, BeePreset, bee_params};
 mod sanity;
 
 /// A small valid ant scenario; the error tests break one thing at a time.
-const ANTS: &str = r#"
-name = "test"
-steps = 100
-world = { dim = 2, min = [0, 0], max = [100, 50] }
-
-[[groups]]
-name = "colony"
-model = "ant"
-count = 20
-nest = "nest"
-spawn = { at = "nest", radius = 5 }
-
-[[groups]]
-name = "others"
-model = "ant"
-count = 10
-nest = "nest"
-spawn = { min = [60, 10], max = [70, 20] }
-ant = { p_stop = 0.01, theta = 0.3, k = 3 }
-
-[[objects]]
-name = "nest"
-kind = "nest"
-center = [20, 25]
-radius = 3
-
-[[objects]]
-name = "food"
-kind = "food"
-center = [80, 25]
-radius = 3
-
-[[objects]]
-name = "rock"
-kind = "rock"
-center = [50, 25]
-radius = 4
-active = false
-
-[[objects]]
-name = "danger"
-kind = "disturbance"
-center = [50, 40]
-radius = 5
-active = false
-
-[[events]]
-step = 10
-add = "rock"
-
-[[events]]
-step = 20
-start = "danger"
-
-[[events]]
-step = 30
-move = { object = "food", to = [80, 30] }
-"#;
+const ANTS: &str = include_str!("ants.toml");
 
 /// A small valid bee scenario.
-const BEES: &str = r#"
-steps = 50
-world = { dim = 3, min = [0, 0, 0], max = [30, 20, 30] }
-
-[[groups]]
-name = "swarm"
-model = "bee"
-count = 30
-goal = "nest"
-spawn = { min = [2, 5, 2], max = [10, 15, 10] }
-bee = { preset = "around_nest", kappa2 = 3.0 }
-
-[[objects]]
-name = "nest"
-kind = "target"
-center = [20, 10, 20]
-radius = 2
-particles = 50
-
-[[objects]]
-name = "pole"
-kind = "shaft"
-center = [15, 15]
-radius = 1
-y_min = 0
-y_max = 20
-"#;
+const BEES: &str = include_str!("bees.toml");
 
 const FILE: &str = "tests/broken.toml";
 
@@ -138,6 +55,19 @@ fn expect_error(text: &str, line: usize, field: &str, says: &str) -> Diagnostic 
         assert!(shown.contains(&format!("`{field}`")), "{shown}");
     }
     d
+}
+
+/// `base` with the first `from` replaced by `to` ([`edit`]) is refused at the line of `at` in
+/// the edited text, naming `field`, with a message containing `says` ([`expect_error`]).
+#[track_caller]
+fn rejects(base: &str, from: &str, to: &str, at: &str, field: &str, says: &str) -> Diagnostic {
+    refused_at(&edit(base, from, to), at, field, says)
+}
+
+/// [`expect_error`] at the line of the first `at` in `text`.
+#[track_caller]
+fn refused_at(text: &str, at: &str, field: &str, says: &str) -> Diagnostic {
+    expect_error(text, line_of(text, at), field, says)
 }
 
 #[test]
@@ -179,30 +109,18 @@ fn every_builtin_loads() {
             panic!("built-in `{}` does not load: {err}", b.name)
         });
         assert_eq!(s.name, b.name, "a built-in's name is its file stem");
-        assert!(
-            s.description.contains("Fig."),
-            "{}: cite the figure",
-            b.name
-        );
-        assert!(
-            s.description.contains("--steps"),
-            "{}: mention --steps",
-            b.name
-        );
+        for (needle, why) in [("Fig.", "cite the figure"), ("--steps", "mention --steps")] {
+            assert!(s.description.contains(needle), "{}: {why}", b.name);
+        }
         assert!(!b.summary.is_empty() && !b.summary.contains('\n'));
         let model = &s.groups[0].model;
         assert!(s.groups.iter().all(|g| g.model == *model));
-        let prefix = if *model == Model::new("ant") {
-            "ants-"
+        let (prefix, range) = if *model == Model::new("ant") {
+            ("ants-", 3000..=6000)
         } else {
-            "bees-"
+            ("bees-", 1000..=2000)
         };
         assert!(b.name.starts_with(prefix));
-        let range = if *model == Model::new("ant") {
-            3000..=6000
-        } else {
-            1000..=2000
-        };
         assert!(range.contains(&s.steps), "{}: {} steps", b.name, s.steps);
     }
     assert!(builtin("no-such-scenario").is_none());
@@ -235,6 +153,11 @@ fn every_file_in_scenarios_is_a_builtin() {
 #[test]
 fn builtins_say_what_the_figures_show() {
     let get = |n: &str| builtin(n).unwrap();
+    // How many objects of `kind`, and events of `verb`, a scenario has.
+    let objects =
+        |s: &Scenario, kind: &str| s.objects.iter().filter(|o| o.kind.tag() == kind).count();
+    let events =
+        |s: &Scenario, verb: &str| s.events.iter().filter(|e| e.action.verb() == verb).count();
     let fig7a = get("ants-fig7a-single-colony");
     assert_eq!(fig7a.agent_count(), 500);
     let (nest, food) = (fig7a.object("nest").unwrap(), fig7a.object("food").unwrap());
@@ -249,17 +172,7 @@ fn builtins_say_what_the_figures_show() {
     assert_eq!(nests.len(), fig8a.groups.len(), "one nest per colony");
 
     let fig11 = get("ants-fig11-dynamic-obstacles");
-    let adds = fig11
-        .events
-        .iter()
-        .filter(|e| matches!(e.action, Action::Add(_)))
-        .count();
-    let removes = fig11
-        .events
-        .iter()
-        .filter(|e| matches!(e.action, Action::Remove(_)))
-        .count();
-    assert_eq!((adds, removes), (3, 3));
+    assert_eq!((events(&fig11, "add"), events(&fig11, "remove")), (3, 3));
     let fig12 = get("ants-fig12-moved-food");
     assert!(
         fig12
@@ -271,14 +184,7 @@ fn builtins_say_what_the_figures_show() {
     let verbs: Vec<_> = fig13.events.iter().map(|e| e.action.verb()).collect();
     assert_eq!(verbs, ["start", "stop"]);
     let fig14 = get("ants-fig14-waypoints");
-    assert!(
-        fig14
-            .objects
-            .iter()
-            .filter(|o| matches!(o.kind, ObjectKind::Waypoint { .. }))
-            .count()
-            >= 2
-    );
+    assert!(objects(&fig14, "waypoint") >= 2);
 
     let grass = get("bees-fig11-grassland");
     assert_eq!(grass.agent_count(), 1000);
@@ -294,14 +200,7 @@ fn builtins_say_what_the_figures_show() {
     );
     assert_eq!(nest.groups[0].goal.as_deref(), Some("nest"));
     let shafts = get("bees-fig14-shafts");
-    assert!(
-        shafts
-            .objects
-            .iter()
-            .filter(|o| matches!(o.kind, ObjectKind::Shaft { .. }))
-            .count()
-            >= 3
-    );
+    assert!(objects(&shafts, "shaft") >= 3);
     assert!(shafts.groups[0].goal.is_some());
 }
 
@@ -343,23 +242,21 @@ fn serde_deserialization_validates_too() {
 
 #[test]
 fn syntax_error_names_file_and_line() {
-    let text = edit(
+    let d = rejects(
         ANTS,
         "[[objects]]\nname = \"food\"",
         "[[objects]\nname = \"food\"",
-    );
-    let d = expect_error(
-        &text,
-        line_of(&text, "[[objects]\n"),
+        "[[objects]\n",
         "objects[1]",
         "expected `]`",
     );
     assert_eq!(d.kind, DiagnosticKind::Syntax);
     assert!(d.column.is_some());
-    let text = edit(ANTS, "count = 20", "count = 20 20");
-    let d = expect_error(
-        &text,
-        line_of(&text, "count = 20 20"),
+    let d = rejects(
+        ANTS,
+        "count = 20",
+        "count = 20 20",
+        "count = 20 20",
         "groups[0].count",
         "",
     );
@@ -368,71 +265,82 @@ fn syntax_error_names_file_and_line() {
 
 #[test]
 fn type_errors_name_the_field() {
-    let text = edit(ANTS, "count = 20", "count = \"many\"");
-    let d = expect_error(&text, line_of(&text, "\"many\""), "groups[0].count", "u32");
+    let d = rejects(
+        ANTS,
+        "count = 20",
+        "count = \"many\"",
+        "\"many\"",
+        "groups[0].count",
+        "u32",
+    );
     assert_eq!(d.kind, DiagnosticKind::Shape);
     assert_eq!(d.column, Some(9));
-    let text = edit(
+    rejects(
         ANTS,
         "spawn = { at = \"nest\", radius = 5 }",
         "spawn = { at = \"nest\", radius = true }",
-    );
-    expect_error(
-        &text,
-        line_of(&text, "radius = true"),
+        "radius = true",
         "groups[0].spawn.radius",
         "f32",
     );
-    let text = edit(ANTS, "kind = \"rock\"", "kind = \"rok\"");
-    expect_error(
-        &text,
-        line_of(&text, "\"rok\""),
+    rejects(
+        ANTS,
+        "kind = \"rock\"",
+        "kind = \"rok\"",
+        "\"rok\"",
         "objects[2].kind",
         "unknown variant `rok`",
     );
-    let text = edit(ANTS, "model = \"ant\"", "model = \"wasp\"");
-    expect_error(
-        &text,
-        line_of(&text, "\"wasp\""),
+    rejects(
+        ANTS,
+        "model = \"ant\"",
+        "model = \"wasp\"",
+        "\"wasp\"",
         "groups[0].model",
         "`bee`",
     );
-    let text = edit(ANTS, "count = 10", "count = -10");
-    expect_error(&text, line_of(&text, "-10"), "groups[1].count", "");
+    rejects(
+        ANTS,
+        "count = 10",
+        "count = -10",
+        "-10",
+        "groups[1].count",
+        "",
+    );
 }
 
 #[test]
 fn unknown_fields_are_rejected_by_name() {
-    let text = edit(ANTS, "radius = 5 }", "radius = 5, heding = [1, 0] }");
-    expect_error(
-        &text,
-        line_of(&text, "heding"),
+    rejects(
+        ANTS,
+        "radius = 5 }",
+        "radius = 5, heding = [1, 0] }",
+        "heding",
         "groups[0].spawn.heding",
         "`heding`",
     );
-    let text = edit(ANTS, "steps = 100", "steps = 100\nsteeps = 3");
-    expect_error(
-        &text,
-        line_of(&text, "steeps"),
+    rejects(
+        ANTS,
+        "steps = 100",
+        "steps = 100\nsteeps = 3",
+        "steeps",
         "steeps",
         "unknown field `steeps`",
     );
-    let text = edit(
+    rejects(
         ANTS,
         "nest = \"nest\"",
         "nest = \"nest\"\nant = { sped = 2 }",
-    );
-    expect_error(
-        &text,
-        line_of(&text, "sped"),
+        "sped",
         "groups[0].ant.sped",
         "`sped`",
     );
     // A field of another kind of object.
-    let text = edit(ANTS, "radius = 4\n", "radius = 4\namount = 10\n");
-    expect_error(
-        &text,
-        line_of(&text, "amount = 10"),
+    rejects(
+        ANTS,
+        "radius = 4\n",
+        "radius = 4\namount = 10\n",
+        "amount = 10",
         "objects[2].amount",
         "`rock` has no field `amount`",
     );
@@ -454,14 +362,11 @@ fn missing_fields_point_at_their_table() {
         "objects[2]",
         "missing field `center`",
     );
-    let text = edit(
+    rejects(
         ANTS,
         "spawn = { at = \"nest\", radius = 5 }",
         "spawn = { at = \"nest\" }",
-    );
-    expect_error(
-        &text,
-        line_of(&text, "spawn = { at"),
+        "spawn = { at",
         "groups[0].spawn",
         "missing field `radius`",
     );
@@ -469,36 +374,40 @@ fn missing_fields_point_at_their_table() {
 
 #[test]
 fn world_rules() {
-    let text = edit(ANTS, "max = [100, 50]", "max = [100, -50]");
-    expect_error(
-        &text,
-        line_of(&text, "world ="),
+    rejects(
+        ANTS,
+        "max = [100, 50]",
+        "max = [100, -50]",
+        "world =",
         "world.max",
         "on y max -50 <= min 0",
     );
-    let text = edit(ANTS, "dim = 2", "dim = 4");
-    expect_error(
-        &text,
-        line_of(&text, "world ="),
+    rejects(
+        ANTS,
+        "dim = 2",
+        "dim = 4",
+        "world =",
         "world.dim",
         "expected 2 (ants",
     );
-    let text = edit(ANTS, "min = [0, 0], max", "min = [0, 0, 0], max");
-    expect_error(
-        &text,
-        line_of(&text, "world ="),
+    rejects(
+        ANTS,
+        "min = [0, 0], max",
+        "min = [0, 0, 0], max",
+        "world =",
         "world.min",
         "expected 2 numbers",
     );
-    let text = edit(ANTS, "steps = 100", "steps = 0");
-    expect_error(&text, line_of(&text, "steps = 0"), "steps", "at least 1");
-    let text = format!("{ANTS}\n[outputs]\nevery = 0\n");
-    expect_error(
-        &text,
-        line_of(&text, "every = 0"),
-        "outputs.every",
+    rejects(
+        ANTS,
+        "steps = 100",
+        "steps = 0",
+        "steps = 0",
+        "steps",
         "at least 1",
     );
+    let text = format!("{ANTS}\n[outputs]\nevery = 0\n");
+    refused_at(&text, "every = 0", "outputs.every", "at least 1");
 }
 
 #[test]
@@ -508,78 +417,95 @@ fn group_rules() {
     let end = ANTS.find("[[objects]]").unwrap();
     let text = format!("{}{}", &ANTS[..start], &ANTS[end..]);
     expect_error(&text, 1, "groups", "at least one group");
-    let text = edit(ANTS, "count = 20", "count = 0");
-    expect_error(
-        &text,
-        line_of(&text, "count = 0"),
+    rejects(
+        ANTS,
+        "count = 20",
+        "count = 0",
+        "count = 0",
         "groups[0].count",
         "1 to 10000000",
     );
-    let text = edit(ANTS, "count = 20", "count = 10000001");
-    expect_error(
-        &text,
-        line_of(&text, "count = 1000"),
+    rejects(
+        ANTS,
+        "count = 20",
+        "count = 10000001",
+        "count = 1000",
         "groups[0].count",
         "1 to 10000000",
     );
-    let text = edit(ANTS, "name = \"others\"", "name = \"colony\"");
-    expect_error(
-        &text,
-        line_of(&text, "name = \"colony\"\nmodel = \"ant\"\ncount = 10"),
+    rejects(
+        ANTS,
+        "name = \"others\"",
+        "name = \"colony\"",
+        "name = \"colony\"\nmodel = \"ant\"\ncount = 10",
         "groups[1].name",
         "duplicate group name",
     );
     // Ant groups need a nest, naming a nest.
-    let text = edit(ANTS, "count = 20\nnest = \"nest\"\n", "count = 20\n");
-    expect_error(
-        &text,
-        line_of(&text, "[[groups]]"),
+    rejects(
+        ANTS,
+        "count = 20\nnest = \"nest\"\n",
+        "count = 20\n",
+        "[[groups]]",
         "groups[0].nest",
         "missing field `nest`",
     );
-    let text = edit(ANTS, "nest = \"nest\"", "nest = \"food\"");
-    expect_error(
-        &text,
-        line_of(&text, "nest = \"food\""),
+    rejects(
+        ANTS,
+        "nest = \"nest\"",
+        "nest = \"food\"",
+        "nest = \"food\"",
         "groups[0].nest",
         "`food` is a `food`",
     );
-    let text = edit(ANTS, "nest = \"nest\"", "nest = \"home\"");
-    expect_error(
-        &text,
-        line_of(&text, "\"home\""),
+    rejects(
+        ANTS,
+        "nest = \"nest\"",
+        "nest = \"home\"",
+        "\"home\"",
         "groups[0].nest",
         "no object named `home`",
     );
     // Models and worlds.
-    let text = edit(ANTS, "model = \"ant\"", "model = \"bee\"");
-    expect_error(&text, line_of(&text, "\"bee\""), "groups[0].model", "3D");
-    // (Without its bee parameter table, which an ant group would refuse first.)
-    let text = edit(BEES, "model = \"bee\"", "model = \"ant\"");
-    let text = edit(
-        &text,
-        "bee = { preset = \"around_nest\", kappa2 = 3.0 }",
-        "",
+    rejects(
+        ANTS,
+        "model = \"ant\"",
+        "model = \"bee\"",
+        "\"bee\"",
+        "groups[0].model",
+        "3D",
     );
-    expect_error(&text, line_of(&text, "\"ant\""), "groups[0].model", "2D");
-    let text = edit(BEES, "goal = \"nest\"", "goal = \"pole\"");
-    expect_error(
+    // (Without its bee parameter table, which an ant group would refuse first.)
+    let text = edit(BEES, "bee = { preset = \"around_nest\", kappa2 = 3.0 }", "");
+    rejects(
         &text,
-        line_of(&text, "\"pole\""),
+        "model = \"bee\"",
+        "model = \"ant\"",
+        "\"ant\"",
+        "groups[0].model",
+        "2D",
+    );
+    rejects(
+        BEES,
+        "goal = \"nest\"",
+        "goal = \"pole\"",
+        "\"pole\"",
         "groups[0].goal",
         "expected an object of kind `target`",
     );
-    let text = edit(BEES, "goal = \"nest\"", "nest = \"nest\"");
-    expect_error(
-        &text,
-        line_of(&text, "nest = \"nest\""),
+    rejects(
+        BEES,
+        "goal = \"nest\"",
+        "nest = \"nest\"",
+        "nest = \"nest\"",
         "groups[0].nest",
         "for ant groups",
     );
-    let text = edit(ANTS, "nest = \"nest\"", "nest = \"nest\"\nbee = { h = 2 }");
-    expect_error(
-        &text,
-        line_of(&text, "bee = "),
+    rejects(
+        ANTS,
+        "nest = \"nest\"",
+        "nest = \"nest\"\nbee = { h = 2 }",
+        "bee = ",
         "groups[0].bee",
         "bee parameters in an ant group",
     );
@@ -587,14 +513,11 @@ fn group_rules() {
 
 #[test]
 fn parameter_overrides_are_validated_by_the_controllers() {
-    let text = edit(
+    let d = rejects(
         ANTS,
         "nest = \"nest\"",
         "nest = \"nest\"\nant = { theta = 4.0 }",
-    );
-    let d = expect_error(
-        &text,
-        line_of(&text, "ant = {"),
+        "ant = {",
         "groups[0].ant.theta",
         "invalid ant parameter `theta`",
     );
@@ -604,29 +527,28 @@ fn parameter_overrides_are_validated_by_the_controllers() {
         "{}",
         d.message
     );
-    let text = edit(
+    rejects(
         ANTS,
         "radius = 5 }",
         "radius = 5 }\n[groups.ant]\ncollect_ticks = 0",
-    );
-    expect_error(
-        &text,
-        line_of(&text, "collect_ticks = 0"),
+        "collect_ticks = 0",
         "groups[0].ant.collect_ticks",
         "an integer from 1 to 65535 (ticks)",
     );
-    let text = edit(BEES, "kappa2 = 3.0", "h = 0");
-    expect_error(
-        &text,
-        line_of(&text, "bee = {"),
+    rejects(
+        BEES,
+        "kappa2 = 3.0",
+        "h = 0",
+        "bee = {",
         "groups[0].bee.h",
         "invalid bee parameter `h`",
     );
     // Drag so strong one explicit step would reverse the velocity (dt 0.05 in the presets).
-    let text = edit(BEES, "kappa2 = 3.0", "damping = 40");
-    expect_error(
-        &text,
-        line_of(&text, "bee = {"),
+    rejects(
+        BEES,
+        "kappa2 = 3.0",
+        "damping = 40",
+        "bee = {",
         "groups[0].bee.damping",
         "damping·dt ≤ 1",
     );
@@ -642,10 +564,11 @@ fn parameter_overrides_are_validated_by_the_controllers() {
     assert!(Scenario::from_str(&big, FILE).is_ok());
     let text = edit(&big, "count = 30", "count = 30\nscalar = \"fixed\"");
     assert!(Scenario::from_str(&text, FILE).is_ok());
-    let text = edit(BEES, "preset = \"around_nest\"", "preset = \"meadow\"");
-    expect_error(
-        &text,
-        line_of(&text, "\"meadow\""),
+    rejects(
+        BEES,
+        "preset = \"around_nest\"",
+        "preset = \"meadow\"",
+        "\"meadow\"",
         "groups[0].bee.preset",
         "unknown variant `meadow`",
     );
@@ -653,60 +576,59 @@ fn parameter_overrides_are_validated_by_the_controllers() {
 
 #[test]
 fn spawn_rules() {
-    let text = edit(ANTS, "radius = 5 }", "radius = 25 }");
-    expect_error(
-        &text,
-        line_of(&text, "radius = 25"),
+    rejects(
+        ANTS,
+        "radius = 5 }",
+        "radius = 25 }",
+        "radius = 25",
         "groups[0].spawn.radius",
         "reaches outside the world",
     );
-    let text = edit(ANTS, "radius = 5 }", "radius = -1 }");
-    expect_error(
-        &text,
-        line_of(&text, "radius = -1"),
+    rejects(
+        ANTS,
+        "radius = 5 }",
+        "radius = -1 }",
+        "radius = -1",
         "groups[0].spawn.radius",
         "positive",
     );
-    let text = edit(ANTS, "max = [70, 20]", "max = [170, 20]");
-    expect_error(
-        &text,
-        line_of(&text, "max = [170"),
+    rejects(
+        ANTS,
+        "max = [70, 20]",
+        "max = [170, 20]",
+        "max = [170",
         "groups[1].spawn.max",
         "outside the world",
     );
-    let text = edit(ANTS, "min = [60, 10]", "min = [60, 10, 0]");
-    expect_error(
-        &text,
-        line_of(&text, "[60, 10, 0]"),
+    rejects(
+        ANTS,
+        "min = [60, 10]",
+        "min = [60, 10, 0]",
+        "[60, 10, 0]",
         "groups[1].spawn.min",
         "expected 2 numbers",
     );
-    let text = edit(
+    rejects(
         ANTS,
         "spawn = { min = [60, 10]",
         "spawn = { at = \"nest\", min = [60, 10]",
-    );
-    expect_error(
-        &text,
-        line_of(&text, "at = \"nest\", min"),
+        "at = \"nest\", min",
         "groups[1].spawn.min",
         "cannot be combined",
     );
-    let text = edit(
+    rejects(
         ANTS,
         "spawn = { at = \"nest\", radius = 5 }",
         "spawn = { at = \"nowhere\", radius = 5 }",
-    );
-    expect_error(
-        &text,
-        line_of(&text, "\"nowhere\""),
+        "\"nowhere\"",
         "groups[0].spawn.at",
         "no object named `nowhere`",
     );
-    let text = edit(ANTS, "radius = 5 }", "radius = 5, heading = [0, 0] }");
-    expect_error(
-        &text,
-        line_of(&text, "heading"),
+    rejects(
+        ANTS,
+        "radius = 5 }",
+        "radius = 5, heading = [0, 0] }",
+        "heading",
         "groups[0].spawn.heading",
         "non-zero",
     );
@@ -717,64 +639,57 @@ fn spawn_rules() {
 
 #[test]
 fn object_rules() {
-    let text = edit(ANTS, "center = [80, 25]", "center = [180, 25]");
-    expect_error(
-        &text,
-        line_of(&text, "[180, 25]"),
+    rejects(
+        ANTS,
+        "center = [80, 25]",
+        "center = [180, 25]",
+        "[180, 25]",
         "objects[1].center",
         "outside the world",
     );
-    let text = edit(ANTS, "radius = 4\n", "radius = -4\n");
-    expect_error(
-        &text,
-        line_of(&text, "radius = -4"),
+    rejects(
+        ANTS,
+        "radius = 4\n",
+        "radius = -4\n",
+        "radius = -4",
         "objects[2].radius",
         "positive",
     );
-    let text = edit(ANTS, "name = \"food\"", "name = \"nest\"");
-    expect_error(
-        &text,
-        line_of(&text, "name = \"nest\"\nkind = \"food\""),
+    rejects(
+        ANTS,
+        "name = \"food\"",
+        "name = \"nest\"",
+        "name = \"nest\"\nkind = \"food\"",
         "objects[1].name",
         "duplicate object name `nest`",
     );
-    let text = edit(ANTS, "kind = \"rock\"", "kind = \"sphere\"");
-    expect_error(
-        &text,
-        line_of(&text, "[50, 25]"),
+    rejects(
+        ANTS,
+        "kind = \"rock\"",
+        "kind = \"sphere\"",
+        "[50, 25]",
         "objects[2].center",
         "expected 3 numbers",
     );
-    let text = edit(
+    rejects(
         ANTS,
         "kind = \"rock\"\ncenter = [50, 25]",
         "kind = \"sphere\"\ncenter = [50, 25, 1]",
-    );
-    expect_error(
-        &text,
-        line_of(&text, "\"sphere\""),
+        "\"sphere\"",
         "objects[2].kind",
         "3D world",
     );
-    let text = edit(
+    rejects(
         ANTS,
         "kind = \"food\"\ncenter = [80, 25]\nradius = 3",
         "kind = \"food\"\ncenter = [80, 25]\nradius = 3\namount = 0",
-    );
-    expect_error(
-        &text,
-        line_of(&text, "amount = 0"),
+        "amount = 0",
         "objects[1].amount",
         "endless",
     );
     let bow = "\n[[objects]]\nname = \"bow\"\nkind = \"polygon\"\npoints = [[10, 10], [20, 20], [20, 10], [10, 20]]\n";
     let text = format!("{ANTS}{bow}");
-    expect_error(
-        &text,
-        line_of(&text, "points = "),
-        "objects[4].points",
-        "not simple",
-    );
+    refused_at(&text, "points = ", "objects[4].points", "not simple");
     let text = format!(
         "{ANTS}{}",
         bow.replace(
@@ -782,37 +697,35 @@ fn object_rules() {
             "[[10, 10], [20, 20]]"
         )
     );
-    expect_error(
-        &text,
-        line_of(&text, "points = "),
-        "objects[4].points",
-        "at least 3 points",
-    );
+    refused_at(&text, "points = ", "objects[4].points", "at least 3 points");
     let text = format!("{ANTS}{}", bow.replace("[10, 20]]", "[10, 200]]"));
-    expect_error(
+    refused_at(
         &text,
-        line_of(&text, "points = "),
+        "points = ",
         "objects[4].points[3]",
         "outside the world",
     );
-    let text = edit(BEES, "y_max = 20", "y_max = 25");
-    expect_error(
-        &text,
-        line_of(&text, "y_max = 25"),
+    rejects(
+        BEES,
+        "y_max = 20",
+        "y_max = 25",
+        "y_max = 25",
         "objects[1].y_max",
         "y range",
     );
-    let text = edit(BEES, "particles = 50", "particles = 0");
-    expect_error(
-        &text,
-        line_of(&text, "particles = 0"),
+    rejects(
+        BEES,
+        "particles = 50",
+        "particles = 0",
+        "particles = 0",
         "objects[0].particles",
         "1 to",
     );
-    let text = edit(BEES, "center = [15, 15]", "center = [15, 10, 15]");
-    expect_error(
-        &text,
-        line_of(&text, "[15, 10, 15]"),
+    rejects(
+        BEES,
+        "center = [15, 15]",
+        "center = [15, 10, 15]",
+        "[15, 10, 15]",
         "objects[1].center",
         "[x, z]",
     );
@@ -820,45 +733,51 @@ fn object_rules() {
 
 #[test]
 fn event_rules() {
-    let text = edit(ANTS, "add = \"rock\"", "add = \"boulder\"");
-    expect_error(
-        &text,
-        line_of(&text, "\"boulder\""),
+    rejects(
+        ANTS,
+        "add = \"rock\"",
+        "add = \"boulder\"",
+        "\"boulder\"",
         "events[0].add",
         "no object named `boulder`",
     );
-    let text = edit(ANTS, "start = \"danger\"", "start = \"rock\"");
-    expect_error(
-        &text,
-        line_of(&text, "start = \"rock\""),
+    rejects(
+        ANTS,
+        "start = \"danger\"",
+        "start = \"rock\"",
+        "start = \"rock\"",
         "events[1].start",
         "applies to disturbances",
     );
-    let text = edit(ANTS, "step = 30", "step = 100");
-    expect_error(
-        &text,
-        line_of(&text, "step = 100"),
+    rejects(
+        ANTS,
+        "step = 30",
+        "step = 100",
+        "step = 100",
         "events[2].step",
         "`steps` = 100",
     );
-    let text = edit(ANTS, "step = 20", "step = 5");
-    expect_error(
-        &text,
-        line_of(&text, "step = 5"),
+    rejects(
+        ANTS,
+        "step = 20",
+        "step = 5",
+        "step = 5",
         "events[1].step",
         "step order",
     );
-    let text = edit(ANTS, "to = [80, 30]", "to = [80, 30, 1]");
-    expect_error(
-        &text,
-        line_of(&text, "to = [80, 30, 1]"),
+    rejects(
+        ANTS,
+        "to = [80, 30]",
+        "to = [80, 30, 1]",
+        "to = [80, 30, 1]",
         "events[2].move.to",
         "expected 2 numbers",
     );
-    let text = edit(ANTS, "to = [80, 30]", "to = [80, 300]");
-    expect_error(
-        &text,
-        line_of(&text, "to = [80, 300]"),
+    rejects(
+        ANTS,
+        "to = [80, 30]",
+        "to = [80, 300]",
+        "to = [80, 300]",
         "events[2].move.to",
         "outside the world",
     );
@@ -867,42 +786,43 @@ fn event_rules() {
         Scenario::from_str(&text, FILE).is_ok(),
         "a disturbance can move"
     );
-    let text = edit(
+    rejects(
         ANTS,
         "active = false\n\n[[objects]]\nname = \"danger\"",
         "\n[[objects]]\nname = \"danger\"",
-    );
-    expect_error(
-        &text,
-        line_of(&text, "add = \"rock\""),
+        "add = \"rock\"",
         "events[0].add",
         "already present",
     );
-    let text = edit(ANTS, "add = \"rock\"", "remove = \"rock\"");
-    expect_error(
-        &text,
-        line_of(&text, "remove = \"rock\""),
+    rejects(
+        ANTS,
+        "add = \"rock\"",
+        "remove = \"rock\"",
+        "remove = \"rock\"",
         "events[0].remove",
         "not present",
     );
-    let text = edit(ANTS, "start = \"danger\"", "stop = \"danger\"");
-    expect_error(
-        &text,
-        line_of(&text, "stop = \"danger\""),
+    rejects(
+        ANTS,
+        "start = \"danger\"",
+        "stop = \"danger\"",
+        "stop = \"danger\"",
         "events[1].stop",
         "not acting",
     );
-    let text = edit(ANTS, "add = \"rock\"", "add = \"rock\"\nremove = \"food\"");
-    expect_error(
-        &text,
-        line_of(&text, "remove = \"food\""),
+    rejects(
+        ANTS,
+        "add = \"rock\"",
+        "add = \"rock\"\nremove = \"food\"",
+        "remove = \"food\"",
         "events[0].remove",
         "exactly one action",
     );
-    let text = edit(ANTS, "add = \"rock\"", "");
-    expect_error(
-        &text,
-        line_of(&text, "[[events]]"),
+    rejects(
+        ANTS,
+        "add = \"rock\"",
+        "",
+        "[[events]]",
         "events[0]",
         "needs one action",
     );
@@ -911,9 +831,9 @@ fn event_rules() {
         format!("{BEES}\n[[events]]\nstep = 10\nmove = {{ object = \"pole\", to = [5, 5] }}\n");
     assert!(Scenario::from_str(&moved, FILE).is_ok());
     let text = moved.replace("to = [5, 5]", "to = [5, 5, 5]");
-    expect_error(
+    refused_at(
         &text,
-        line_of(&text, "to = [5, 5, 5]"),
+        "to = [5, 5, 5]",
         "events[0].move.to",
         "expected 2 numbers",
     );
@@ -1106,6 +1026,17 @@ fn builtin_spawn_regions_and_destinations_are_clear_of_obstacles() {
             .iter()
             .filter(|o| o.active && o.kind.is_obstacle())
             .collect();
+        // Checks that the point `p` of `what` is inside no obstacle.
+        let outside = |p: &[f32], what: &str| {
+            for o in &obstacles {
+                let name = &o.name;
+                assert!(
+                    !inside_obstacle(&o.kind, p),
+                    "{}: {what} inside `{name}`",
+                    b.name
+                );
+            }
+        };
         for g in &s.groups {
             // A grid of points over the spawn region.
             let (lo, hi): (Vec<f32>, Vec<f32>) = match &g.spawn.region {
@@ -1133,30 +1064,14 @@ fn builtin_spawn_regions_and_destinations_are_clear_of_obstacles() {
                 }
             }
             for p in &points {
-                for o in &obstacles {
-                    assert!(
-                        !inside_obstacle(&o.kind, p),
-                        "{}: group `{}` may spawn at {p:?} inside `{}`",
-                        b.name,
-                        g.name,
-                        o.name
-                    );
-                }
+                outside(p, &format!("group `{}` may spawn at {p:?}", g.name));
             }
         }
         // Nests, food sources, way points and targets are reachable: their centres are not
         // inside an obstacle.
         for o in &s.objects {
             if let (false, Some(c)) = (o.kind.is_obstacle(), o.kind.point()) {
-                for ob in &obstacles {
-                    assert!(
-                        !inside_obstacle(&ob.kind, c),
-                        "{}: `{}` lies inside `{}`",
-                        b.name,
-                        o.name,
-                        ob.name
-                    );
-                }
+                outside(c, &format!("`{}` lies", o.name));
             }
         }
     }

@@ -9,84 +9,28 @@ use crate::scenario::{
 
 /// An ant world: a nest, a food source, a rock and a concave polygon (a U open upwards,
 /// its notch x 110..120, y 10..30) well apart; the tests move things into each other.
-const ANTS: &str = r#"
-steps = 100
-world = { dim = 2, min = [0, 0], max = [200, 100] }
+const ANTS: &str = include_str!("ant_world.toml");
 
-[[groups]]
-name = "colony"
-model = "ant"
-count = 10
-nest = "nest"
-spawn = { at = "nest", radius = 4 }
-
-[[objects]]
-name = "nest"
-kind = "nest"
-center = [20, 50]
-radius = 3
-
-[[objects]]
-name = "food"
-kind = "food"
-center = [180, 50]
-radius = 3
-
-[[objects]]
-name = "boulder"
-kind = "rock"
-center = [60, 50]
-radius = 10
-
-[[objects]]
-name = "u"
-kind = "polygon"
-points = [[100, 0], [130, 0], [130, 30], [120, 30], [120, 10], [110, 10], [110, 30], [100, 30]]
-"#;
-
-const BEES: &str = r#"
-steps = 50
-world = { dim = 3, min = [0, 0, 0], max = [60, 30, 60] }
-
-[[groups]]
-name = "swarm"
-model = "bee"
-count = 10
-goal = "flower"
-spawn = { min = [2, 5, 2], max = [10, 15, 10] }
-
-[[objects]]
-name = "flower"
-kind = "target"
-center = [40, 15, 40]
-radius = 2
-particles = 20
-
-[[objects]]
-name = "ground"
-kind = "box"
-min = [0, 0, 0]
-max = [60, 1, 60]
-
-[[objects]]
-name = "pole"
-kind = "shaft"
-center = [30, 30]
-radius = 3
-y_min = 0
-y_max = 30
-"#;
+const BEES: &str = include_str!("bee_world.toml");
 fn warnings(text: &str) -> Vec<ScenarioWarning> {
     Scenario::from_str_with_warnings(text, "t.toml")
         .unwrap_or_else(|e| panic!("{e}"))
         .1
 }
 
-/// Loads `text`, expects it refused by a rule at `line` / `field`, with a message naming
-/// `names`; the serde path refuses it too.
+/// The one warning `text` loads with.
 #[track_caller]
-fn refused(text: &str, line: usize, field: &str, names: &[&str]) {
-    let d = expect_error(text, line, field, "");
+fn one_warning(text: &str) -> ScenarioWarning {
+    let mut w = warnings(text);
+    assert_eq!(w.len(), 1, "{w:?}");
+    w.remove(0)
+}
+
+/// Loads `text`, expects it refused by a rule at the line of `at` / `field`, with a message
+/// naming `names`; the serde path refuses it too.
+#[track_caller]
+fn refused(text: &str, at: &str, field: &str, names: &[&str]) {
+    let d = expect_error(text, line_of(text, at), field, "");
     assert_eq!(d.kind, DiagnosticKind::Rule, "{d}");
     for n in names {
         assert!(
@@ -117,7 +61,7 @@ fn food_inside_an_obstacle_is_refused_naming_both() {
     let t = edit(ANTS, "center = [180, 50]", "center = [62, 52]");
     refused(
         &t,
-        line_of(&t, "center = [62, 52]"),
+        "center = [62, 52]",
         "objects[1].center",
         &["food", "boulder"],
     );
@@ -125,7 +69,7 @@ fn food_inside_an_obstacle_is_refused_naming_both() {
     let t = edit(ANTS, "center = [180, 50]", "center = [105, 15]");
     refused(
         &t,
-        line_of(&t, "center = [105, 15]"),
+        "center = [105, 15]",
         "objects[1].center",
         &["food", "u"],
     );
@@ -134,15 +78,14 @@ fn food_inside_an_obstacle_is_refused_naming_both() {
     assert!(warnings(&t).is_empty());
     // Across the rock's rim: a warning, not an error.
     let t = edit(ANTS, "center = [180, 50]", "center = [70, 50]");
-    let w = warnings(&t);
-    assert_eq!(w.len(), 1, "{w:?}");
-    assert_eq!(w[0].kind, WarningKind::FoodOverlapsObstacle);
-    assert_eq!(w[0].diagnostic.field, "objects[1].center");
-    assert_eq!(w[0].diagnostic.line, Some(line_of(&t, "center = [70, 50]")));
+    let w = one_warning(&t);
+    assert_eq!(w.kind, WarningKind::FoodOverlapsObstacle);
+    assert_eq!(w.diagnostic.field, "objects[1].center");
+    assert_eq!(w.diagnostic.line, Some(line_of(&t, "center = [70, 50]")));
     assert!(
-        w[0].to_string().contains("warning in `objects[1].center`"),
+        w.to_string().contains("warning in `objects[1].center`"),
         "{}",
-        w[0]
+        w
     );
 }
 
@@ -153,7 +96,7 @@ fn a_way_point_inside_an_obstacle_is_refused() {
     );
     refused(
         &t,
-        line_of(&t, "center = [60, 48]"),
+        "center = [60, 48]",
         "objects[4].center",
         &["wp", "boulder"],
     );
@@ -193,18 +136,17 @@ fn a_spawn_region_partly_inside_obstacles_is_a_warning() {
         "spawn = { at = \"nest\", radius = 4 }",
         "spawn = { min = [40, 40], max = [60, 60] }",
     );
-    let w = warnings(&t);
-    assert_eq!(w.len(), 1, "{w:?}");
-    let d = &w[0].diagnostic;
+    let w = one_warning(&t);
+    let d = &w.diagnostic;
     assert_eq!(
-        (w[0].kind, d.field.as_str()),
+        (w.kind, d.field.as_str()),
         (WarningKind::SpawnInObstacle, "groups[0].spawn")
     );
     // Half the rock's disc in a 20 x 20 box: π·100/2 / 400 ≈ 39 %.
     assert!(
         d.message.contains("about 39 %") && d.message.contains("`boulder`"),
         "{}",
-        w[0]
+        w
     );
     assert_eq!(d.line, Some(line_of(&t, "spawn = { min")));
 }
@@ -212,10 +154,9 @@ fn a_spawn_region_partly_inside_obstacles_is_a_warning() {
 #[test]
 fn a_nest_covering_food_is_a_warning() {
     let t = edit(ANTS, "center = [180, 50]", "center = [22, 50]");
-    let w = warnings(&t);
-    assert_eq!(w.len(), 1, "{w:?}");
-    assert_eq!(w[0].kind, WarningKind::NestCoversFood);
-    assert!(w[0].diagnostic.message.contains("`nest`"), "{}", w[0]);
+    let w = one_warning(&t);
+    assert_eq!(w.kind, WarningKind::NestCoversFood);
+    assert!(w.diagnostic.message.contains("`nest`"), "{}", w);
 }
 
 #[test]
@@ -225,7 +166,7 @@ fn events_are_checked() {
         format!("{ANTS}\n[[events]]\nstep = 50\nmove = {{ object = \"food\", to = [60, 50] }}\n");
     refused(
         &t,
-        line_of(&t, "to = [60, 50]"),
+        "to = [60, 50]",
         "events[0].move.to",
         &["food", "boulder"],
     );
@@ -244,21 +185,15 @@ fn events_are_checked() {
     let t = format!(
         "{ANTS}\n[[objects]]\nname = \"lid\"\nkind = \"rock\"\ncenter = [180, 50]\nradius = 5\nactive = false\n\n[[events]]\nstep = 40\nadd = \"lid\"\n\n[[events]]\nstep = 60\nremove = \"lid\"\n"
     );
-    let w = warnings(&t);
-    assert_eq!(w.len(), 1, "{w:?}");
-    assert_eq!(w[0].kind, WarningKind::EventCoversFood);
-    assert_eq!(w[0].diagnostic.field, "events[0].add");
-    assert_eq!(w[0].diagnostic.line, Some(line_of(&t, "add = \"lid\"")));
+    let w = one_warning(&t);
+    assert_eq!(w.kind, WarningKind::EventCoversFood);
+    assert_eq!(w.diagnostic.field, "events[0].add");
+    assert_eq!(w.diagnostic.line, Some(line_of(&t, "add = \"lid\"")));
     // Food added into a rock that is present is refused.
     let t = format!(
         "{ANTS}\n[[objects]]\nname = \"late\"\nkind = \"food\"\ncenter = [58, 50]\nradius = 2\nactive = false\n\n[[events]]\nstep = 40\nadd = \"late\"\n"
     );
-    refused(
-        &t,
-        line_of(&t, "add = \"late\""),
-        "events[0].add",
-        &["late", "boulder"],
-    );
+    refused(&t, "add = \"late\"", "events[0].add", &["late", "boulder"]);
     // Once `--steps` drops an event, its warnings no longer apply.
     let mut sc = Scenario::from_str(&format!(
         "{ANTS}\n[[objects]]\nname = \"lid\"\nkind = \"rock\"\ncenter = [180, 50]\nradius = 5\nactive = false\n\n[[events]]\nstep = 40\nadd = \"lid\"\n"
@@ -280,7 +215,7 @@ fn bee_targets_inside_obstacles_are_refused() {
     let t = edit(BEES, "center = [40, 15, 40]", "center = [30, 15, 30]");
     refused(
         &t,
-        line_of(&t, "center = [30, 15, 30]"),
+        "center = [30, 15, 30]",
         "objects[0].center",
         &["flower", "pole"],
     );
@@ -291,7 +226,7 @@ fn bee_targets_inside_obstacles_are_refused() {
     let t = edit(&t, "center = [40, 15, 40]", "center = [40, 0.5, 40]");
     refused(
         &t,
-        line_of(&t, "center = [40, 0.5, 40]"),
+        "center = [40, 0.5, 40]",
         "objects[0].center",
         &["flower", "ground"],
     );
@@ -300,7 +235,7 @@ fn bee_targets_inside_obstacles_are_refused() {
     );
     refused(
         &t,
-        line_of(&t, "to = [30, 20, 30]"),
+        "to = [30, 20, 30]",
         "events[0].move.to",
         &["flower", "pole"],
     );
@@ -310,10 +245,9 @@ fn bee_targets_inside_obstacles_are_refused() {
         "spawn = { min = [2, 5, 2], max = [10, 15, 10] }",
         "spawn = { min = [2, 0, 2], max = [10, 2, 10] }",
     );
-    let w = warnings(&t);
-    assert_eq!(w.len(), 1, "{w:?}");
-    assert_eq!(w[0].kind, WarningKind::SpawnInObstacle);
-    assert!(w[0].diagnostic.message.contains("about 50 %"), "{}", w[0]);
+    let w = one_warning(&t);
+    assert_eq!(w.kind, WarningKind::SpawnInObstacle);
+    assert!(w.diagnostic.message.contains("about 50 %"), "{}", w);
 }
 
 #[test]
