@@ -7,7 +7,7 @@ use swarm_sim::scenario::{ScalarType, Scenario};
 
 use crate::Result;
 use crate::client::{Client, ClientOptions};
-use crate::mirror::{MirrorOptions, MirrorReport, mirror};
+use crate::mirror::{MirrorOptions, MirrorReport, mirror, mirror_with_events};
 use crate::soft::{SoftDevice, serve};
 use crate::transport::{FaultSpec, Faulty, Transport, memory_pair};
 
@@ -64,7 +64,7 @@ pub fn loopback(
 ) -> Result<MirrorReport> {
     let sc = with_scalar(sc, scalar);
     let engine = swarm_sim::models::engine(&sc, sc.seed)?;
-    loopback_engine(&sc.name, engine, line, opts)
+    serve_and_mirror(&sc.name, engine, Some(&sc), line, opts)
 }
 
 /// [`loopback`] of a simulation already built (of any model, e.g. one defined outside this
@@ -72,6 +72,18 @@ pub fn loopback(
 pub fn loopback_engine(
     name: &str,
     engine: Box<dyn Engine>,
+    line: Line,
+    opts: &MirrorOptions,
+) -> Result<MirrorReport> {
+    serve_and_mirror(name, engine, None, line, opts)
+}
+
+/// The soft device of `engine` on the far end of `line`, and the mirror run against it, with
+/// the timed events of `events` (the scenario the engine was built from) if given.
+fn serve_and_mirror(
+    name: &str,
+    mut engine: Box<dyn Engine>,
+    events: Option<&Scenario>,
     line: Line,
     opts: &MirrorOptions,
 ) -> Result<MirrorReport> {
@@ -83,7 +95,10 @@ pub fn loopback_engine(
         Faulty::new(host_end, line.faults, line.fault_seed),
         line.client,
     );
-    let report = mirror(name, engine, &mut client, opts, &mut |_| Ok(()));
+    let report = match events {
+        Some(sc) => mirror_with_events(sc, &mut *engine, &mut client, opts, &mut |_| Ok(())),
+        None => mirror(name, engine, &mut client, opts, &mut |_| Ok(())),
+    };
     soft.stop()?;
     let counts = (!line.faults.is_clean()).then(|| client.link_mut().counts());
     let add_faults = |r: &mut MirrorReport| r.faults = counts;

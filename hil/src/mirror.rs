@@ -338,7 +338,7 @@ fn mirror_steps<T: Transport>(
     let model = engine.model();
     run.finish(
         name,
-        &model,
+        model,
         client,
         opts,
         |session, client, tally, chosen| {

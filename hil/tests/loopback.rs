@@ -47,15 +47,7 @@ fn ten_thousand_decisions_of_ants_and_of_bees_match_in_memory_and_over_a_pty_in_
         (fig7a(), 50),
         (scenario::builtin("bees-fig15-nest").unwrap(), 100),
     ];
-    // A clean line: the timeout's floor well above a descheduled thread (the default 2 ms is
-    // for damaged lines, where a fast retry matters; here the tests run in parallel).
-    let clean_line = ClientOptions {
-        rto: RtoOptions {
-            min: Duration::from_millis(50),
-            ..RtoOptions::default()
-        },
-        ..ClientOptions::default()
-    };
+    let clean_line = clean_line();
     for (sc, agents) in &cases {
         for link in [LinkKind::Memory, LinkKind::Pty] {
             for scalar in [ScalarType::F32, ScalarType::Fixed] {
@@ -352,12 +344,25 @@ fn scripted(
     r
 }
 
-/// [`scripted`] with the default client options, a script that does `act` to the `n`-th plan
-/// reply and passes the others, and a run that completes.
+/// The client of a clean line: the timeout's floor well above a descheduled thread (the
+/// default 2 ms is for damaged lines, where a fast retry matters; here the tests run in
+/// parallel, and a retransmission would make the scripted replies' count ambiguous).
+fn clean_line() -> ClientOptions {
+    ClientOptions {
+        rto: RtoOptions {
+            min: Duration::from_millis(50),
+            ..RtoOptions::default()
+        },
+        ..ClientOptions::default()
+    }
+}
+
+/// [`scripted`] on a clean line's client, a script that does `act` to the `n`-th plan reply
+/// and passes the others, and a run that completes.
 fn scripted_once(n: u32, act: Act) -> MirrorReport {
     scripted(
         move |i, _| if i == n { act } else { Act::Pass },
-        ClientOptions::default(),
+        clean_line(),
     )
     .unwrap()
 }

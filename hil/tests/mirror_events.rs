@@ -22,26 +22,25 @@ fn event(step: u32, action: Action) -> Event {
     Event { step, action }
 }
 
+/// At `step`, `object` moves to `to`.
+fn move_to(step: u32, object: &str, to: [f32; 2]) -> Event {
+    event(
+        step,
+        Action::Move {
+            object: object.into(),
+            to: to.to_vec(),
+        },
+    )
+}
+
 /// Fig. 13 with its disturbance moved onto the nest (where the ants start), started at step 3
 /// and stopped at step 7, and the food moved at step 5.
 fn disturbance() -> Scenario {
     let mut sc = scenario::builtin("ants-fig13-disturbance").unwrap();
     sc.events = vec![
-        event(
-            2,
-            Action::Move {
-                object: "danger".into(),
-                to: vec![50.0, 60.0],
-            },
-        ),
+        move_to(2, "danger", [50.0, 60.0]),
         event(3, Action::Start("danger".into())),
-        event(
-            5,
-            Action::Move {
-                object: "food".into(),
-                to: vec![60.0, 70.0],
-            },
-        ),
+        move_to(5, "food", [60.0, 70.0]),
         event(7, Action::Stop("danger".into())),
     ];
     short(sc)
@@ -52,13 +51,7 @@ fn disturbance() -> Scenario {
 fn rock_on_the_nest() -> Scenario {
     let mut sc = scenario::builtin("ants-fig11-dynamic-obstacles").unwrap();
     sc.events = vec![
-        event(
-            1,
-            Action::Move {
-                object: "rock-1".into(),
-                to: vec![50.0, 60.0],
-            },
-        ),
+        move_to(1, "rock-1", [50.0, 60.0]),
         event(4, Action::Add("rock-1".into())),
         event(8, Action::Remove("rock-1".into())),
     ];

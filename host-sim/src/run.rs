@@ -160,14 +160,10 @@ fn run_loop(
     rec.push(first)?;
     let bar = progress_bar(opts.progress, sc.steps as u64);
     let t0 = Instant::now();
-    let mut events = sc.events.iter().peekable();
     for step in 0..sc.steps {
-        while let Some(e) = events.next_if(|e| e.step == step) {
-            if let Some(id) = sc.object_id(e.action.object()) {
-                engine.apply(id, &e.action);
-                let (verb, object) = (e.action.verb(), e.action.object());
-                log.line(format_args!("step {step}: {verb} {object}"))?;
-            }
+        for e in crate::engine::apply_due_events(&mut *engine, sc) {
+            let (verb, object) = (e.action.verb(), e.action.object());
+            log.line(format_args!("step {step}: {verb} {object}"))?;
         }
         engine.tick()?;
         engine.after_tick(&mut summary);

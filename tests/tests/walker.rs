@@ -123,20 +123,24 @@ fn the_run_loop_writes_the_walkers_outputs() {
     }
 }
 
+/// `agents` walkers mirrored for `steps` steps, quietly.
+fn mirror_options(agents: usize, steps: u32) -> MirrorOptions {
+    MirrorOptions {
+        agents: Some(agents),
+        steps,
+        session: 5,
+        progress: false,
+    }
+}
+
 #[test]
 fn the_mirror_checks_the_walkers_on_their_soft_device_with_no_mismatch() {
     for link in [LinkKind::Memory, LinkKind::Pty] {
-        let opts = MirrorOptions {
-            agents: Some(12),
-            steps: 40,
-            session: 5,
-            progress: false,
-        };
         let r = loopback_engine(
             "walkers",
             Box::new(sim::<Fx>(50, 9)),
             Line::clean(link),
-            &opts,
+            &mirror_options(12, 40),
         )
         .unwrap();
         assert_eq!(r.decisions, 12 * 40, "{link:?}");
@@ -162,17 +166,11 @@ fn the_mirror_refuses_a_device_with_other_walls() {
     let (dev_end, host_end) = memory_pair();
     let soft = SoftDevice::spawn(move |stop| serve(device, dev_end, stop).map(|_| ()));
     let mut client = Client::new(host_end, ClientOptions::default());
-    let opts = MirrorOptions {
-        agents: Some(4),
-        steps: 5,
-        session: 5,
-        progress: false,
-    };
     let err = mirror(
         "walkers",
         Box::new(sim::<f32>(8, 1)),
         &mut client,
-        &opts,
+        &mirror_options(4, 5),
         &mut |_| Ok(()),
     )
     .unwrap_err();
@@ -186,18 +184,17 @@ const WALKER_BOX: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/data/walker-box.t
 
 /// Runs one of the binaries that register the walker; its output, after checking it exited 0.
 fn registered(bin: &str, args: &[&str]) -> String {
-    let out = std::process::Command::new(bin)
-        .args(args)
-        .output()
-        .expect("the binary runs");
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    let out = std::process::Command::new(bin).args(args).output().unwrap();
+    let (stdout, stderr) = (
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr),
+    );
     assert!(
         out.status.success(),
-        "{bin} {args:?}: {}\n{text}\n{}",
-        out.status,
-        String::from_utf8_lossy(&out.stderr)
+        "{bin} {args:?}: {}\n{stdout}\n{stderr}",
+        out.status
     );
-    text
+    stdout.into_owned()
 }
 
 #[test]

@@ -6,25 +6,15 @@ use swarm_core::{Fx, Vec2};
 use super::sim::{AntGroup, AntSim, AnyAntGroup};
 use super::world::{AntObjectDef, AntObjectKind, AntWorld, Shape2};
 use crate::scalar::SimScalar;
-use crate::scenario::{Action, Group, ObjectKind, ScalarType, Scenario, SpawnRegion, World};
+use crate::scenario::{Action, Group, ObjectKind, ScalarType, Scenario, SpawnRegion};
 use crate::spawn::{around_center, draw};
 use crate::{Result, SimError};
 
 impl AntSim {
     /// The ant simulation of `scenario` (a 2D world), with seed `seed`.
     pub fn from_scenario(scenario: &Scenario, seed: u32) -> Result<AntSim> {
-        let World::Plane { min, max } = scenario.world else {
-            return Err(SimError::WrongWorld {
-                scenario: scenario.name.clone(),
-                model: "ant",
-                dim: 2,
-            });
-        };
-        let params = scenario
-            .groups
-            .iter()
-            .map(super::ant_params)
-            .collect::<Result<Vec<AntParams<f32>>>>()?;
+        let (min, max) = scenario.bounds::<2>("ant")?;
+        let params = scenario.group_params(super::ant_params)?;
         let contact = params.iter().map(|p| p.contact_range).fold(0.0, f32::max);
         let collision = params.iter().map(|p| p.collision_range).fold(0.0, f32::max);
         let mut world = AntWorld::new(min, max, contact, collision);

@@ -9,7 +9,7 @@ use super::world::{BeeObstacle, BeeTarget, BeeWorld, Shape3};
 use crate::by_scalar;
 use crate::output::{AgentSample, Frame};
 use crate::scalar::SimScalar;
-use crate::scenario::{Action, Group, ObjectKind, ScalarType, Scenario, SpawnRegion, World};
+use crate::scenario::{Action, Group, ObjectKind, ScalarType, Scenario, SpawnRegion};
 use crate::spawn::{around_center, draw};
 use crate::{Result, SimError};
 
@@ -21,18 +21,8 @@ fn ranges(params: &BeeParams<f32>) -> (f32, f32) {
 impl BeeSim {
     /// The bee simulation of `scenario` (a 3D world), with seed `seed`.
     pub fn from_scenario(scenario: &Scenario, seed: u32) -> Result<BeeSim> {
-        let World::Space { min, max } = scenario.world else {
-            return Err(SimError::WrongWorld {
-                scenario: scenario.name.clone(),
-                model: "bee",
-                dim: 3,
-            });
-        };
-        let params = scenario
-            .groups
-            .iter()
-            .map(super::bee_params)
-            .collect::<Result<Vec<BeeParams<f32>>>>()?;
+        let (min, max) = scenario.bounds::<3>("bee")?;
+        let params = scenario.group_params(super::bee_params)?;
         let (range, sense) = params
             .iter()
             .map(ranges)
@@ -62,7 +52,7 @@ impl BeeSim {
         }
 
         // The scenario's own radius, not its conversion to a fixed-point group's scalar.
-        let radius = params.iter().map(|p| p.radius).fold(0.0, f32::max);
+        let collision = super::sim::collision_distance(params.iter().map(|p| p.radius));
         let groups = crate::spawn::groups(scenario, params, |g, p, first| {
             let goal = match g.goal.as_deref() {
                 Some(name) => Some(scenario.object_id(name).ok_or_else(|| SimError::NoObject {
@@ -78,7 +68,7 @@ impl BeeSim {
             })
         })?;
         let mut sim = BeeSim::new(world, groups, seed);
-        sim.collision_distance = 2.0 * radius;
+        sim.collision_distance = collision;
         Ok(sim)
     }
 

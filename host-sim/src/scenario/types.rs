@@ -70,6 +70,38 @@ impl Scenario {
         self.groups.iter().find(|g| g.name == name)
     }
 
+    /// The world's corners, `D` numbers each, for `model`, a model of `D`-dimensional worlds.
+    ///
+    /// # Errors
+    ///
+    /// [`SimError::WrongWorld`](crate::SimError::WrongWorld) when the world has another
+    /// dimension.
+    pub fn bounds<const D: usize>(
+        &self,
+        model: &'static str,
+    ) -> crate::Result<([f32; D], [f32; D])> {
+        let wrong = || crate::SimError::WrongWorld {
+            scenario: self.name.clone(),
+            model,
+            dim: D,
+        };
+        let min = <[f32; D]>::try_from(self.world.min()).map_err(|_| wrong())?;
+        let max = <[f32; D]>::try_from(self.world.max()).map_err(|_| wrong())?;
+        Ok((min, max))
+    }
+
+    /// Every group's parameters, as `read` (the model's reader) gives them, in group order.
+    ///
+    /// # Errors
+    ///
+    /// The first error of `read`.
+    pub fn group_params<P>(
+        &self,
+        read: impl Fn(&Group) -> crate::Result<P>,
+    ) -> crate::Result<Vec<P>> {
+        self.groups.iter().map(read).collect()
+    }
+
     /// Total number of agents over all groups.
     pub fn agent_count(&self) -> u64 {
         self.groups.iter().map(|g| u64::from(g.count)).sum()
