@@ -2,7 +2,7 @@
 # Compares two builds of `swarm bench` side by side, interleaved (A, B, A, B, ...), so that both
 # see the same machine load: hosts and moments differ far more than builds do.
 #
-#   scripts/bench-compare.sh OLD_SWARM NEW_SWARM [--model ants|bees] [--agents N] [--threads T]
+#   scripts/bench-compare.sh OLD_SWARM NEW_SWARM [--model ants|bees] (the plural names the model in builds before and after the model table) [--agents N] [--threads T]
 #                            [--steps S] [--runs R]
 #
 # Prints one line per run and the median agent-steps/s of each build.
