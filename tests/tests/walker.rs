@@ -145,7 +145,7 @@ fn the_mirror_checks_the_walkers_on_their_soft_device_with_no_mismatch() {
         .unwrap();
         assert_eq!(r.decisions, 12 * 40, "{link:?}");
         assert_eq!(r.mismatches, 0, "{}", r.human());
-        assert_eq!(r.model, "walkers");
+        assert_eq!(r.model, "walker");
         assert!(r.passed(), "{}", r.human());
     }
 }
