@@ -372,7 +372,7 @@ fn a_mismatch_before_the_line_goes_silent_is_in_the_report_with_the_link_failure
     // The 25th plan reply (step 2) is wrong, then the line goes silent: asking again fails.
     let client = ClientOptions {
         dead_after: Duration::from_millis(300),
-        ..ClientOptions::default()
+        ..clean_line()
     };
     let err = scripted(
         |n, _| match n {
