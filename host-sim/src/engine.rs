@@ -178,8 +178,8 @@ impl Exchange {
 }
 
 /// Applies the events of `sc` due before the engine's next tick ([`Engine::next_step`]), in
-/// the scenario's order, and returns them (to log): what `swarm run` does before each tick
-/// ([`run`](crate::run)'s loop, which applies them the same way), and what the mirror does,
+/// the scenario's order, and returns them (to log): what `swarm run`'s loop
+/// ([`run`](crate::run)) does before each tick, and what the mirror does,
 /// so a mirrored scenario sees its objects added, removed and moved and its disturbances
 /// started at the same steps as its run. An event naming an object the scenario does not
 /// have is skipped (a validated scenario has none). The events must be in step order, as a

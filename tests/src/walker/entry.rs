@@ -9,7 +9,9 @@ use swarm_core::{Fx, Vec2};
 use swarm_sim::engine::Engine;
 use swarm_sim::models::ModelEntry;
 use swarm_sim::scalar::SimScalar;
-use swarm_sim::scenario::{GroupCheck, ParamsOverride, Problem, ScalarType, Scenario, SpawnRegion};
+use swarm_sim::scenario::{
+    Group, GroupCheck, ParamsOverride, Problem, ScalarType, Scenario, SpawnRegion,
+};
 use swarm_sim::spawn::{around_center, draw};
 use swarm_sim::{Result, SimError};
 
@@ -62,16 +64,7 @@ fn check(c: &GroupCheck<'_>) -> std::result::Result<(), Problem> {
             format!("the walls at ±{w} stand outside the world"),
         ));
     }
-    let (lo, hi) = match &g.spawn.region {
-        SpawnRegion::Box { min, max } => (min.clone(), max.clone()),
-        SpawnRegion::Around { at, radius } => {
-            let c = around_center::<2>(c.scenario, at);
-            (
-                c.map(|v| v - radius).to_vec(),
-                c.map(|v| v + radius).to_vec(),
-            )
-        }
-    };
+    let (lo, hi) = spawn_square(c.scenario, g);
     if lo.iter().chain(&hi).any(|v| v.abs() > w) {
         return Err(c.problem(
             "spawn",
@@ -79,6 +72,21 @@ fn check(c: &GroupCheck<'_>) -> std::result::Result<(), Problem> {
         ));
     }
     Ok(())
+}
+
+/// The corners of group `g`'s spawn region: its box, or the square around its object (a
+/// coordinate a malformed box lacks reads 0; the scenario's spawn rule refuses such a box).
+fn spawn_square(sc: &Scenario, g: &Group) -> ([f32; 2], [f32; 2]) {
+    match &g.spawn.region {
+        SpawnRegion::Box { min, max } => {
+            let corner = |p: &[f32]| [0, 1].map(|k| p.get(k).copied().unwrap_or(0.0));
+            (corner(min), corner(max))
+        }
+        SpawnRegion::Around { at, radius } => {
+            let c = around_center::<2>(sc, at);
+            (c.map(|v| v - radius), c.map(|v| v + radius))
+        }
+    }
 }
 
 /// The walker simulation of `sc`: every group's walkers drawn uniformly in its spawn region
@@ -104,13 +112,7 @@ fn build<S: SimScalar>(sc: &Scenario, params: WalkParams<f32>, seed: u32) -> Res
         })?;
     let mut states = Vec::new();
     for g in &sc.groups {
-        let (lo, hi) = match &g.spawn.region {
-            SpawnRegion::Box { min, max } => ([min[0], min[1]], [max[0], max[1]]),
-            SpawnRegion::Around { at, radius } => {
-                let c = around_center::<2>(sc, at);
-                (c.map(|v| v - radius), c.map(|v| v + radius))
-            }
-        };
+        let (lo, hi) = spawn_square(sc, g);
         let heading = match g.spawn.heading.as_deref() {
             Some(&[x, y]) => {
                 let len = (x * x + y * y).sqrt();
