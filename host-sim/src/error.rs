@@ -148,6 +148,57 @@ pub enum SimError {
         /// The pool's error.
         source: rayon::ThreadPoolBuildError,
     },
+    /// `--backend gpu` on a machine where wgpu finds no adapter.
+    #[error("--backend gpu: no GPU adapter ({source}); {hint}")]
+    NoGpu {
+        /// wgpu's answer.
+        source: wgpu::RequestAdapterError,
+        /// What to install.
+        hint: &'static str,
+    },
+    /// The adapter refused to open a device.
+    #[error("--backend gpu: the adapter {adapter} refused a device: {source}")]
+    GpuDevice {
+        /// The adapter.
+        adapter: String,
+        /// wgpu's error.
+        source: wgpu::RequestDeviceError,
+    },
+    /// The GPU stopped answering (device lost, or a wait timed out).
+    #[error("GPU: {source}")]
+    GpuLost {
+        /// wgpu's error.
+        source: wgpu::PollError,
+    },
+    /// A result buffer could not be mapped for reading.
+    #[error("GPU: cannot read back `{buffer}`: {source}")]
+    GpuReadback {
+        /// The buffer's label.
+        buffer: &'static str,
+        /// wgpu's error.
+        source: wgpu::BufferAsyncError,
+    },
+    /// A kernel's WGSL did not compile (a bug in `shaders/`, caught by the naga test).
+    #[error("GPU: kernel `{kernel}` does not compile: {message}")]
+    GpuShader {
+        /// The kernel.
+        kernel: &'static str,
+        /// The compiler's diagnostic.
+        message: String,
+    },
+    /// A swarm larger than one storage binding of the adapter holds.
+    #[error(
+        "GPU: `{buffer}` needs {bytes} bytes, more than the adapter's largest storage binding \
+         ({limit} bytes): fewer agents, or a GPU with more memory"
+    )]
+    GpuTooLarge {
+        /// The buffer.
+        buffer: &'static str,
+        /// Its size.
+        bytes: u64,
+        /// The adapter's limit.
+        limit: u64,
+    },
     /// A benchmark with nothing to time.
     #[error("bench: needs at least one agent and one step (got {agents} agents, {steps} steps)")]
     EmptyBench {

@@ -35,6 +35,7 @@ pub mod bench;
 pub mod cli;
 pub mod engine;
 mod error;
+pub mod gpu;
 pub mod grid;
 pub mod models;
 pub mod output;

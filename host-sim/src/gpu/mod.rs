@@ -1,0 +1,27 @@
+//! The GPU backend's foundation (wgpu): the adapter and device ([`Gpu`]), the WGSL modules of
+//! `shaders/` and how kernels are put together from them ([`shaders`]), and compiled compute
+//! kernels with their buffers ([`kernel`]).
+//!
+//! The kernels mirror `swarm-core` function by function: `shaders/fx.wgsl` is the I16F16
+//! arithmetic of [`swarm_core::Fx`], `shaders/rand.wgsl` its counter-based random numbers, each
+//! tested bit for bit against the Rust function on the GPU (lavapipe, Mesa's Vulkan driver on
+//! the CPU, where there is no GPU).
+//!
+//! ```no_run
+//! let gpu = swarm_sim::gpu::Gpu::new().unwrap(); // an error naming what to install if none
+//! println!("{}", gpu.info());
+//! ```
+
+mod context;
+pub mod kernel;
+pub mod shaders;
+
+pub use context::{AdapterSummary, Gpu};
+
+/// The GPU of the tests: the adapter [`Gpu::new`] finds (lavapipe on a machine without a GPU).
+/// Panics with the install hint if there is none: the test command installs the driver, and a
+/// GPU test must fail rather than skip.
+#[cfg(test)]
+pub(crate) fn test_gpu() -> Gpu {
+    Gpu::new().unwrap_or_else(|e| panic!("the GPU tests need an adapter: {e}"))
+}
