@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every test of the project: formatting, clippy, docs, the workspace's unit, property and
-# integration tests, and the no_std firmware images built for real Cortex-M targets and run in
-# QEMU. Installs the system packages it needs with apt-get when they are missing.
+# integration tests (the GPU backend's on whatever Vulkan adapter there is, lavapipe without a
+# GPU), and the no_std firmware images built for real Cortex-M targets and run in QEMU.
+# Installs the system packages it needs with apt-get when they are missing.
 #
 #   scripts/test.sh            everything
 #   scripts/test.sh --quick    skip the firmware build and QEMU runs
@@ -47,19 +48,27 @@ if ! have_embedded_rustup; then
     command -v ld.lld >/dev/null 2>&1 || need_pkgs+=(lld)
 fi
 command -v qemu-system-arm >/dev/null 2>&1 || need_pkgs+=(qemu-system-arm)
+((QUICK == 1)) && need_pkgs=()
+# The GPU backend's tests (part of cargo test, so also with --quick) need a Vulkan loader and a
+# driver: Mesa's lavapipe runs them on the CPU where there is no GPU.
+have_vulkan() {
+    ldconfig -p 2>/dev/null | grep -q 'libvulkan\.so\.1' &&
+        compgen -G '/usr/share/vulkan/icd.d/*.json' >/dev/null
+}
+have_vulkan || need_pkgs+=(mesa-vulkan-drivers libvulkan1)
 
 firmware_ok=1
-if ((QUICK == 0)) && ((${#need_pkgs[@]} > 0)); then
+if ((${#need_pkgs[@]} > 0)); then
     say "installing system packages: ${need_pkgs[*]}"
     SUDO=""
     [[ $(id -u) -ne 0 ]] && command -v sudo >/dev/null 2>&1 && SUDO="sudo -n"
     if ! { $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${need_pkgs[@]}"; }; then
         if [[ "$CI" == "true" ]]; then
-            warn "cannot install ${need_pkgs[*]} with apt-get; the firmware tests need them (CI=true: failing)"
+            warn "cannot install ${need_pkgs[*]} with apt-get; the firmware and GPU tests need them (CI=true: failing)"
             exit 1
         fi
         warn "cannot install ${need_pkgs[*]}: SKIPPING the firmware build and QEMU tests on this machine"
-        warn "(install them with: sudo apt-get install ${need_pkgs[*]})"
+        warn "(install them with: sudo apt-get install ${need_pkgs[*]}); without a Vulkan driver the GPU tests fail"
         firmware_ok=0
     fi
 fi
