@@ -12,13 +12,16 @@
 #   --tcp PORT      a TCP server on 127.0.0.1:PORT (default; PORT 0 or none = a free port)
 #   --pty           a pseudo-terminal (its /dev/pts path is printed)
 # What to do (without any of these: print where the UART is and run until Ctrl-C/SIGTERM):
-#   --hello         send 00 + Hello, check the Identity (name, controller, scalar, max_frame;
-#                   for ant-node every byte, against docs/protocol.md section 11), print both
+#   --hello         send 00 + Hello, check the Identity (protocol 3, name, controller, scalar,
+#                   capacities, max_frame, rx_buffer; for ant-node every byte, against
+#                   docs/protocol.md section 11), print both
 #   --replay FILE   send every request of a transcript (firmware-examples/node/examples/
 #                   transcript.rs) and check every reply byte for byte; prints requests/s
 #   --steps N       generate a transcript of N ticks for the image (cargo run --example
 #                   transcript) and replay it (implies --replay)
-#   --window W      requests in flight during a replay (default 1; pipelining, protocol 10.6)
+#   --window W      requests in flight during a replay (default 1; pipelining, protocol 10.6:
+#                   QEMU's UART holds the sender back when full, so the line has flow control
+#                   and W is not bound by the Identity's rx_buffer)
 #   --stack         after --hello/--replay, read the painted stack's peak through QEMU's
 #                   monitor (the images paint the free stack at boot; fw_support::paint_stack)
 #   --print-cmd     print the QEMU command line and exit
@@ -176,7 +179,7 @@ line = Line()
 result = {}
 
 if args.get("hello") == "1":
-    hello = bytes.fromhex("00 04 02 01 02 03 fa 38 00")   # 00, then Hello seq 2 (protocol.md 11)
+    hello = bytes.fromhex("00 04 03 01 02 03 4e 4e 00")   # 00, then Hello seq 2 (protocol.md 11)
     line.send(hello)
     reply = line.frame()
     boot_ms = (time.time() - t0) * 1000
@@ -185,31 +188,34 @@ if args.get("hello") == "1":
     proto, ctrl, scal, math = p[0], p[1], p[2], p[3]
     i = 4
     caps = []
-    for _ in range(3):
+    for _ in range(4):                             # neighbours, objects, targets, surfaces
         v, i = varint(p, i); caps.append(v)
     max_frame, i = varint(p, i)
+    rx_buffer, i = varint(p, i)
     phash, i = varint(p, i)
     n, i = varint(p, i)
     name = p[i:i + n].decode()
     want_ctrl = 0 if img.startswith("ant") else 1
     want_scal = 1 if img.endswith("fixed") else 0
     want_math = 2 if want_scal else 0
-    want_caps = [8, 4, 0] if want_ctrl == 0 else [16, 0, 16]
+    want_caps = [8, 4, 0, 6] if want_ctrl == 0 else [16, 0, 16, 0]
     want_max = 451 if want_ctrl == 0 else 942
-    got = (proto, ctrl, scal, math, caps, max_frame, name)
-    want = (2, want_ctrl, want_scal, want_math, want_caps, want_max, img)
+    want_rx = 16 if want_ctrl == 0 else 1          # the UART's receive FIFO: PL011, CMSDK UART
+    got = (proto, ctrl, scal, math, caps, max_frame, rx_buffer, name)
+    want = (3, want_ctrl, want_scal, want_math, want_caps, want_max, want_rx, img)
     if got != want: fail(f"identity {got} != expected {want}")
     if img == "ant-node":
-        pinned = bytes.fromhex("04 02 02 02 02 02 01 01 03 08 04 15 c3 03 c3 8b a1 c0 ec f6 b8 9a 7e 08"
-                               " 61 6e 74 2d 6e 6f 64 65 02 40 00")
+        pinned = bytes.fromhex("04 03 02 02 02 03 01 01 03 08 04 19 06 c3 03 10 c3 8b a1 c0 ec f6 b8 9a 7e"
+                               " 08 61 6e 74 2d 6e 6f 64 65 c4 0b 00")
         if reply != pinned: fail("Identity differs from docs/protocol.md section 11")
     print(f"ok    {img}: Hello -> Identity (controller {['Ant','Bee'][ctrl]}, scalar "
           f"{['F32','I16F16'][scal]}, math {['Libm','Micromath','Integer'][math]}, capacities {caps}, "
-          f"max_frame {max_frame}, params_hash {phash:#018x}, name {name!r}); first reply "
+          f"max_frame {max_frame}, rx_buffer {rx_buffer}, params_hash {phash:#018x}, name {name!r}); "
+          f"first reply "
           f"{boot_ms:.0f} ms after QEMU started")
     print(f"      host   {hello.hex(' ')}")
     print(f"      device {reply.hex(' ')}")
-    result.update(identity_ms=round(boot_ms, 1), params_hash=f"{phash:#018x}")
+    result.update(identity_ms=round(boot_ms, 1), params_hash=f"{phash:#018x}", rx_buffer=rx_buffer)
 
 if args.get("replay"):
     pairs = [l.split() for l in open(args["replay"]) if l.strip()]

@@ -83,9 +83,16 @@ struct Run {
     /// Number type of the device (every group of the scenario runs in it).
     #[arg(long, value_enum, default_value_t = Scalar::F32)]
     scalar: Scalar,
-    /// Requests in flight at once.
+    /// Requests in flight at most: cut after the handshake to what the device says it
+    /// buffers while computing (`Identity.rx_buffer`; 1 for a polled UART) unless
+    /// `--flow-control`.
     #[arg(long, default_value_t = 8)]
     window: usize,
+    /// The line holds the host back when the device's receiver is full (RTS/CTS): keep
+    /// `--window` requests in flight whatever the device buffers. Implied by `qemu` (QEMU's
+    /// UARTs take a byte only when they have room).
+    #[arg(long)]
+    flow_control: bool,
     /// Milliseconds before an unanswered request is sent again, until a round trip has been
     /// measured (then the timeout follows the measured round trips).
     #[arg(long, default_value_t = 200)]
@@ -298,9 +305,12 @@ fn run(cli: Cli) -> Result<Verdict, Stop> {
                 fault_seed: run.fault_seed,
             };
             let sc = with_scalar(&sc, run.scalar.into());
-            let report = mirror_in_qemu(&qrun, client_options(&run)?, |client, hook| {
-                mirror(&sc, client, &run, hook)
-            });
+            let flow = ClientOptions {
+                flow_control: true,
+                ..client_options(&run)?
+            };
+            let report =
+                mirror_in_qemu(&qrun, flow, |client, hook| mirror(&sc, client, &run, hook));
             finish(report, run.json.as_deref())
         }
         Command::Device {
@@ -392,6 +402,7 @@ fn client_options(run: &Run) -> Result<ClientOptions, Stop> {
     }
     Ok(ClientOptions {
         window: run.window,
+        flow_control: run.flow_control,
         rto: RtoOptions {
             initial: Duration::from_millis(run.timeout_ms),
             min: seconds("--rto-min-ms", run.rto_min_ms / 1000.0)?,

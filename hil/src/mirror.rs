@@ -134,6 +134,11 @@ pub struct MirrorReport {
     pub srtt_us: u64,
     /// Retransmission timeout at the end, in microseconds.
     pub rto_us: u64,
+    /// Requests in flight at most: `--window`, cut to what the device buffers
+    /// (`rx_buffer`) unless the line has flow control.
+    pub window: u64,
+    /// What the device says it buffers while computing (`Identity.rx_buffer`, bytes).
+    pub rx_buffer: u32,
     /// Round-trip latency.
     pub latency_us: Latency,
     /// Decisions per second of wall time.
@@ -186,8 +191,10 @@ impl MirrorReport {
             );
         }
         s += &format!(
-            "{:.0} decisions/s, latency p50 {} µs, p99 {} µs, max {} µs; {:.1} bytes per round trip\n",
+            "{:.0} decisions/s (window {}), latency p50 {} µs, p99 {} µs, max {} µs; {:.1} bytes \
+             per round trip\n",
             self.decisions_per_s,
+            self.window,
             self.latency_us.p50,
             self.latency_us.p99,
             self.latency_us.max,
@@ -537,6 +544,8 @@ fn report<T: Transport>(
         undecodable: link.undecodable,
         srtt_us: link.srtt_us,
         rto_us: link.rto_us,
+        window: link.window,
+        rx_buffer: device.rx_buffer,
         latency_us: Latency::of(lat),
         decisions_per_s: tally.decisions as f64 / seconds.max(1e-9),
         bytes_tx: link.bytes_tx,

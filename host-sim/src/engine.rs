@@ -223,8 +223,13 @@ impl Device {
         Device::with(params, soft_endpoint(params, &soft_name::<C>())?)
     }
 
-    /// The device running `params`, served on the host by `soft`.
-    fn with<C: Controller>(params: &Checked<C>, soft: Box<dyn Endpoint + Send>) -> Result<Device> {
+    /// The device running `params`, served on the host by `soft`, which reads a pipe and so
+    /// reports an unbounded receive buffer (`Identity::rx_buffer` = `u32::MAX`).
+    fn with<C: Controller>(
+        params: &Checked<C>,
+        mut soft: Box<dyn Endpoint + Send>,
+    ) -> Result<Device> {
+        soft.set_rx_buffer(u32::MAX);
         let p: &C = params;
         Ok(Device {
             expected: Identity::of(p, C::MAX_REQUEST_FRAME, "host").map_err(SimError::Device)?,

@@ -145,6 +145,7 @@ mod on_the_wire {
             neighbours: WIRE_ANT_NEIGHBOURS as u16,
             objects: WIRE_ANT_OBJECTS as u16,
             targets: 0,
+            surfaces: crate::ant::SURFACES as u16,
         };
         const MAX_REQUEST_PAYLOAD: usize = MAX_ANT_PAYLOAD;
         const MAX_REPLY_PAYLOAD: usize = MAX_ANT_REPLY_PAYLOAD;

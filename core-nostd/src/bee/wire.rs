@@ -100,6 +100,7 @@ mod on_the_wire {
             neighbours: WIRE_BEE_NEIGHBOURS as u16,
             objects: 0,
             targets: WIRE_BEE_TARGETS as u16,
+            surfaces: 0,
         };
         const MAX_REQUEST_PAYLOAD: usize = MAX_BEE_PAYLOAD;
         const MAX_REPLY_PAYLOAD: usize = MAX_BEE_REPLY_PAYLOAD;

@@ -393,7 +393,7 @@ mod tests {
 
     #[test]
     fn version_and_truncated() {
-        // 0x02 0x01: one raw byte; then a CRC-valid frame of version 1 (the previous release).
+        // 0x02 0x01: one raw byte; then a CRC-valid frame of version 1 (an old release).
         let mut v1 = vec![0u8; 16];
         let mut raw = vec![1, 1, 0, 0];
         raw.extend_from_slice(&crate::wire::CRC16.checksum(&raw).to_le_bytes());

@@ -65,6 +65,7 @@ struct Core<C, const TX: usize> {
     params_hash: u64,
     name: DeviceName,
     max_frame: u16,
+    rx_buffer: u32,
     tx: [u8; TX],
     state: SessionState,
     counters: Counters,
@@ -238,11 +239,20 @@ impl<C: Controller, const RX: usize, const TX: usize> DeviceEndpoint<C, RX, TX> 
                 params_hash,
                 name: device_name(name)?,
                 max_frame: u16::try_from(RX.saturating_add(1)).unwrap_or(u16::MAX),
+                rx_buffer: 0,
                 tx: [0; TX],
                 state: SessionState::Idle,
                 counters: Counters::default(),
             },
         })
+    }
+
+    /// Reports `bytes` as [`Identity::rx_buffer`]: how much of further requests the device
+    /// takes in while it computes a reply (its receive ring, or the UART's hardware FIFO when
+    /// it polls; `u32::MAX` for no limit). A new endpoint reports 0: a host then sends one
+    /// request at a time.
+    pub fn set_rx_buffer(&mut self, bytes: u32) {
+        self.core.rx_buffer = bytes;
     }
 
     /// Feeds bytes until the first reply. Returns `None` when every byte was absorbed without
@@ -366,6 +376,7 @@ impl<C: Controller, const RX: usize, const TX: usize> DeviceEndpoint<C, RX, TX> 
             math: <C::Scalar as Scalar>::MATH,
             capacities: C::CAPACITIES,
             max_frame: c.max_frame,
+            rx_buffer: c.rx_buffer,
             params_hash: c.params_hash,
             name: c.name.clone(),
         }
@@ -429,6 +440,8 @@ pub trait Endpoint {
     fn stats(&self) -> DeviceStats;
     /// Back to power-up (see [`DeviceEndpoint::reset`]).
     fn reset(&mut self);
+    /// Sets what `Identity::rx_buffer` reports (see [`DeviceEndpoint::set_rx_buffer`]).
+    fn set_rx_buffer(&mut self, bytes: u32);
 }
 
 impl<C: Controller, const RX: usize, const TX: usize> Endpoint for DeviceEndpoint<C, RX, TX> {
@@ -446,5 +459,8 @@ impl<C: Controller, const RX: usize, const TX: usize> Endpoint for DeviceEndpoin
     }
     fn reset(&mut self) {
         DeviceEndpoint::reset(self);
+    }
+    fn set_rx_buffer(&mut self, bytes: u32) {
+        DeviceEndpoint::set_rx_buffer(self, bytes);
     }
 }

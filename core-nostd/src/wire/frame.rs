@@ -264,9 +264,9 @@ mod tests {
     #[test]
     fn vector_1_ping() {
         // kind 0x81, seq 0, Ping { nonce: 0x12345678 }
-        // raw  = 02 81 00 00 | f8 ac d1 91 01 | crc 0x9527 -> 27 95
+        // raw  = 03 81 00 00 | f8 ac d1 91 01 | crc 0x7e04 -> 04 7e
         let wire = enc(0x81, 0, &Ping { nonce: 0x1234_5678 });
-        assert_eq!(wire, hex("03 02 81 01 08 f8 ac d1 91 01 27 95 00"));
+        assert_eq!(wire, hex("03 03 81 01 08 f8 ac d1 91 01 04 7e 00"));
         let (h, p) = dec(&wire).unwrap();
         assert_eq!(h, Header::new(0x81, 0));
         assert_eq!(
@@ -279,7 +279,7 @@ mod tests {
     fn vector_2_tuple() {
         // kind 0x82, seq 0x1234, (7u8, -2i32, true): postcard 07 03 01
         let wire = enc(0x82, 0x1234, &(7u8, -2i32, true));
-        assert_eq!(wire, hex("0a 02 82 34 12 07 03 01 88 7d 00"));
+        assert_eq!(wire, hex("0a 03 82 34 12 07 03 01 e9 c5 00"));
         let (h, p) = dec(&wire).unwrap();
         assert_eq!((h.kind, h.seq), (0x82, 0x1234));
         assert_eq!(
@@ -292,7 +292,7 @@ mod tests {
     fn vector_3_empty_payload() {
         // kind 0x83, seq 0xffff, () : the shortest frame, 8 bytes
         let wire = enc(0x83, 0xffff, &());
-        assert_eq!(wire, hex("07 02 83 ff ff ad 16 00"));
+        assert_eq!(wire, hex("07 03 83 ff ff 19 60 00"));
         assert_eq!(wire.len(), 8);
         decode_payload::<()>(&dec(&wire).unwrap().1).unwrap();
     }
@@ -309,7 +309,7 @@ mod tests {
         // payload: 00 00 c0 3f | 01 ac 02 | 02 01 04 | 80 80 0c | 00
         assert_eq!(
             wire,
-            hex("04 02 84 01 01 01 0c c0 3f 01 ac 02 02 01 04 80 80 0c 03 2e ef 00")
+            hex("04 03 84 01 01 01 0c c0 3f 01 ac 02 02 01 04 80 80 0c 03 1f 1f 00")
         );
         let (_, p) = dec(&wire).unwrap();
         assert_eq!(
@@ -327,16 +327,16 @@ mod tests {
         let mut v: heapless::Vec<u8, 250> = heapless::Vec::new();
         v.extend_from_slice(&[0x11; 250]).unwrap();
         let wire = enc(0x85, 0x0101, &v);
-        let mut expect = hex("ff 02 85 01 01 fa 01");
+        let mut expect = hex("ff 03 85 01 01 fa 01");
         expect.extend_from_slice(&[0x11; 248]);
         expect.extend_from_slice(&hex("05 11 11"));
         let crc = CRC16.checksum(&{
-            let mut raw = hex("02 85 01 01 fa 01");
+            let mut raw = hex("03 85 01 01 fa 01");
             raw.extend_from_slice(&[0x11; 250]);
             raw
         });
-        assert_eq!(crc, 0xe264);
-        expect.extend_from_slice(&hex("64 e2 00"));
+        assert_eq!(crc, 0x8cd6);
+        expect.extend_from_slice(&hex("d6 8c 00"));
         assert_eq!(wire, expect);
         assert_eq!(wire.len(), 252 + 4 + 2 + 2 + 1);
         let (_, p) = dec(&wire).unwrap();
@@ -407,24 +407,24 @@ mod tests {
         assert_eq!(
             dec(&wire),
             Err(Error::Crc {
-                got: 0x9527,
-                expected: 0xe393
+                got: 0x7e04,
+                expected: 0x08b0
             })
         );
     }
 
     #[test]
     fn version_mismatch() {
-        // A well-formed frame of version 1 (the previous release): header 01 01 00 00, empty
+        // A well-formed frame of version 2 (the previous release): header 02 01 00 00, empty
         // payload.
-        let raw = hex("01 01 00 00");
+        let raw = hex("02 01 00 00");
         let crc = CRC16.checksum(&raw).to_le_bytes();
         let mut wire = vec![0u8; 16];
         let mut full = raw.clone();
         full.extend_from_slice(&crc);
         let n = cobs::try_encode(&full, &mut wire).unwrap();
         wire.truncate(n);
-        assert_eq!(decode_frame(&mut wire), Err(Error::Version { got: 1 }));
+        assert_eq!(decode_frame(&mut wire), Err(Error::Version { got: 2 }));
     }
 
     impl crate::wire::Message for Ping {

@@ -3,7 +3,7 @@
 /// The protocol version this build speaks; carried in byte 0 of every frame header.
 ///
 /// A receiver drops frames of any other version with [`Error::Version`](crate::Error::Version).
-pub const PROTOCOL_VERSION: u8 = 2;
+pub const PROTOCOL_VERSION: u8 = 3;
 
 /// Length of the encoded [`Header`] in bytes.
 pub const HEADER_LEN: usize = 4;

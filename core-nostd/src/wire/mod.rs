@@ -40,9 +40,10 @@
 //! On top of the frames, a host talks to a device in sessions (`docs/protocol.md`, section 10):
 //!
 //! 1. [`Hello`] → [`Identity`]: the device says what it runs (controller, scalar, math
-//!    backend, capacities, [`params_hash`] of its parameters); the host compares it with what
-//!    it expects ([`Identity::check`], an error naming every difference) and stops there if
-//!    it differs;
+//!    backend, capacities, longest frame, receive buffer, [`params_hash`] of its parameters);
+//!    the host compares it with what it expects ([`Identity::check`], an error naming every
+//!    difference) and stops there if it differs, then sizes its pipelining window from the
+//!    receive buffer ([`Identity::window`]);
 //! 2. [`Configure`] → [`Configured`]: the host opens a session (the device checks the
 //!    parameter hash once more);
 //! 3. controller requests ([`AntPlanRequest`], [`AntResolveRequest`], [`BeeStepRequest`]),

@@ -56,6 +56,18 @@ pub struct Capacities {
     pub objects: u16,
     /// Target particles (bee frame; 0 for ants).
     pub targets: u16,
+    /// Obstacle surfaces (ant resolve frame, [`crate::ant::SURFACES`]; 0 for bees).
+    pub surfaces: u16,
+}
+
+impl Capacities {
+    /// Every capacity 0: a controller whose frame has none of these lists.
+    pub const NONE: Capacities = Capacities {
+        neighbours: 0,
+        objects: 0,
+        targets: 0,
+        surfaces: 0,
+    };
 }
 
 /// Host → device (kind `0x01`): "who are you?". Empty payload. Answered with an
@@ -86,6 +98,11 @@ pub struct Identity {
     /// The longest frame it receives, delimiter included; a longer one is dropped unanswered.
     /// For the host's expectation: the longest frame the host will send.
     pub max_frame: u16,
+    /// How many bytes of further requests the device takes in while it computes a reply (its
+    /// receive ring, or its UART's hardware FIFO when it polls; `u32::MAX`: no limit, e.g. a
+    /// device on the host reading a pipe). Not compared by [`Identity::check`]: a host sizes
+    /// its pipelining window from it ([`Identity::window`]).
+    pub rx_buffer: u32,
     /// [`params_hash`] of its controller parameters.
     pub params_hash: u64,
     /// A free-form name for reports (not compared by [`Identity::check`]).
@@ -272,6 +289,8 @@ pub enum Difference {
     Objects,
     /// [`Capacities::targets`].
     Targets,
+    /// [`Capacities::surfaces`].
+    Surfaces,
     /// The device's [`Identity::max_frame`] is below the host's (it would drop the host's
     /// longest requests).
     MaxFrame,
@@ -281,7 +300,7 @@ pub enum Difference {
 
 impl Difference {
     /// Every difference, in the order [`HandshakeMismatch`] reports them.
-    pub const ALL: [Difference; 9] = [
+    pub const ALL: [Difference; 10] = [
         Difference::Protocol,
         Difference::Controller,
         Difference::Scalar,
@@ -289,6 +308,7 @@ impl Difference {
         Difference::Neighbours,
         Difference::Objects,
         Difference::Targets,
+        Difference::Surfaces,
         Difference::MaxFrame,
         Difference::ParamsHash,
     ];
@@ -304,6 +324,7 @@ impl Difference {
             Difference::Neighbours => d.capacities.neighbours != h.capacities.neighbours,
             Difference::Objects => d.capacities.objects != h.capacities.objects,
             Difference::Targets => d.capacities.targets != h.capacities.targets,
+            Difference::Surfaces => d.capacities.surfaces != h.capacities.surfaces,
             Difference::MaxFrame => d.max_frame < h.max_frame,
             Difference::ParamsHash => d.params_hash != h.params_hash,
         }
@@ -354,6 +375,9 @@ impl HandshakeMismatch {
             },
             Some(Difference::Targets) => Error::BadParam {
                 field: "capacities.targets",
+            },
+            Some(Difference::Surfaces) => Error::BadParam {
+                field: "capacities.surfaces",
             },
             Some(Difference::MaxFrame) => Error::Oversize,
             Some(Difference::ParamsHash) | None => Error::ParamsMismatch {
@@ -434,6 +458,11 @@ impl fmt::Display for HandshakeMismatch {
                     "target capacity {} ≠ {}",
                     d.capacities.targets, h.capacities.targets
                 ),
+                Difference::Surfaces => write!(
+                    f,
+                    "surface capacity {} ≠ {}",
+                    d.capacities.surfaces, h.capacities.surfaces
+                ),
                 Difference::MaxFrame => write!(
                     f,
                     "max frame {} < {} bytes (the host's longest request)",
@@ -463,7 +492,8 @@ impl From<HandshakeMismatch> for Error {
 
 impl Identity {
     /// The identity of a device running `params` on controller `C`, receiving frames of up
-    /// to `max_frame` bytes (delimiter included; saturated to `u16::MAX`), named `name`.
+    /// to `max_frame` bytes (delimiter included; saturated to `u16::MAX`), named `name`,
+    /// with no receive buffer beyond the frame it serves (`rx_buffer` 0).
     ///
     /// A host builds its expectation the same way, with `max_frame` the longest frame it will
     /// send (e.g. [`MAX_ANT_FRAME`](super::MAX_ANT_FRAME)) and any name.
@@ -479,14 +509,35 @@ impl Identity {
             math: <C::Scalar as crate::Scalar>::MATH,
             capacities: C::CAPACITIES,
             max_frame: u16::try_from(max_frame).unwrap_or(u16::MAX),
+            rx_buffer: 0,
             params_hash: params_hash(params)?,
             name: device_name(name)?,
         })
     }
 
+    /// The most requests a host keeps in flight to this device when its longest request
+    /// frame is `request_frame` bytes (delimiter included): the one being served plus as many
+    /// whole ones as [`rx_buffer`](Identity::rx_buffer) holds, `1 + rx_buffer / request_frame`
+    /// (at least 1; saturating). A line with flow control (the device's receiver holds the
+    /// sender back when full, as QEMU's UARTs do) is not bound by it.
+    ///
+    /// ```
+    /// # use swarm_core::ant::AntParams;
+    /// # use swarm_core::wire::{Identity, MAX_ANT_FRAME};
+    /// let mut id = Identity::of(&AntParams::<f32>::default(), 451, "ant-1").unwrap();
+    /// id.rx_buffer = 16; // a polled PL011: its hardware FIFO
+    /// assert_eq!(id.window(MAX_ANT_FRAME), 1);
+    /// id.rx_buffer = 2048; // a 2 KiB interrupt-filled ring
+    /// assert_eq!(id.window(MAX_ANT_FRAME), 5);
+    /// ```
+    pub fn window(&self, request_frame: usize) -> usize {
+        let buffered = usize::try_from(self.rx_buffer).unwrap_or(usize::MAX);
+        1usize.saturating_add(buffered / request_frame.max(1))
+    }
+
     /// Compares the device's identity (`self`) with the host's expectation: every field must
-    /// be equal, except `name` (not compared) and `max_frame` (the device's must be at least
-    /// the host's).
+    /// be equal, except `name` and `rx_buffer` (not compared) and `max_frame` (the device's
+    /// must be at least the host's).
     ///
     /// ```
     /// use swarm_core::ant::AntParams;
@@ -504,6 +555,9 @@ impl Identity {
     /// # Errors
     ///
     /// A [`HandshakeMismatch`] naming every difference.
+    // Both identities travel in the error (130 bytes, no allocation in no_std); a handshake
+    // happens once per session, so the size of its `Result` costs nothing.
+    #[allow(clippy::result_large_err)]
     pub fn check(&self, host: &Identity) -> core::result::Result<(), HandshakeMismatch> {
         if Difference::ALL.iter().any(|d| d.between(self, host)) {
             Err(HandshakeMismatch {
@@ -624,14 +678,20 @@ mod tests {
         };
         assert_eq!(payload_len(&s), MAX_SESSION_PAYLOAD);
         let mut id = Identity::of(&AntParams::<Fx>::default(), 65535, "").unwrap();
+        id.controller = ControllerKind(u32::MAX);
         id.params_hash = u64::MAX;
         id.capacities = Capacities {
             neighbours: u16::MAX,
             objects: u16::MAX,
             targets: u16::MAX,
+            surfaces: u16::MAX,
         };
+        id.rx_buffer = u32::MAX;
         id.name = device_name("abcdefghijklmnopqrstuvwx").unwrap();
-        assert_eq!(payload_len(&id), 51);
+        assert_eq!(payload_len(&id), 63);
+        // 59 for a controller kind below 128 (one varint byte instead of five).
+        id.controller = ControllerKind(127);
+        assert_eq!(payload_len(&id), 59);
         let c = Configure {
             session: u32::MAX,
             params_hash: u64::MAX,
@@ -639,6 +699,25 @@ mod tests {
         };
         assert_eq!(payload_len(&c), 16);
         assert_eq!(MAX_SESSION_FRAME, 79);
+    }
+
+    #[test]
+    fn window_is_one_plus_the_whole_requests_rx_buffer_holds() {
+        let mut id = ant_identity();
+        assert_eq!(id.rx_buffer, 0);
+        assert_eq!(id.window(MAX_ANT_FRAME), 1);
+        for (rx_buffer, window) in [(1, 1), (16, 1), (449, 1), (450, 2), (1800, 5), (1801, 5)] {
+            id.rx_buffer = rx_buffer;
+            assert_eq!(id.window(MAX_ANT_FRAME), window, "{rx_buffer}");
+        }
+        id.rx_buffer = u32::MAX;
+        assert_eq!(
+            id.window(MAX_ANT_FRAME),
+            1 + u32::MAX as usize / MAX_ANT_FRAME
+        );
+        assert_eq!(id.window(1), (u32::MAX as usize).saturating_add(1));
+        // A request frame length of 0 counts as 1.
+        assert_eq!(id.window(0), id.window(1));
     }
 
     #[test]
@@ -695,6 +774,12 @@ mod tests {
         let mut big = device.clone();
         big.max_frame = u16::MAX;
         assert_eq!(big.check(&host), Ok(()));
+        // Nor is what it buffers compared: the host sizes its window from it.
+        for rx_buffer in [1, 16, u32::MAX] {
+            let mut d = device.clone();
+            d.rx_buffer = rx_buffer;
+            assert_eq!(d.check(&host), Ok(()));
+        }
     }
 
     #[test]
@@ -705,11 +790,11 @@ mod tests {
             ..AntParams::default()
         };
         type Case = (fn(&mut Identity), Difference, &'static str);
-        let cases: [Case; 9] = [
+        let cases: [Case; 10] = [
             (
-                |d| d.protocol = 1,
+                |d| d.protocol = 2,
                 Difference::Protocol,
-                "protocol version 1 ≠ 2",
+                "protocol version 2 ≠ 3",
             ),
             (
                 |d| d.controller = ControllerKind::BEE,
@@ -740,6 +825,11 @@ mod tests {
                 |d| d.capacities.targets = 16,
                 Difference::Targets,
                 "target capacity 16 ≠ 0",
+            ),
+            (
+                |d| d.capacities.surfaces = 4,
+                Difference::Surfaces,
+                "surface capacity 4 ≠ 6",
             ),
             (
                 |d| d.max_frame = 100,
@@ -797,6 +887,7 @@ mod tests {
             "neighbour capacity 16 ≠ 8",
             "object capacity 0 ≠ 4",
             "target capacity 16 ≠ 0",
+            "surface capacity 0 ≠ 6",
             "params hash 0x",
         ] {
             assert!(msg.contains(text), "{msg:?} lacks {text:?}");

@@ -301,45 +301,47 @@ fn transcript() -> Vec<(Vec<u8>, Vec<u8>)> {
     vec![
         // 1. A lone 0x00, then Configure (seq 1) before Hello: NoSession (14).
         (
-            hex("00 04 02 03 01 0b 2a c3 8b a1 c0 ec f6 b8 9a 7e 03 ee da 00"),
-            hex("04 02 0f 01 04 0e 9f 57 00"),
+            hex("00 04 03 03 01 0b 2a c3 8b a1 c0 ec f6 b8 9a 7e 03 12 74 00"),
+            hex("04 03 0f 01 04 0e ce fd 00"),
         ),
         // 2. Hello (seq 2) -> Identity.
         (
-            hex("04 02 01 02 03 fa 38 00"),
+            hex("04 03 01 02 03 4e 4e 00"),
             hex(
-                "04 02 02 02 02 02 01 01 03 08 04 15 c3 03 c3 8b a1 c0 ec f6 b8 9a 7e 08
-                 61 6e 74 2d 6e 6f 64 65 02 40 00",
+                "04 03 02 02 02 03 01 01 03 08 04 19 06 c3 03 10 c3 8b a1 c0 ec f6 b8 9a 7e
+                 08 61 6e 74 2d 6e 6f 64 65 c4 0b 00",
             ),
         ),
         // 3. Configure (seq 3, session 42, the device's hash, no reset) -> Configured.
         (
-            hex("04 02 03 03 0b 2a c3 8b a1 c0 ec f6 b8 9a 7e 03 28 50 00"),
-            hex("04 02 04 03 04 2a 06 43 00"),
+            hex("04 03 03 03 0b 2a c3 8b a1 c0 ec f6 b8 9a 7e 03 d4 fe 00"),
+            hex("04 03 04 03 04 2a 57 e9 00"),
         ),
         // 4. Garbage, then a Ping with a corrupted CRC: both dropped, no reply.
-        (hex("de ad 00 04 02 05 04 07 84 86 88 08 95 4c 00"), vec![]),
+        (hex("de ad 00 04 03 05 04 07 84 86 88 08 46 0b 00"), vec![]),
         // 5. Ping (seq 4, nonce 0xdeadbeef) -> Pong.
         (
-            hex("04 02 05 04 08 ef fd b6 f5 0d 95 de 00"),
-            hex("04 02 06 04 08 ef fd b6 f5 0d e0 16 00"),
+            hex("04 03 05 04 08 ef fd b6 f5 0d b6 35 00"),
+            hex("04 03 06 04 08 ef fd b6 f5 0d c3 fd 00"),
         ),
         // 6. StatsRequest (seq 5) -> DeviceStats.
         (
-            hex("04 02 07 05 03 cd 13 00"),
-            hex("04 02 08 05 04 05 01 01 01 01 06 01 0d 05 03 01 01 05 01 2a 7f a0 00"),
+            hex("04 03 07 05 03 79 65 00"),
+            hex("04 03 08 05 04 05 01 01 01 01 06 01 0d 05 03 01 01 05 01 2a 60 7e 00"),
         ),
         // 7. Configure (seq 6) with another hash: ParamsMismatch (15), session closed.
         (
-            hex("04 02 03 06 0b 2b c2 8b a1 c0 ec f6 b8 9a 7e 03 ea a7 00"),
-            hex("04 02 0f 06 04 0f 2e c2 00"),
+            hex("04 03 03 06 0b 2b c2 8b a1 c0 ec f6 b8 9a 7e 03 16 09 00"),
+            hex("04 03 0f 06 04 0f 7f 68 00"),
         ),
     ]
 }
 
 #[test]
 fn pinned_session_transcript() {
+    // Reporting a 16-byte receive buffer, as the firmware's ant-node does (its PL011 FIFO).
     let mut dev = AntDevice::<f32>::new(AntParams::default(), "ant-node").unwrap();
+    dev.set_rx_buffer(16);
     for (i, (host, device)) in transcript().into_iter().enumerate() {
         let got: Vec<u8> = replies(&mut dev, &host).concat();
         assert_eq!(got, device, "step {}", i + 1);
@@ -353,14 +355,13 @@ fn pinned_transcript_messages() {
     let params = AntParams::<f32>::default();
     let hash = params_hash(&params).unwrap();
     assert_eq!(hash, 0x7e34_e3b6_c808_45c3);
-    assert_eq!(frame_of(2, &Hello), hex("04 02 01 02 03 fa 38 00"));
-    let id = Identity::of(&params, MAX_ANT_FRAME + 1, "ant-node").unwrap();
-    assert_eq!(
-        id,
-        AntDevice::<f32>::new(params, "ant-node")
-            .unwrap()
-            .identity()
-    );
+    assert_eq!(frame_of(2, &Hello), hex("04 03 01 02 03 4e 4e 00"));
+    let mut id = Identity::of(&params, MAX_ANT_FRAME + 1, "ant-node").unwrap();
+    id.rx_buffer = 16;
+    let mut dev = AntDevice::<f32>::new(params, "ant-node").unwrap();
+    dev.set_rx_buffer(16);
+    assert_eq!(id, dev.identity());
+    assert_eq!(id.window(MAX_ANT_FRAME), 1);
     let t = transcript();
     assert_eq!(frame_of(2, &id), t[1].1);
     let configure = Configure {
@@ -470,18 +471,27 @@ fn identity_says_what_the_device_runs() {
     let ant = ant_device::<Fx>().identity();
     let bee = bee_device::<f32>().identity();
     // What each runs (controller, scalar, math backend) and its capacities (neighbours,
-    // objects, targets).
+    // objects, targets, surfaces).
     let ant_runs = (
         ControllerKind::ANT,
         ScalarKind::I16F16,
         MathBackend::Integer,
     );
     let bee_runs = (ControllerKind::BEE, ScalarKind::F32, MathBackend::F32);
-    for (id, runs, capacities) in [(&ant, ant_runs, (8, 4, 0)), (&bee, bee_runs, (16, 0, 16))] {
+    for (id, runs, capacities) in [
+        (&ant, ant_runs, (8, 4, 0, 6)),
+        (&bee, bee_runs, (16, 0, 16, 0)),
+    ] {
         let c = id.capacities;
         assert_eq!((id.controller, id.scalar, id.math), runs);
-        assert_eq!((c.neighbours, c.objects, c.targets), capacities);
+        assert_eq!((c.neighbours, c.objects, c.targets, c.surfaces), capacities);
+        // A new endpoint buffers nothing beyond the frame it serves.
+        assert_eq!(id.rx_buffer, 0);
     }
+    assert_eq!(usize::from(ant.capacities.surfaces), ant::SURFACES);
+    let mut dev = ant_device::<f32>();
+    dev.set_rx_buffer(16);
+    assert_eq!(dev.identity().rx_buffer, 16);
     assert_eq!(usize::from(ant.max_frame), MAX_ANT_FRAME + 1);
     // The buffer sizes of docs/protocol.md, section 10.7.
     assert_eq!((MAX_ANT_FRAME, MAX_BEE_FRAME), (450, 941));
@@ -626,10 +636,10 @@ fn payloads_that_do_not_decode_get_payload_errors() {
 #[test]
 fn a_frame_of_another_version_is_answered_with_version() {
     let mut dev = ant_device::<f32>();
-    // A CRC-valid Ping of version 1 (the previous release), seq 0x1234, and a version-1
+    // A CRC-valid Ping of version 2 (the previous release), seq 0x1234, and a version-2
     // ErrorReply (not answered).
-    let v1 = |kind: u8, seq: u16, payload: &[u8]| {
-        let mut raw = vec![1, kind];
+    let v2 = |kind: u8, seq: u16, payload: &[u8]| {
+        let mut raw = vec![2, kind];
         raw.extend_from_slice(&seq.to_le_bytes());
         raw.extend_from_slice(payload);
         raw.extend_from_slice(&CRC16.checksum(&raw).to_le_bytes());
@@ -639,14 +649,14 @@ fn a_frame_of_another_version_is_answered_with_version() {
         out.push(0);
         out
     };
-    let mut line = v1(kind::PING, 0x1234, &[5]);
+    let mut line = v2(kind::PING, 0x1234, &[5]);
     // docs/protocol.md, section 10.4 (computed with the Python reference, appendix A).
-    assert_eq!(line, hex("08 01 05 34 12 05 c9 2b 00"));
-    line.extend(v1(kind::ERROR_REPLY, 0x1235, &[1]));
+    assert_eq!(line, hex("08 02 05 34 12 05 1b c5 00"));
+    line.extend(v2(kind::ERROR_REPLY, 0x1235, &[1]));
     let r = replies(&mut dev, &line);
     assert_eq!(r.len(), 1);
     assert_eq!(r[0][1], PROTOCOL_VERSION); // answered in our version
-    assert_eq!(r[0], hex("08 02 0f 34 12 0a 5f 5c 00"));
+    assert_eq!(r[0], hex("08 03 0f 34 12 0a 0e f6 00"));
     assert_eq!(error_code(&r[0]), (0x1234, ErrorReply::VERSION));
     let s = dev.stats();
     assert_eq!((s.link.version_errors, s.errors, s.requests), (2, 1, 0));
@@ -1442,7 +1452,7 @@ mod spec {
     /// Section 3: the optional trailing `01` exists only after a final `FF` block.
     #[test]
     fn cobs_trailing_01_only_after_a_final_ff_block() {
-        // A 254-byte raw frame with no zero: version 2, kind 0x85, seq 0x0101, 248 × 0x11, CRC.
+        // A 254-byte raw frame with no zero: version 3, kind 0x85, seq 0x0101, 248 × 0x11, CRC.
         let mut raw = vec![PROTOCOL_VERSION, 0x85, 1, 1];
         raw.extend([0x11u8; 248]);
         raw.extend_from_slice(&CRC16.checksum(&raw).to_le_bytes());
@@ -1506,7 +1516,7 @@ mod spec {
 
     /// Sections 5, 10.4, 10.5: a foreign-version frame of kind 0x00 or of a reply kind is
     /// dropped unanswered (counted in `ignored`), one of any other kind is answered with
-    /// ErrorReply 10; in version 2, 0x00 and the reply kinds are dropped the same way.
+    /// ErrorReply 10; in this version (3), 0x00 and the reply kinds are dropped the same way.
     #[test]
     fn foreign_version_frames_are_answered_unless_never_answered() {
         assert_eq!(
@@ -1516,7 +1526,7 @@ mod spec {
             NEVER_ANSWERED
         );
         assert!(NEVER_ANSWERED[1..].iter().all(|&k| kind::is_reply(k)));
-        for version in [0u8, 1, 3, 0xff] {
+        for version in [0u8, 1, 2, 4, 0xff] {
             let mut dev = ant_device::<f32>();
             open(&mut dev, 1);
             let line: Vec<u8> = (0..=255u8)
@@ -1533,7 +1543,7 @@ mod spec {
             assert_eq!((s.link.version_errors, s.errors, s.requests), (256, 247, 0));
             assert_eq!((s.ignored, s.decode_errors, s.replies), (9, 0, 0));
         }
-        // The same kinds in version 2: dropped, counted in requests and ignored.
+        // The same kinds in this version: dropped, counted in requests and ignored.
         let mut dev = ant_device::<f32>();
         open(&mut dev, 1);
         for k in NEVER_ANSWERED {
@@ -1544,9 +1554,9 @@ mod spec {
         assert_eq!((s.errors, s.decode_errors, s.replies), (0, 0, 0));
     }
 
-    /// Sections 5, 10.1, 10.5, case by case, with every counter: version-2 kind 0x00, a
-    /// version-1 Identity, a version-1 kind 0x00 and a version-1 ErrorReply are dropped
-    /// unanswered; a version-1 Ping is answered with ErrorReply 10.
+    /// Sections 5, 10.1, 10.5, case by case, with every counter: version-3 kind 0x00, a
+    /// version-2 Identity, a version-2 kind 0x00 and a version-2 ErrorReply are dropped
+    /// unanswered; a version-2 Ping is answered with ErrorReply 10.
     #[test]
     fn a_device_never_answers_a_reply_or_kind_0x00() {
         let mut dev = ant_device::<f32>();
@@ -1559,15 +1569,15 @@ mod spec {
             }
         );
         let mut identity = dev.identity();
-        identity.protocol = 1;
+        identity.protocol = 2;
         let identity = postcard_bytes(&identity);
         // (frame with seq i + 1, the error code it is answered with)
         let cases = [
             (frame_of_kind(0x00, 1, &()), None),
-            (foreign(1, kind::IDENTITY, 2, &identity), None),
-            (foreign(1, 0x00, 3, &[]), None),
-            (foreign(1, kind::PING, 4, &[5]), Some(ErrorReply::VERSION)),
-            (foreign(1, kind::ERROR_REPLY, 5, &[1]), None),
+            (foreign(2, kind::IDENTITY, 2, &identity), None),
+            (foreign(2, 0x00, 3, &[]), None),
+            (foreign(2, kind::PING, 4, &[5]), Some(ErrorReply::VERSION)),
+            (foreign(2, kind::ERROR_REPLY, 5, &[1]), None),
         ];
         let mut want = dev.stats();
         for (i, (frame, answer)) in cases.into_iter().enumerate() {
@@ -1605,7 +1615,7 @@ mod spec {
         let mut bad = frame_of(2, &Ping { nonce: 2 });
         bad[3] ^= 0x40;
         line.extend(bad);
-        line.extend(foreign(1, kind::PING, 3, &[3]));
+        line.extend(foreign(2, kind::PING, 3, &[3]));
         line.extend(frame_of(4, &Pong { nonce: 4 }));
         line.extend(frame_of_kind(0x30, 5, &()));
         assert_eq!(replies(&mut dev, &line).len(), 3);

@@ -115,13 +115,15 @@ fn hello(seq: u16) -> Vec<u8> {
 fn ant_node_f32_answers_hello_with_the_identity_of_protocol_md_section_11() {
     // docs/protocol.md §11 step 2, byte for byte (a lone 00 first, as a host sends it).
     let mut line = vec![0u8];
-    line.extend(hex("04 02 01 02 03 fa 38 00"));
+    line.extend(hex("04 03 01 02 03 4e 4e 00"));
     let want = hex(
-        "04 02 02 02 02 02 01 01 03 08 04 15 c3 03 c3 8b a1 c0 ec f6 b8 9a 7e 08 \
-         61 6e 74 2d 6e 6f 64 65 02 40 00",
+        "04 03 02 02 02 03 01 01 03 08 04 19 06 c3 03 10 c3 8b a1 c0 ec f6 b8 9a 7e \
+         08 61 6e 74 2d 6e 6f 64 65 c4 0b 00",
     );
     for chunk in [1, 3, READ_CHUNK] {
         let mut device = ant_device::<f32>("ant-node").unwrap();
+        // As `serial_node!` sets it on the lm3s6965evb: the PL011's 16-byte receive FIFO.
+        device.set_rx_buffer(LM3S_RX_FIFO);
         let mut uart = MockUart::new(&line, chunk);
         uart.drain(&mut device);
         assert_eq!(uart.output, want, "chunk {chunk}");
@@ -146,13 +148,31 @@ fn the_node_parameters_are_the_host_scenarios() {
     assert_eq!(bee_params::<Fx>(), BeeParams::<f32>::default().cast::<Fx>());
 }
 
+/// What the images report as `Identity.rx_buffer` (`fw_support::uart::RX_FIFO`, set by
+/// `serial_node!`): the receive FIFO of the lm3s6965evb's PL011 (ant images) and the CMSDK
+/// UART's one-byte receive buffer on the mps2-an386 (bee images).
+const LM3S_RX_FIFO: u32 = 16;
+const MPS2_RX_FIFO: u32 = 1;
+
 #[test]
 fn every_image_identity() {
     let cases: [(&str, Identity); 4] = [
-        ("ant-node", greet(ant_device::<f32>("ant-node"))),
-        ("ant-node-fixed", greet(ant_device::<Fx>("ant-node-fixed"))),
-        ("bee-node", greet(bee_device::<f32>("bee-node"))),
-        ("bee-node-fixed", greet(bee_device::<Fx>("bee-node-fixed"))),
+        (
+            "ant-node",
+            greet(ant_device::<f32>("ant-node"), LM3S_RX_FIFO),
+        ),
+        (
+            "ant-node-fixed",
+            greet(ant_device::<Fx>("ant-node-fixed"), LM3S_RX_FIFO),
+        ),
+        (
+            "bee-node",
+            greet(bee_device::<f32>("bee-node"), MPS2_RX_FIFO),
+        ),
+        (
+            "bee-node-fixed",
+            greet(bee_device::<Fx>("bee-node-fixed"), MPS2_RX_FIFO),
+        ),
     ];
     let expect = [
         Identity::of(&ant_params::<f32>(), MAX_ANT_FRAME + 1, "ant-node").unwrap(),
@@ -160,20 +180,30 @@ fn every_image_identity() {
         Identity::of(&bee_params::<f32>(), MAX_BEE_FRAME + 1, "bee-node").unwrap(),
         Identity::of(&bee_params::<Fx>(), MAX_BEE_FRAME + 1, "bee-node-fixed").unwrap(),
     ];
-    for ((name, got), want) in cases.iter().zip(expect.iter()) {
+    let rx_fifo = [LM3S_RX_FIFO, LM3S_RX_FIFO, MPS2_RX_FIFO, MPS2_RX_FIFO];
+    for (((name, got), want), rx_buffer) in cases.iter().zip(expect).zip(rx_fifo) {
+        let want = Identity { rx_buffer, ..want };
         assert_eq!(got.name, *name);
-        assert_eq!(got, want, "{name}");
-        assert!(got.check(want).is_ok());
+        assert_eq!(*got, want, "{name}");
+        assert!(got.check(&want).is_ok());
+        // A host on a line without flow control keeps one request in flight (its longest
+        // request frame is max_frame - 1: MAX_ANT_FRAME or MAX_BEE_FRAME).
+        assert_eq!(got.window(usize::from(want.max_frame) - 1), 1, "{name}");
     }
+    assert_eq!(cases[0].1.capacities.surfaces, 6);
     assert_eq!(cases[1].1.scalar, ScalarKind::I16F16);
     assert_eq!(cases[2].1.controller, ControllerKind::BEE);
+    assert_eq!(cases[2].1.capacities.surfaces, 0);
 }
 
-/// The `Identity` a new device answers a `Hello` with.
+/// The `Identity` a new device reporting `rx_buffer` answers a `Hello` with.
 fn greet<C: Controller, const RX: usize, const TX: usize>(
     device: swarm_core::Result<DeviceEndpoint<C, RX, TX>>,
+    rx_buffer: u32,
 ) -> Identity {
-    identity_of(&serve(&mut device.unwrap(), &hello(1)))
+    let mut device = device.unwrap();
+    device.set_rx_buffer(rx_buffer);
+    identity_of(&serve(&mut device, &hello(1)))
 }
 
 fn serve<C: Controller, const RX: usize, const TX: usize>(

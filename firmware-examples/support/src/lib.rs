@@ -271,6 +271,7 @@ macro_rules! serial_node {
             let Ok(mut device) = ($device) else {
                 $crate::reset()
             };
+            device.set_rx_buffer($crate::uart::RX_FIFO);
             fw_node::run(&mut device, &mut uart)
         }
     };

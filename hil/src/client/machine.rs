@@ -47,8 +47,14 @@ const MAX_WINDOW: usize = 1 << 15;
 /// How the client paces and retries requests.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ClientOptions {
-    /// Requests in flight at once (at least 1).
+    /// The most requests in flight at once (at least 1). After the handshake the window is
+    /// cut to what the device's receive buffer holds ([`Machine::fit_window`]), unless the
+    /// line has `flow_control`.
     pub window: usize,
+    /// The line holds the sender back while the device's receiver is full (hardware
+    /// handshaking, or QEMU's emulated UARTs, which take a byte only when they have room):
+    /// then the device's reported receive buffer does not bound the window.
+    pub flow_control: bool,
     /// The retransmission timeout's initial value, floor and ceiling.
     pub rto: RtoOptions,
     /// Times a request is sent again before the run fails.
@@ -61,6 +67,7 @@ impl Default for ClientOptions {
     fn default() -> Self {
         ClientOptions {
             window: 8,
+            flow_control: false,
             rto: RtoOptions::default(),
             retries: 10_000,
             dead_after: Duration::from_secs(5),
@@ -95,6 +102,8 @@ pub struct LinkReport {
     pub srtt_us: u64,
     /// The retransmission timeout at the end, in microseconds.
     pub rto_us: u64,
+    /// The window used: requests in flight at most.
+    pub window: u64,
 }
 
 /// A submitted request's handle.
@@ -180,6 +189,8 @@ struct Probe {
 /// The request pipeline of one link (see the module documentation).
 pub struct Machine {
     opts: ClientOptions,
+    /// Requests in flight at most (see [`Machine::fit_window`]).
+    window: usize,
     rx: Accumulator<RX>,
     rto: Rto,
     next_seq: u16,
@@ -205,6 +216,7 @@ impl Machine {
     pub fn new(opts: ClientOptions) -> Self {
         Machine {
             opts,
+            window: opts.window.clamp(1, MAX_WINDOW),
             rx: Accumulator::new(),
             rto: Rto::new(opts.rto),
             next_seq: 1,
@@ -270,7 +282,26 @@ impl Machine {
         r.resyncs = s.resyncs().into();
         r.srtt_us = self.rto.srtt().map_or(0, |d| micros(d).into());
         r.rto_us = micros(self.rto()).into();
+        r.window = self.window as u64;
         r
+    }
+
+    /// Cuts the window to `device` requests, what the device can take in without loss
+    /// ([`Identity::window`](swarm_core::wire::Identity::window) of its handshake), unless the
+    /// line has [`ClientOptions::flow_control`]. Never above [`ClientOptions::window`], never
+    /// below 1.
+    pub fn fit_window(&mut self, device: usize) {
+        let most = self.opts.window.clamp(1, MAX_WINDOW);
+        self.window = if self.opts.flow_control {
+            most
+        } else {
+            device.clamp(1, most)
+        };
+    }
+
+    /// Requests in flight at most, now.
+    pub fn window(&self) -> usize {
+        self.window
     }
 
     /// Round-trip times of the answered requests (first send to answer), in microseconds.
@@ -441,7 +472,7 @@ impl Machine {
 
     /// Sends queued requests while the window has room.
     fn fill(&mut self, now: Duration) -> Result<()> {
-        while self.flight.len() < self.opts.window.clamp(1, MAX_WINDOW) {
+        while self.flight.len() < self.window {
             let Some(job) = self.queue.pop_front() else {
                 break;
             };

@@ -70,12 +70,16 @@ impl<T: Transport> Client<T> {
     }
 
     /// Handshake: asks the device who it is and checks the answer against `expected`; a
-    /// device that differs is refused with a message naming every difference.
+    /// device that differs is refused with a message naming every difference. The window is
+    /// then fitted to the device's receive buffer for requests of up to `expected.max_frame`
+    /// bytes ([`Machine::fit_window`]).
     pub fn handshake(&mut self, expected: &Identity) -> Result<Identity> {
         let device: Identity = self.call(&Hello)?.map_err(|e| refused("Hello", e))?;
         device
             .check(expected)
             .map_err(|m| HilError::Handshake(m.to_string()))?;
+        self.machine
+            .fit_window(device.window(usize::from(expected.max_frame)));
         Ok(device)
     }
 

@@ -142,11 +142,7 @@ impl<S: Scalar> Model for WalkParams<S> {
 impl<S: Scalar + Serialize + serde::de::DeserializeOwned> Controller for WalkParams<S> {
     /// A number from the range kept for applications and tests.
     const KIND: ControllerKind = ControllerKind(200);
-    const CAPACITIES: Capacities = Capacities {
-        neighbours: 0,
-        objects: 0,
-        targets: 0,
-    };
+    const CAPACITIES: Capacities = Capacities::NONE;
     // State (two vectors and a varint) and context: well below these.
     const MAX_REQUEST_PAYLOAD: usize = 64;
     const MAX_REPLY_PAYLOAD: usize = 48;

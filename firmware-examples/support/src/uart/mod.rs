@@ -33,6 +33,18 @@ pub use pl011::Lm3sUart0;
 /// host reads them); on a real board both ends must agree.
 pub const BAUD: u32 = 115_200;
 
+/// Bytes the board's UART0 holds on its own while the polled node computes: the PL011's
+/// receive FIFO. A node reports it as `Identity.rx_buffer`, so a host keeps one request in
+/// flight (a line without flow control would overrun the FIFO).
+#[cfg(feature = "lm3s6965evb")]
+pub const RX_FIFO: u32 = 16;
+
+/// Bytes the board's UART0 holds on its own while the polled node computes: the CMSDK UART's
+/// one-byte receive buffer. A node reports it as `Identity.rx_buffer`, so a host keeps one
+/// request in flight (a line without flow control would overrun it).
+#[cfg(feature = "mps2-an386")]
+pub const RX_FIFO: u32 = 1;
+
 /// The board's UART0 at [`BAUD`], as the serial nodes use it (see `serial_node!`); `None` if
 /// it was taken before. The UART clock is [`Lm3sUart0::RESET_CLOCK_HZ`].
 #[cfg(feature = "lm3s6965evb")]

@@ -446,6 +446,31 @@ fn the_window_bounds_what_is_in_flight() {
 }
 
 #[test]
+fn the_window_is_cut_to_what_the_device_buffers_unless_the_line_has_flow_control() {
+    // (host window, device window, flow control) → window used
+    for (window, device, flow_control, used) in [
+        (8, 1, false, 1),
+        (8, 3, false, 3),
+        (8, 100, false, 8),
+        (8, 0, false, 1),
+        (8, 1, true, 8),
+        (2, 5, true, 2),
+    ] {
+        let opts = ClientOptions {
+            window,
+            flow_control,
+            ..ClientOptions::default()
+        };
+        let mut w = World::new(opts, us(50), us(10));
+        w.m.fit_window(device);
+        assert_eq!(w.m.window(), used, "{window} {device} {flow_control}");
+        w.serve_all(40, ms(1000));
+        assert_eq!(w.max_flight, used, "{window} {device} {flow_control}");
+        assert_eq!(w.m.report().window, used as u64);
+    }
+}
+
+#[test]
 fn a_slow_device_with_a_94_ms_round_trip_is_never_asked_twice() {
     // bee-node in QEMU: about 94 ms per request, 8 in flight, so the last of a window waits
     // 8 × 94 ms for its answer. Timers start at the previous answer and the timeout follows
