@@ -286,6 +286,15 @@ where
     session.close()
 }
 
+/// `device` reporting a receive buffer of `fifo` bytes.
+fn on<C: Controller, const RX: usize, const TX: usize>(
+    mut device: DeviceEndpoint<C, RX, TX>,
+    fifo: u32,
+) -> DeviceEndpoint<C, RX, TX> {
+    device.set_rx_buffer(fifo);
+    device
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let usage = "usage: transcript ant|bee f32|fixed STEPS";
@@ -294,11 +303,14 @@ fn main() {
         std::process::exit(2);
     };
     let steps: u32 = steps.parse().expect(usage);
+    // The images report their board's UART receive FIFO (`fw_support::uart::RX_FIFO`): 16
+    // bytes on the ant nodes' PL011, 1 on the bee nodes' CMSDK UART. `qemu-serial.sh --check`
+    // compares the images' Identity with these.
     let lines = match (model.as_str(), scalar.as_str()) {
-        ("ant", "f32") => ants(ant_device::<f32>("ant-node").unwrap(), steps),
-        ("ant", "fixed") => ants(ant_device::<Fx>("ant-node-fixed").unwrap(), steps),
-        ("bee", "f32") => bees(bee_device::<f32>("bee-node").unwrap(), steps),
-        ("bee", "fixed") => bees(bee_device::<Fx>("bee-node-fixed").unwrap(), steps),
+        ("ant", "f32") => ants(on(ant_device::<f32>("ant-node").unwrap(), 16), steps),
+        ("ant", "fixed") => ants(on(ant_device::<Fx>("ant-node-fixed").unwrap(), 16), steps),
+        ("bee", "f32") => bees(on(bee_device::<f32>("bee-node").unwrap(), 1), steps),
+        ("bee", "fixed") => bees(on(bee_device::<Fx>("bee-node-fixed").unwrap(), 1), steps),
         _ => {
             eprintln!("{usage}");
             std::process::exit(2);
