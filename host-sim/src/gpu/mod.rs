@@ -3,9 +3,10 @@
 //! kernels with their buffers ([`kernel`]).
 //!
 //! The kernels mirror `swarm-core` function by function: `shaders/fx.wgsl` is the I16F16
-//! arithmetic of [`swarm_core::Fx`], `shaders/rand.wgsl` its counter-based random numbers, each
-//! tested bit for bit against the Rust function on the GPU (lavapipe, Mesa's Vulkan driver on
-//! the CPU, where there is no GPU).
+//! arithmetic of [`swarm_core::Fx`], `shaders/rand.wgsl` its counter-based random numbers,
+//! `shaders/geom.wgsl` its vectors over `Fx`, each tested bit for bit against the Rust function
+//! on the GPU (lavapipe, Mesa's Vulkan driver on the CPU, where there is no GPU; the tests are
+//! in `tests/`).
 //!
 //! ```no_run
 //! let gpu = swarm_sim::gpu::Gpu::new().unwrap(); // an error naming what to install if none
@@ -15,6 +16,8 @@
 mod context;
 pub mod kernel;
 pub mod shaders;
+#[cfg(test)]
+mod tests;
 
 pub use context::{AdapterSummary, Gpu};
 

@@ -25,8 +25,36 @@ pub const DISPATCH: Module = Module {
     uses: &[],
 };
 
+/// I16F16 fixed point: the arithmetic of [`swarm_core::Fx`] (`core-nostd/src/scalar/fx.rs`) and
+/// the provided methods of [`swarm_core::Scalar`] (`core-nostd/src/scalar/mod.rs`), on the raw
+/// `i32` bits, bit for bit (`fx_add`, `fx_mul`, `fx_div`, `fx_sqrt`, `fx_sin`, `fx_atan2`,
+/// `fx_exp`, ..., constants `FX_ONE`, `FX_PI`, ...; 64-bit integers as `vec2<u32>` words).
+pub const FX: Module = Module {
+    name: "fx",
+    source: include_str!("../../../shaders/fx.wgsl"),
+    uses: &[],
+};
+
+/// Counter-based random numbers: [`swarm_core::rand`] (`core-nostd/src/rand.rs`), bit for bit
+/// (`rand_mix32`, `rand_rand`, `rand_unit_fx`, `rand_angle_fx`, `rand_chance_fx`, the stream
+/// constants `RAND_ANT_STOP`, ...).
+pub const RAND: Module = Module {
+    name: "rand",
+    source: include_str!("../../../shaders/rand.wgsl"),
+    uses: &[&FX],
+};
+
+/// Small vectors over `Fx`: [`swarm_core::geom`] (`core-nostd/src/geom.rs`) for `S = Fx`, bit
+/// for bit: `Vec2` as `vec2<i32>` (`geom_dot`, `geom_length`, `geom_normalized`, ...), `Vec3`
+/// as `vec3<i32>` (`geom_vec3_*`), `Rect` as `GeomRect` (`geom_rect_*`).
+pub const GEOM: Module = Module {
+    name: "geom",
+    source: include_str!("../../../shaders/geom.wgsl"),
+    uses: &[&FX],
+};
+
 /// Every module, for the validation test.
-pub const ALL: &[&Module] = &[&DISPATCH];
+pub const ALL: &[&Module] = &[&DISPATCH, &FX, &RAND, &GEOM];
 
 /// Threads per workgroup of every kernel (`WORKGROUP` in `dispatch.wgsl`).
 pub const WORKGROUP: u32 = 64;
