@@ -35,10 +35,11 @@
 // Swarms crowd (every ant starts at its nest). On a GPU a heap sort of 100,000 agents in one
 // thread is millions of dependent memory accesses, milliseconds to tenths of a second while the
 // rest of the GPU idles; and on lavapipe (Mesa 22.3, the test GPU) it is not even correct:
-// gallivm stops every loop after 65,535 iterations in one invocation, so such a sort stops
-// half-way, silently (measured: a heap sort of 20,000 agents in one cell came back a heap). The
-// radix sort does the same work for any distribution of agents over cells (a few reads and two
-// writes per agent and pass, no atomics), and no loop here runs more than 64 iterations. Its
+// gallivm stops a loop after 65,535 iterations in one invocation (an inner loop's iterations
+// add up over the outer one's), so such a sort stops half-way, silently (measured: a heap sort
+// of 20,000 agents in one cell came back a heap). The radix sort does the same work for any
+// distribution of agents over cells (a few reads and two writes per agent and pass, no
+// atomics), and no invocation here runs more than 200 loop iterations. Its
 // price is one pass per 6 bits of the cell index: for a million agents over a million cells on
 // lavapipe (2 cores) the whole grid takes about 165 ms of CPU time, where the atomic scatter
 // with per-cell sort would take about 95 ms (measured with a throwaway kernel, correct there
