@@ -199,6 +199,27 @@ pub enum SimError {
         /// The adapter's limit.
         limit: u64,
     },
+    /// A GPU neighbour grid of no cells.
+    #[error("GPU grid: a grid needs at least one cell")]
+    GpuGridNoCells,
+    /// More agents handed to a GPU neighbour grid than it was built for.
+    #[error("GPU grid: {agents} agents, more than the {capacity} it was built for")]
+    GpuGridCapacity {
+        /// The agents to sort.
+        agents: u64,
+        /// The grid's capacity.
+        capacity: u32,
+    },
+    /// A cells buffer too small for the agents a GPU neighbour grid is asked to sort.
+    #[error("GPU grid: the cells buffer holds {bytes} bytes, {agents} agents need {needed}")]
+    GpuGridCells {
+        /// The buffer's size.
+        bytes: u64,
+        /// The agents to sort.
+        agents: u32,
+        /// Their cells' size (4 bytes each).
+        needed: u64,
+    },
     /// A benchmark with nothing to time.
     #[error("bench: needs at least one agent and one step (got {agents} agents, {steps} steps)")]
     EmptyBench {

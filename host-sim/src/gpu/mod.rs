@@ -1,6 +1,6 @@
 //! The GPU backend's foundation (wgpu): the adapter and device ([`Gpu`]), the WGSL modules of
 //! `shaders/` and how kernels are put together from them ([`shaders`]), and compiled compute
-//! kernels with their buffers ([`kernel`]).
+//! kernels with their buffers ([`kernel`]); the neighbour grid built on the GPU ([`grid`]).
 //!
 //! The kernels mirror `swarm-core` function by function: `shaders/fx.wgsl` is the I16F16
 //! arithmetic of [`swarm_core::Fx`], `shaders/rand.wgsl` its counter-based random numbers,
@@ -14,6 +14,7 @@
 //! ```
 
 mod context;
+pub mod grid;
 pub mod kernel;
 pub mod shaders;
 #[cfg(test)]

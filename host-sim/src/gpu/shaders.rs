@@ -53,8 +53,16 @@ pub const GEOM: Module = Module {
     uses: &[&FX],
 };
 
+/// The neighbour grid's kernels: agents sorted by cell (count, multi-level exclusive scan, a
+/// stable radix sort), driven by [`GpuGrid`](super::grid::GpuGrid).
+pub const GRID: Module = Module {
+    name: "grid",
+    source: include_str!("../../../shaders/grid.wgsl"),
+    uses: &[&DISPATCH],
+};
+
 /// Every module, for the validation test.
-pub const ALL: &[&Module] = &[&DISPATCH, &FX, &RAND, &GEOM];
+pub const ALL: &[&Module] = &[&DISPATCH, &FX, &RAND, &GEOM, &GRID];
 
 /// Threads per workgroup of every kernel (`WORKGROUP` in `dispatch.wgsl`).
 pub const WORKGROUP: u32 = 64;
