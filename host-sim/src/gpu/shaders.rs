@@ -5,6 +5,12 @@
 //! module is prefixed with the module's name (`fx_mul`, `rand_unit`), so modules never clash.
 //! The naga test of this module parses and validates every module and every kernel without a
 //! GPU.
+//!
+//! WGSL has no generics either: the modules written over the controllers' scalar (`geom`,
+//! `rand`'s `rand_unit`, the ant controller; [`Module::over_scalar`]) call the scalar `S` and
+//! its operations `s_add`, `s_sqrt`, ... by name, and a kernel composes exactly one *scalar
+//! module* with them: [`SCALAR_FX`] (`S = i32`, the bits of an `Fx`, bit for bit) or
+//! [`SCALAR_F32`] (`S = f32`, measured): `compose(&[&SCALAR_FX, &GEOM], kernel)`.
 
 /// One WGSL file of `shaders/`.
 #[derive(Debug)]
@@ -15,6 +21,9 @@ pub struct Module {
     pub source: &'static str,
     /// The modules its functions call.
     pub uses: &'static [&'static Module],
+    /// Whether it is written over the scalar `S`: a kernel that uses it composes one of
+    /// [`SCALARS`] too (which one is the kernel's choice, so it is not in `uses`).
+    pub over_scalar: bool,
 }
 
 /// The threads of a dispatch: `thread_index` numbers them across a 2D grid of workgroups (a
@@ -23,6 +32,7 @@ pub const DISPATCH: Module = Module {
     name: "dispatch",
     source: include_str!("../../../shaders/dispatch.wgsl"),
     uses: &[],
+    over_scalar: false,
 };
 
 /// I16F16 fixed point: the arithmetic of [`swarm_core::Fx`] (`core-nostd/src/scalar/fx.rs`) and
@@ -33,28 +43,57 @@ pub const FX: Module = Module {
     name: "fx",
     source: include_str!("../../../shaders/fx.wgsl"),
     uses: &[],
+    over_scalar: false,
 };
 
+/// The scalar `S` as I16F16 fixed point: the [`swarm_core::Scalar`] interface of
+/// [`swarm_core::Fx`] (`alias S = i32`, the bits; `s_add`, `s_mul`, `s_sqrt`, `s_sin_cos`,
+/// `s_from_f32`, ..., `S_ZERO`, `S_ONE`, `S_EPS`, `S_PI`, `S_DIRECT_LENGTH`) on the `fx_`
+/// functions: the generic modules composed with it give the bits of the Rust code for `Fx`.
+pub const SCALAR_FX: Module = Module {
+    name: "scalar_fx",
+    source: include_str!("../../../shaders/scalar_fx.wgsl"),
+    uses: &[&FX],
+    over_scalar: false,
+};
+
+/// The scalar `S` as `f32`: the same names as [`SCALAR_FX`] with the semantics of the `f32`
+/// [`swarm_core::Scalar`] (conversions, `floor_i32`, `unit_open`, `abs`, `min`, `max` exact;
+/// `sqrt`, the trigonometry, `exp` and the rounding of fused operations left to the GPU:
+/// measured, not promised).
+pub const SCALAR_F32: Module = Module {
+    name: "scalar_f32",
+    source: include_str!("../../../shaders/scalar_f32.wgsl"),
+    uses: &[],
+    over_scalar: false,
+};
+
+/// The scalar modules: a kernel of modules [`Module::over_scalar`] composes one of them.
+pub const SCALARS: &[&Module] = &[&SCALAR_FX, &SCALAR_F32];
+
 /// Counter-based random numbers: [`swarm_core::rand`] (`core-nostd/src/rand.rs`), bit for bit
-/// (`rand_mix32`, `rand_rand`, `rand_unit_fx`, `rand_angle_fx`, `rand_chance_fx`, the stream
-/// constants `RAND_ANT_STOP`, ...).
+/// (`rand_mix32`, `rand_rand`, the stream constants `RAND_ANT_STOP`, ..., `StepCtx`, and over
+/// the scalar `rand_unit`, `rand_angle`, `rand_chance`).
 pub const RAND: Module = Module {
     name: "rand",
     source: include_str!("../../../shaders/rand.wgsl"),
-    uses: &[&FX],
+    uses: &[],
+    over_scalar: true,
 };
 
-/// Small vectors over `Fx`: [`swarm_core::geom`] (`core-nostd/src/geom.rs`) for `S = Fx`, bit
-/// for bit: `Vec2` as `vec2<i32>` (`geom_dot`, `geom_length`, `geom_normalized`, ...), `Vec3`
-/// as `vec3<i32>` (`geom_vec3_*`), `Rect` as `GeomRect` (`geom_rect_*`).
+/// Small vectors over the scalar: [`swarm_core::geom`] (`core-nostd/src/geom.rs`), bit for bit
+/// for `S = Fx`: `Vec2` as `vec2<S>` (`geom_dot`, `geom_length`, `geom_normalized`, ...), `Vec3`
+/// as `vec3<S>` (`geom_vec3_*`), `Rect` as `GeomRect` (`geom_rect_*`); `S_DIRECT_LENGTH`
+/// chooses the length computation as `Scalar::DIRECT_LENGTH` does.
 pub const GEOM: Module = Module {
     name: "geom",
     source: include_str!("../../../shaders/geom.wgsl"),
-    uses: &[&FX],
+    uses: &[],
+    over_scalar: true,
 };
 
 /// Every module, for the validation test.
-pub const ALL: &[&Module] = &[&DISPATCH, &FX, &RAND, &GEOM];
+pub const ALL: &[&Module] = &[&DISPATCH, &FX, &SCALAR_FX, &SCALAR_F32, &RAND, &GEOM];
 
 /// Threads per workgroup of every kernel (`WORKGROUP` in `dispatch.wgsl`).
 pub const WORKGROUP: u32 = 64;
@@ -102,10 +141,64 @@ pub(crate) mod tests {
         .unwrap_or_else(|e| panic!("{what}: {}", e.emit_to_string(source)));
     }
 
+    /// Every module, a module over the scalar composed with each scalar module.
     #[test]
     fn every_module_is_valid_wgsl() {
         for m in ALL {
-            validate(m.name, &compose(&[m], ""));
+            if m.over_scalar {
+                for scalar in SCALARS {
+                    validate(
+                        &format!("{} over {}", m.name, scalar.name),
+                        &compose(&[scalar, m], ""),
+                    );
+                }
+            } else {
+                validate(m.name, &compose(&[m], ""));
+            }
+        }
+    }
+
+    /// The two scalar modules declare the same names (so a generic module composes with
+    /// either), and nothing else declares the scalar's names.
+    #[test]
+    fn the_scalar_modules_have_one_interface() {
+        fn names(source: &str) -> Vec<String> {
+            let mut v: Vec<String> = source
+                .lines()
+                .filter_map(|l| {
+                    let l = l.trim_start();
+                    ["fn ", "const ", "alias "]
+                        .iter()
+                        .find_map(|k| l.strip_prefix(k))
+                        .map(|rest| {
+                            rest.split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                                .next()
+                                .unwrap_or_default()
+                                .to_string()
+                        })
+                })
+                .filter(|n| n == "S" || n.starts_with("s_") || n.starts_with("S_"))
+                .collect();
+            v.sort();
+            v
+        }
+        let fx = names(SCALAR_FX.source);
+        assert!(fx.len() > 30, "{fx:?}");
+        // `s_f32_is_nan` is scalar_f32's own helper.
+        let f32: Vec<String> = names(SCALAR_F32.source)
+            .into_iter()
+            .filter(|n| n != "s_f32_is_nan")
+            .collect();
+        assert_eq!(fx, f32);
+        for m in ALL
+            .iter()
+            .filter(|m| !SCALARS.iter().any(|s| s.name == m.name))
+        {
+            assert!(
+                names(m.source).is_empty(),
+                "{} declares a scalar name",
+                m.name
+            );
         }
     }
 
@@ -115,11 +208,13 @@ pub(crate) mod tests {
             name: "a",
             source: "fn a_f() {}",
             uses: &[],
+            over_scalar: false,
         };
         const B: Module = Module {
             name: "b",
             source: "fn b_f() { a_f(); }",
             uses: &[&A],
+            over_scalar: false,
         };
         let s = compose(&[&B, &A], "fn k() { b_f(); }");
         assert_eq!(s.matches("fn a_f").count(), 1);
