@@ -92,8 +92,84 @@ pub const GEOM: Module = Module {
     over_scalar: true,
 };
 
+/// The ant's state: [`swarm_core::ant::AntState`] (`core-nostd/src/ant/state.rs`) as
+/// `AntState` over the scalar, its validation (`ant_state_validate`, `ant_check_point`, ...),
+/// the enums' discriminants (`ANT_LABEL_*`, ...) and the status words of the errors
+/// (`ANT_ERROR_*`, `ANT_FIELD_*`).
+pub const ANT_STATE: Module = Module {
+    name: "ant_state",
+    source: include_str!("../../../shaders/ant_state.wgsl"),
+    uses: &[&GEOM],
+    over_scalar: true,
+};
+
+/// The ant controller's parameters: [`swarm_core::ant::AntParams`] as `AntParams`.
+pub const ANT_PARAMS: Module = Module {
+    name: "ant_params",
+    source: include_str!("../../../shaders/ant_params.wgsl"),
+    uses: &[],
+    over_scalar: true,
+};
+
+/// The ant's sensor frames with the simulator's capacities: `core-nostd/src/ant/frame.rs`
+/// (`AntPlanFrame`, `AntResolveFrame`, `ant_plan_frame_validate`, ...).
+pub const ANT_FRAME: Module = Module {
+    name: "ant_frame",
+    source: include_str!("../../../shaders/ant_frame.wgsl"),
+    uses: &[&ANT_STATE],
+    over_scalar: true,
+};
+
+/// Obstacles: `core-nostd/src/ant/obstacle.rs` (`ant_obstacle_heading`, `ant_constrain`, ...).
+pub const ANT_OBSTACLE: Module = Module {
+    name: "ant_obstacle",
+    source: include_str!("../../../shaders/ant_obstacle.wgsl"),
+    uses: &[&ANT_FRAME, &ANT_PARAMS, &RAND],
+    over_scalar: true,
+};
+
+/// Interactions: `core-nostd/src/ant/interact.rs` (`ant_transfers`, `ant_informer`,
+/// `ant_environment`, ...).
+pub const ANT_INTERACT: Module = Module {
+    name: "ant_interact",
+    source: include_str!("../../../shaders/ant_interact.wgsl"),
+    uses: &[&ANT_OBSTACLE],
+    over_scalar: true,
+};
+
+/// Phase 1 of the ant tick: `core-nostd/src/ant/plan.rs` (`ant_plan_checked`, `ant_predict`).
+pub const ANT_PLAN: Module = Module {
+    name: "ant_plan",
+    source: include_str!("../../../shaders/ant_plan.wgsl"),
+    uses: &[&ANT_INTERACT],
+    over_scalar: true,
+};
+
+/// Phase 2 of the ant tick: `core-nostd/src/ant/resolve.rs` (`ant_resolve_checked`,
+/// `ant_repulsion`).
+pub const ANT_RESOLVE: Module = Module {
+    name: "ant_resolve",
+    source: include_str!("../../../shaders/ant_resolve.wgsl"),
+    uses: &[&ANT_PLAN, &ANT_OBSTACLE],
+    over_scalar: true,
+};
+
 /// Every module, for the validation test.
-pub const ALL: &[&Module] = &[&DISPATCH, &FX, &SCALAR_FX, &SCALAR_F32, &RAND, &GEOM];
+pub const ALL: &[&Module] = &[
+    &DISPATCH,
+    &FX,
+    &SCALAR_FX,
+    &SCALAR_F32,
+    &RAND,
+    &GEOM,
+    &ANT_STATE,
+    &ANT_PARAMS,
+    &ANT_FRAME,
+    &ANT_OBSTACLE,
+    &ANT_INTERACT,
+    &ANT_PLAN,
+    &ANT_RESOLVE,
+];
 
 /// Threads per workgroup of every kernel (`WORKGROUP` in `dispatch.wgsl`).
 pub const WORKGROUP: u32 = 64;
