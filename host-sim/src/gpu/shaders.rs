@@ -95,7 +95,7 @@ pub const GEOM: Module = Module {
 /// The ant's state: [`swarm_core::ant::AntState`] (`core-nostd/src/ant/state.rs`) as
 /// `AntState` over the scalar, its validation (`ant_state_validate`, `ant_check_point`, ...),
 /// the enums' discriminants (`ANT_LABEL_*`, ...) and the status words of the errors
-/// (`ANT_ERROR_*`, `ANT_FIELD_*`).
+/// (`ANT_ERROR_*`, `ANT_FIELD_*`, decoded by [`crate::gpu::ant::layout::status_error`]).
 pub const ANT_STATE: Module = Module {
     name: "ant_state",
     source: include_str!("../../../shaders/ant_state.wgsl"),
@@ -154,6 +154,15 @@ pub const ANT_RESOLVE: Module = Module {
     over_scalar: true,
 };
 
+/// The ant values as `u32` words, the layout of [`crate::gpu::ant::layout`]
+/// (`ant_state_from_words`, `ant_plan_to_words`, ...; `ANT_STATE_WORDS`, ...).
+pub const ANT_LAYOUT: Module = Module {
+    name: "ant_layout",
+    source: include_str!("../../../shaders/ant_layout.wgsl"),
+    uses: &[&ANT_PLAN, &ANT_FRAME, &ANT_PARAMS],
+    over_scalar: true,
+};
+
 /// Every module, for the validation test.
 pub const ALL: &[&Module] = &[
     &DISPATCH,
@@ -169,6 +178,7 @@ pub const ALL: &[&Module] = &[
     &ANT_INTERACT,
     &ANT_PLAN,
     &ANT_RESOLVE,
+    &ANT_LAYOUT,
 ];
 
 /// Threads per workgroup of every kernel (`WORKGROUP` in `dispatch.wgsl`).
