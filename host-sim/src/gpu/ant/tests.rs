@@ -1,19 +1,72 @@
-//! The ant kernels' word layout: both sides' constants, the status words, the shaders'
-//! constants, and values through the GPU's unpacking and packing unchanged.
+//! The ant controller on the GPU (`shaders/ant_*.wgsl`, lavapipe where there is no GPU) against
+//! `swarm_core::ant::plan_checked` and `resolve_checked`:
+//!
+//! * over `Fx`, bit for bit (every output word: the status, and the whole plan or state): every
+//!   plan and resolve exchange of real fixed-point simulations of built-in ant scenarios, and
+//!   randomised and edge inputs (empty and full frames, ants inside obstacles and on disturbance
+//!   centres, stopped ants, every label, motion and stop, invalid inputs that must be refused
+//!   with the same error);
+//! * over `f32`, measured: the same scenarios simulated in `f32` (and random inputs, NaN and
+//!   infinities among them), the share of decisions whose words are identical and of those
+//!   whose discrete fields (status, label, ids, flags, motion, stop) are, with a floor under the
+//!   latter;
+//! * the word layout: both sides' constants, and values through the GPU's unpacking and
+//!   packing unchanged.
+//!
+//! `cargo test -p swarm-sim --lib gpu::ant -- --nocapture` prints the figures.
 
+use std::fmt::Debug;
+use std::result::Result;
+use std::sync::OnceLock;
+use std::time::Instant;
+
+use rayon::prelude::*;
 use swarm_core::ant::{
-    self, AntNeighbor, AntObject, AntParams, AntPlan, AntState, Follow, Label, MotionState,
-    SURFACES, StopReason, StopTimer, Surface, Turn,
+    self, AntNeighbor, AntObject, AntParams, AntPlan, AntPlanReply, AntPlanRequest,
+    AntResolveReply, AntResolveRequest, AntState, Follow, Label, MotionState, SURFACES, StopReason,
+    StopTimer, Surface, Turn,
 };
-use swarm_core::{Checked, Error, Fx, Rect, Scalar, StepCtx, Vec2};
+use swarm_core::wire::decode_payload;
+use swarm_core::{Checked, Error, Fx, Rect, Scalar, ScalarKind, StepCtx, Vec2};
 
 use super::layout::*;
 use super::*;
-use crate::ants::{AntPlanFrame, AntResolveFrame, N, O};
+use crate::ants::{AntGroup, AntPlanFrame, AntResolveFrame, AntSim, AnyAntGroup, N, O};
+use crate::engine::{Engine, apply_due_events};
 use crate::gpu::kernel::map_words;
 use crate::gpu::shaders::{self, ANT_FRAME, SCALARS};
 use crate::gpu::test_gpu;
 use crate::gpu::tests::Rng;
+use crate::scalar::{ByScalar, SimScalar};
+use crate::scenario::{ScalarType, builtin};
+
+/// A scalar of the simulator, as the tests need it.
+trait TestScalar: Word + SimScalar {
+    /// The scenario's name for it.
+    const TYPE: ScalarType;
+    /// `g` if it computes in this scalar.
+    fn group(g: &AnyAntGroup) -> Option<&AntGroup<Self>>;
+}
+
+impl TestScalar for Fx {
+    const TYPE: ScalarType = ScalarType::Fixed;
+    fn group(g: &AnyAntGroup) -> Option<&AntGroup<Fx>> {
+        match g {
+            ByScalar::Fixed(g) => Some(g),
+            ByScalar::F32(_) => None,
+        }
+    }
+}
+
+impl TestScalar for f32 {
+    const TYPE: ScalarType = ScalarType::F32;
+    fn group(g: &AnyAntGroup) -> Option<&AntGroup<f32>> {
+        match g {
+            ByScalar::F32(g) => Some(g),
+            ByScalar::Fixed(_) => None,
+        }
+    }
+}
 
 /// The inputs of one `plan_checked`.
 #[derive(Clone, Debug)]
@@ -25,7 +78,7 @@ struct PlanCase<S> {
 }
 
 impl<S: Word> PlanCase<S> {
-    fn rust(&self) -> std::result::Result<AntPlan<S>, Error> {
+    fn rust(&self) -> Result<AntPlan<S>, Error> {
         ant::plan_checked(&self.state, &self.frame, &self.params, self.ctx)
     }
 }
@@ -37,6 +90,424 @@ struct ResolveCase<S> {
     frame: AntResolveFrame<S>,
     params: Checked<AntParams<S>>,
 }
+
+impl<S: Word> ResolveCase<S> {
+    fn rust(&self) -> Result<AntState<S>, Error> {
+        ant::resolve_checked(&self.plan, &self.frame, &self.params)
+    }
+}
+
+// ---- comparing ----
+
+/// Where the discrete fields of a state lie in its words: label, nest, origin, the goal's and
+/// the follow's flags, the turn, motion, the stop (flag, reason, remaining, place).
+const DISCRETE: [usize; 11] = [4, 5, 6, 9, 12, 13, 15, 16, 17, 18, 19];
+
+/// How the GPU's answers compare with Rust's.
+#[derive(Debug, Default)]
+struct Compared {
+    /// Decisions compared.
+    total: usize,
+    /// Those with every output word equal.
+    identical: usize,
+    /// Those with the same status and, if Ok, the same discrete fields.
+    discrete: usize,
+    /// Those refused (by Rust).
+    refused: usize,
+    /// The first that differs: index, Rust's words, the GPU's words.
+    first: Option<(usize, Vec<u32>, Vec<u32>)>,
+}
+
+impl Compared {
+    /// `got` (the GPU's output) against `want` (Rust's), `words` per decision: a status, then
+    /// a state (or a plan, whose state comes first).
+    fn of(got: &[u32], want: &[u32], words: usize) -> Compared {
+        assert_eq!(got.len(), want.len(), "output length");
+        let mut c = Compared::default();
+        for (i, (g, w)) in got.chunks(words).zip(want.chunks(words)).enumerate() {
+            c.total += 1;
+            c.refused += usize::from(w[0] != 0);
+            if g == w {
+                c.identical += 1;
+                c.discrete += 1;
+                continue;
+            }
+            if g[0] == w[0] && DISCRETE.iter().all(|&k| g[1 + k] == w[1 + k]) {
+                c.discrete += 1;
+            }
+            c.first.get_or_insert((i, w.to_vec(), g.to_vec()));
+        }
+        c
+    }
+
+    fn add(&mut self, o: Compared) {
+        self.total += o.total;
+        self.identical += o.identical;
+        self.discrete += o.discrete;
+        self.refused += o.refused;
+        if self.first.is_none() {
+            self.first = o.first;
+        }
+    }
+
+    fn share(n: usize, total: usize) -> f64 {
+        if total == 0 {
+            1.0
+        } else {
+            n as f64 / total as f64
+        }
+    }
+}
+
+/// Rust's answers to plan cases.
+type Plans<S> = Vec<Result<AntPlan<S>, Error>>;
+/// Rust's answers to resolve cases.
+type States<S> = Vec<Result<AntState<S>, Error>>;
+
+/// The plan kernel on `cases` against `plan_checked`; and Rust's answers.
+fn compare_plans<S: TestScalar>(
+    gpu: &Gpu,
+    k: &AntKernels,
+    cases: &[PlanCase<S>],
+) -> (Compared, Plans<S>) {
+    let mut input = Vec::with_capacity(cases.len() * PLAN_INPUT_WORDS);
+    let mut want = Vec::with_capacity(cases.len() * PLAN_OUTPUT_WORDS);
+    let rust: Plans<S> = cases.par_iter().map(PlanCase::rust).collect();
+    for (c, r) in cases.iter().zip(&rust) {
+        write_plan_input(&mut input, &c.state, &c.frame, &c.params, c.ctx);
+        write_plan_result(&mut want, r);
+    }
+    let got = k.plan(gpu, &input).expect("plan kernel");
+    (Compared::of(&got, &want, PLAN_OUTPUT_WORDS), rust)
+}
+
+/// The resolve kernel on `cases` against `resolve_checked`; and Rust's answers.
+fn compare_resolves<S: TestScalar>(
+    gpu: &Gpu,
+    k: &AntKernels,
+    cases: &[ResolveCase<S>],
+) -> (Compared, States<S>) {
+    let mut input = Vec::with_capacity(cases.len() * RESOLVE_INPUT_WORDS);
+    let mut want = Vec::with_capacity(cases.len() * RESOLVE_OUTPUT_WORDS);
+    let rust: States<S> = cases.par_iter().map(ResolveCase::rust).collect();
+    for (c, r) in cases.iter().zip(&rust) {
+        write_resolve_input(&mut input, &c.plan, &c.frame, &c.params);
+        write_resolve_result(&mut want, r);
+    }
+    let got = k.resolve(gpu, &input).expect("resolve kernel");
+    (Compared::of(&got, &want, RESOLVE_OUTPUT_WORDS), rust)
+}
+
+/// A status and the value after it, decoded, for a failure's report.
+fn decoded<V: Debug>(words: &[u32], read: fn(&[u32]) -> crate::Result<V>) -> String {
+    match status_error(words[0]) {
+        Ok(Ok(())) => format!("{:?}", read(&words[1..])),
+        Ok(Err(e)) => format!("Err({e:?})"),
+        Err(e) => format!("{e}"),
+    }
+}
+
+/// Panics unless every decision of `c` is bit for bit Rust's, with the first that is not.
+fn assert_identical<C: Debug, V: Debug>(
+    what: &str,
+    c: &Compared,
+    cases: &[C],
+    read: fn(&[u32]) -> crate::Result<V>,
+) {
+    if let Some((i, want, got)) = &c.first {
+        panic!(
+            "{what}: {} of {} decisions differ; the first, #{i}:\n  input {:?}\n  Rust {}\n  GPU  {}",
+            c.total - c.identical,
+            c.total,
+            cases.get(*i),
+            decoded(want, read),
+            decoded(got, read),
+        );
+    }
+}
+
+// ---- real exchanges ----
+
+/// The exchanges of a simulation: every plan and resolve request of the recorded ticks, and the
+/// engine's replies.
+struct Real<S> {
+    plans: Vec<PlanCase<S>>,
+    plan_replies: Vec<AntPlan<S>>,
+    resolves: Vec<ResolveCase<S>>,
+    resolve_replies: Vec<AntState<S>>,
+}
+
+/// The built-in scenario `name` simulated in `S` for `ticks` ticks (its events at the same
+/// fraction of the shortened run), every ant's plan and resolve exchange (`Engine::exchanges`,
+/// decoded from postcard) recorded every `every` ticks.
+fn real<S: TestScalar>(name: &str, ticks: u32, every: u32) -> Real<S> {
+    let mut sc = builtin(name).unwrap_or_else(|| panic!("no built-in scenario {name}"));
+    for g in &mut sc.groups {
+        g.scalar = S::TYPE;
+    }
+    for e in &mut sc.events {
+        e.step = (u64::from(e.step) * u64::from(ticks) / u64::from(sc.steps)) as u32;
+    }
+    sc.steps = ticks;
+    let mut sim = AntSim::from_scenario(&sc, sc.seed).expect("the scenario builds");
+    let ids: Vec<u32> = (0..sim.agents() as u32).collect();
+    let mut params = vec![None; ids.len()];
+    for g in &sim.groups {
+        let g = S::group(g).expect("every group in the scalar asked for");
+        for &id in &g.ids {
+            params[id as usize] = Some(g.params);
+        }
+    }
+    let params: Vec<Checked<AntParams<S>>> = params.into_iter().map(Option::unwrap).collect();
+    let mut out = Real {
+        plans: Vec::new(),
+        plan_replies: Vec::new(),
+        resolves: Vec::new(),
+        resolve_replies: Vec::new(),
+    };
+    for t in 0..ticks {
+        apply_due_events(&mut sim, &sc);
+        let record = t % every == 0;
+        sim.decide(0).expect("plan");
+        if record {
+            for ex in sim.exchanges(0, &ids).expect("plan exchanges") {
+                let req: AntPlanRequest<S> = decode_payload(&ex.request.bytes).unwrap();
+                let reply: AntPlanReply<S> = decode_payload(&ex.reply.bytes).unwrap();
+                out.plans.push(PlanCase {
+                    state: req.state,
+                    frame: req.frame,
+                    params: params[ex.agent as usize],
+                    ctx: req.ctx,
+                });
+                out.plan_replies.push(reply.plan);
+            }
+        }
+        sim.publish(0).expect("publish plans");
+        sim.decide(1).expect("resolve");
+        if record {
+            for ex in sim.exchanges(1, &ids).expect("resolve exchanges") {
+                let req: AntResolveRequest<S> = decode_payload(&ex.request.bytes).unwrap();
+                let reply: AntResolveReply<S> = decode_payload(&ex.reply.bytes).unwrap();
+                out.resolves.push(ResolveCase {
+                    plan: req.plan,
+                    frame: req.frame,
+                    params: params[ex.agent as usize],
+                });
+                out.resolve_replies.push(reply.state);
+            }
+        }
+        sim.publish(1).expect("publish states");
+    }
+    out
+}
+
+/// The scenarios of the real exchanges, and ticks simulated (recording every `EVERY`th).
+const SCENARIOS: &[(&str, u32)] = &[
+    ("ants-fig7a-single-colony", 300),
+    ("ants-fig7b-obstacles", 300),
+    ("ants-fig8a-hybrid", 300),
+    ("ants-fig1c-heart", 300),
+    ("ants-fig11-dynamic-obstacles", 300),
+    ("ants-fig13-disturbance", 300),
+];
+const EVERY: u32 = 8;
+
+/// What the decisions of `plans` and `resolves` cover (labels, motions, stops, frames), for the
+/// report.
+fn coverage<S: Word>(
+    plans: &[&PlanCase<S>],
+    planned: &[AntPlan<S>],
+    resolves: &[&ResolveCase<S>],
+) -> String {
+    let ok = planned;
+    let count = |f: &dyn Fn(&AntPlan<S>) -> bool| ok.iter().filter(|p| f(p)).count();
+    let frames = |f: &dyn Fn(&PlanCase<S>) -> bool| plans.iter().filter(|c| f(c)).count();
+    format!(
+        "plans: label food {} nest {} nothing {}; motion stop {} basic {} neighbours {} \
+         environment {}; collecting {} dropping {} casual {}; following {}; full neighbour \
+         lists {}, obstacles sensed {}, disturbances {}; resolves with obstacle surfaces {}, \
+         with neighbours {}",
+        count(&|p| p.state.label == Label::Food),
+        count(&|p| p.state.label == Label::Nest),
+        count(&|p| p.state.label == Label::Nothing),
+        count(&|p| p.state.motion == MotionState::Stop),
+        count(&|p| p.state.motion == MotionState::BasicMovement),
+        count(&|p| p.state.motion == MotionState::InteractNeighbors),
+        count(&|p| p.state.motion == MotionState::InteractEnvironment),
+        count(&|p| p
+            .state
+            .stop
+            .is_some_and(|t| t.reason == StopReason::CollectingFood)),
+        count(&|p| p
+            .state
+            .stop
+            .is_some_and(|t| t.reason == StopReason::DroppingFood)),
+        count(&|p| p.state.stop.is_some_and(|t| t.reason == StopReason::Casual)),
+        count(&|p| p.state.follow.is_some()),
+        frames(&|c| c.frame.neighbours.len() == N),
+        frames(&|c| c
+            .frame
+            .objects
+            .iter()
+            .any(|o| matches!(o, AntObject::Obstacle(_)))),
+        frames(&|c| {
+            c.frame
+                .objects
+                .iter()
+                .any(|o| matches!(o, AntObject::Disturbance { .. }))
+        }),
+        resolves
+            .iter()
+            .filter(|c| !c.frame.obstacles.is_empty())
+            .count(),
+        resolves
+            .iter()
+            .filter(|c| !c.frame.neighbours.is_empty())
+            .count(),
+    )
+}
+
+/// The test GPU and the ant kernels over `S`, made once for every test.
+fn kernels<S: TestScalar>() -> &'static (Gpu, AntKernels) {
+    static FX: OnceLock<(Gpu, AntKernels)> = OnceLock::new();
+    static F32: OnceLock<(Gpu, AntKernels)> = OnceLock::new();
+    let cell = match S::KIND {
+        ScalarKind::I16F16 => &FX,
+        ScalarKind::F32 => &F32,
+    };
+    cell.get_or_init(|| {
+        let gpu = test_gpu();
+        let k = AntKernels::new::<S>(&gpu).expect("the ant kernels compile");
+        (gpu, k)
+    })
+}
+
+/// Every scenario of [`SCENARIOS`] simulated in `S`, its exchanges on the GPU against Rust
+/// (whose answers must be the engine's replies); the comparisons and, for the report, what the
+/// decisions cover.
+fn real_runs<S: TestScalar>(
+    check: impl Fn(&str, &Compared, &Compared, &Real<S>),
+) -> (Compared, Compared, String) {
+    let (gpu, k) = kernels::<S>();
+    let (mut plans, mut resolves) = (Compared::default(), Compared::default());
+    let runs: Vec<Real<S>> = SCENARIOS
+        .par_iter()
+        .map(|&(name, ticks)| real::<S>(name, ticks, EVERY))
+        .collect();
+    for (&(name, _), run) in SCENARIOS.iter().zip(&runs) {
+        let (p, planned) = compare_plans(gpu, k, &run.plans);
+        let (r, resolved) = compare_resolves(gpu, k, &run.resolves);
+        for (rust, reply) in planned.iter().zip(&run.plan_replies) {
+            assert_eq!(
+                rust.as_ref(),
+                Ok(reply),
+                "{name}: Rust's plan is the engine's"
+            );
+        }
+        for (rust, reply) in resolved.iter().zip(&run.resolve_replies) {
+            assert_eq!(
+                rust.as_ref(),
+                Ok(reply),
+                "{name}: Rust's state is the engine's"
+            );
+        }
+        check(name, &p, &r, run);
+        plans.add(p);
+        resolves.add(r);
+    }
+    let cases: Vec<&PlanCase<S>> = runs.iter().flat_map(|r| &r.plans).collect();
+    let planned: Vec<AntPlan<S>> = runs.iter().flat_map(|r| r.plan_replies.clone()).collect();
+    let resolve_cases: Vec<&ResolveCase<S>> = runs.iter().flat_map(|r| &r.resolves).collect();
+    let covered = coverage(&cases, &planned, &resolve_cases);
+    (plans, resolves, covered)
+}
+
+/// Fixed point: every plan and resolve exchange of real simulations, bit for bit.
+#[test]
+fn fx_real_exchanges_are_bit_for_bit() {
+    let t0 = Instant::now();
+    let (plans, resolves, covered) = real_runs::<Fx>(|name, p, r, run| {
+        assert_identical(&format!("{name}: plan"), p, &run.plans, read_plan::<Fx>);
+        assert_identical(
+            &format!("{name}: resolve"),
+            r,
+            &run.resolves,
+            read_state::<Fx>,
+        );
+    });
+    println!(
+        "fixed point, real exchanges of {} scenarios: {} plan and {} resolve decisions \
+         identical on the GPU ({:.1} s)\n  {covered}",
+        SCENARIOS.len(),
+        plans.identical,
+        resolves.identical,
+        t0.elapsed().as_secs_f64(),
+    );
+    assert!(plans.total >= 100_000 && resolves.total >= 100_000);
+    assert_eq!(
+        (plans.identical, resolves.identical),
+        (plans.total, resolves.total)
+    );
+}
+
+/// `f32`: the same scenarios simulated in `f32`, measured (docs/gpu.md: not promised).
+#[test]
+fn f32_real_exchanges_are_measured() {
+    let t0 = Instant::now();
+    let (plans, resolves, _) = real_runs::<f32>(|_, _, _, _| {});
+    let pct = |n, c: &Compared| 100.0 * Compared::share(n, c.total);
+    println!(
+        "f32 on {}: plan {} decisions, {:.2} % bit-identical, {:.3} % identical discrete fields \
+         (status, label, ids, goal/follow flags, turn, motion, stop); resolve {} decisions, \
+         {:.2} % bit-identical, {:.3} % identical discrete fields ({:.1} s)",
+        kernels::<f32>().0.info().name,
+        plans.total,
+        pct(plans.identical, &plans),
+        pct(plans.discrete, &plans),
+        resolves.total,
+        pct(resolves.identical, &resolves),
+        pct(resolves.discrete, &resolves),
+        t0.elapsed().as_secs_f64(),
+    );
+    assert!(plans.total >= 100_000 && resolves.total >= 100_000);
+    // Random and edge inputs (NaN and infinities among the invalid ones): the same refusals.
+    let mut g = Gen(Rng::new(0xf32));
+    let cases: Vec<PlanCase<f32>> = (0..20_000).map(|_| g.plan_case()).collect();
+    let resolve_cases: Vec<ResolveCase<f32>> = cases.iter().map(|c| g.resolve_case(c)).collect();
+    let (gpu, k) = kernels::<f32>();
+    let (rp, _) = compare_plans(gpu, k, &cases);
+    let (rr, _) = compare_resolves(gpu, k, &resolve_cases);
+    println!(
+        "f32, random and edge inputs: plan {:.2} % bit-identical, {:.3} % identical discrete \
+         fields ({} refused); resolve {:.2} % bit-identical, {:.3} % identical discrete fields \
+         ({} refused)",
+        pct(rp.identical, &rp),
+        pct(rp.discrete, &rp),
+        rp.refused,
+        pct(rr.identical, &rr),
+        pct(rr.discrete, &rr),
+        rr.refused,
+    );
+    // The floor: a few discrete decisions in a thousand may flip where a distance or a
+    // product lands on the other side of a threshold.
+    assert!(
+        Compared::share(plans.discrete, plans.total) >= F32_DISCRETE_FLOOR,
+        "plan: {plans:?}"
+    );
+    assert!(
+        Compared::share(resolves.discrete, resolves.total) >= F32_DISCRETE_FLOOR,
+        "resolve: {resolves:?}"
+    );
+    for (what, c) in [("random plan", &rp), ("random resolve", &rr)] {
+        assert!(
+            Compared::share(c.discrete, c.total) >= F32_DISCRETE_FLOOR,
+            "{what}: {c:?}"
+        );
+    }
+}
+
+/// The least share of `f32` decisions whose discrete fields the GPU must reproduce.
+const F32_DISCRETE_FLOOR: f64 = 0.99;
 
 // ---- randomised and edge inputs ----
 
@@ -534,6 +1005,191 @@ impl Gen {
     }
 }
 
+/// Every label, motion state and stop (every reason, 0 to 2 ticks left, at the ant's nest or
+/// elsewhere), with an empty and a full frame each.
+fn every_state_kind<S: Word>(g: &mut Gen) -> Vec<PlanCase<S>> {
+    let mut out = Vec::new();
+    let stops = [
+        StopReason::Casual,
+        StopReason::CollectingFood,
+        StopReason::DroppingFood,
+    ];
+    for label in [Label::Nothing, Label::Food, Label::Nest] {
+        for motion in [
+            MotionState::Stop,
+            MotionState::BasicMovement,
+            MotionState::InteractNeighbors,
+            MotionState::InteractEnvironment,
+        ] {
+            let mut timers = vec![None];
+            for reason in stops {
+                for remaining in 0..3 {
+                    for place in [1, 2] {
+                        timers.push(Some(StopTimer {
+                            reason,
+                            remaining,
+                            place,
+                        }));
+                    }
+                }
+            }
+            for stop in timers {
+                for full in [false, true] {
+                    let mut c = g.plan_case::<S>();
+                    c.state.label = label;
+                    c.state.nest = 1;
+                    c.state.origin = 1;
+                    c.state.motion = motion;
+                    c.state.stop = stop;
+                    c.state.pos = Vec2::from_f32(100.0, 60.0);
+                    c.state.heading = Vec2::from_f32(1.0, 0.0);
+                    if !full {
+                        c.frame.neighbours.clear();
+                        c.frame.objects.clear();
+                    }
+                    c.frame.bounds = Rect::new(Vec2::zero(), Vec2::from_f32(200.0, 120.0));
+                    out.push(c);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Hand-made geometry: exactly head-on to a wall (a random side), exactly on a disturbance
+/// centre (a random direction), on a nest's or food's border, a goal exactly one step away,
+/// neighbours tied in distance (the lower id informs).
+fn edge_geometry<S: Word>(g: &mut Gen) -> Vec<PlanCase<S>> {
+    let mut out = Vec::new();
+    for i in 0..64u32 {
+        let mut c = g.plan_case::<S>();
+        c.state = AntState::at_nest(1, Vec2::from_f32(100.0, 60.0), Vec2::from_f32(1.0, 0.0));
+        c.state.label = [Label::Nothing, Label::Food, Label::Nest][(i % 3) as usize];
+        c.state.origin = 1;
+        c.frame = AntPlanFrame::new(Rect::new(Vec2::zero(), Vec2::from_f32(200.0, 120.0)));
+        c.ctx.agent = 7;
+        c.ctx.step = i;
+        let p = c.state.pos;
+        let wall = Surface {
+            closest: p + Vec2::from_f32(1.0, 0.0),
+            normal: Vec2::from_f32(-1.0, 0.0),
+        };
+        match i % 8 {
+            0 => {
+                let _ = c.frame.objects.push(AntObject::Obstacle(wall));
+            }
+            1 => {
+                let _ = c.frame.objects.push(AntObject::Disturbance {
+                    center: p,
+                    radius: S::from_i32(3),
+                });
+            }
+            2 => {
+                let _ = c.frame.objects.push(AntObject::Nest {
+                    id: 1,
+                    center: p + Vec2::from_f32(2.0, 0.0),
+                    radius: S::from_i32(2),
+                });
+                let _ = c.frame.objects.push(AntObject::Food {
+                    id: 3,
+                    center: p - Vec2::from_f32(0.0, 1.5),
+                    radius: S::from_f32(1.5),
+                });
+            }
+            3 => c.state.goal = Some(p + Vec2::from_f32(0.0, 1.0)),
+            4 | 5 => {
+                for (k, id) in [9u32, 4, 12, 5].into_iter().enumerate() {
+                    let d = if k % 2 == 0 { 1.0 } else { -1.0 };
+                    let _ = c.frame.neighbours.push(AntNeighbor {
+                        id,
+                        pos: p + Vec2::from_f32(d, 0.0),
+                        label: Label::Food,
+                        nest: 1,
+                        origin: id as u16,
+                        arrival: Vec2::from_f32(10.0 * k as f32, 5.0),
+                    });
+                }
+            }
+            6 => {
+                // Going round the wall toward a goal behind it.
+                c.state.goal = Some(p + Vec2::from_f32(20.0, 0.5));
+                c.state.follow = Some(Follow {
+                    turn: if i % 16 < 8 { Turn::Ccw } else { Turn::Cw },
+                    winding: S::from_f32(0.5),
+                });
+                let _ = c.frame.objects.push(AntObject::Obstacle(wall));
+            }
+            _ => {
+                // A goal behind a disturbance's rim.
+                c.state.goal = Some(p + Vec2::from_f32(30.0, 0.0));
+                let _ = c.frame.objects.push(AntObject::Disturbance {
+                    center: p + Vec2::from_f32(4.0, 0.0),
+                    radius: S::from_i32(2),
+                });
+            }
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// Fixed point: randomised and edge inputs, bit for bit, errors included.
+#[test]
+fn fx_random_and_edge_inputs_are_bit_for_bit() {
+    let t0 = Instant::now();
+    let mut g = Gen(Rng::new(0x05ee_da17));
+    let mut plans: Vec<PlanCase<Fx>> = (0..30_000).map(|_| g.plan_case()).collect();
+    plans.extend(every_state_kind(&mut g));
+    plans.extend(edge_geometry(&mut g));
+    let mut resolves: Vec<ResolveCase<Fx>> = plans.iter().map(|c| g.resolve_case(c)).collect();
+    // Stopped ants of the state kinds, and the same plans with their frames emptied.
+    let extra: Vec<ResolveCase<Fx>> = resolves
+        .iter()
+        .take(5_000)
+        .map(|c| ResolveCase {
+            frame: AntResolveFrame::new(c.frame.bounds),
+            ..c.clone()
+        })
+        .collect();
+    resolves.extend(extra);
+    let (gpu, k) = kernels::<Fx>();
+    let (p, planned) = compare_plans(gpu, k, &plans);
+    assert_identical("random plan", &p, &plans, read_plan::<Fx>);
+    let (r, resolved) = compare_resolves(gpu, k, &resolves);
+    assert_identical("random resolve", &r, &resolves, read_state::<Fx>);
+    let refusals = |cs: &[Result<(), Error>]| {
+        let mut kinds: Vec<String> = cs
+            .iter()
+            .filter_map(|r| r.err())
+            .map(|e| match e {
+                Error::NonFinite { field, .. }
+                | Error::OutOfRange { field, .. }
+                | Error::Inconsistent { field, .. } => field.to_string(),
+                e => format!("{e:?}"),
+            })
+            .collect();
+        kinds.sort();
+        kinds.dedup();
+        kinds.len()
+    };
+    let plan_errs: Vec<Result<(), Error>> = planned.iter().map(|r| r.map(|_| ())).collect();
+    let resolve_errs: Vec<Result<(), Error>> = resolved.iter().map(|r| r.map(|_| ())).collect();
+    println!(
+        "fixed point, random and edge inputs: {} plans ({} refused, {} fields named) and {} \
+         resolves ({} refused, {} fields named) identical on the GPU ({:.1} s)",
+        p.total,
+        p.refused,
+        refusals(&plan_errs),
+        r.total,
+        r.refused,
+        refusals(&resolve_errs),
+        t0.elapsed().as_secs_f64()
+    );
+    // Every field a controller names in its errors is refused somewhere.
+    assert!(refusals(&plan_errs) >= 19, "{}", refusals(&plan_errs));
+    assert!(refusals(&resolve_errs) >= 14, "{}", refusals(&resolve_errs));
+}
+
 // ---- the layout ----
 
 /// The kernels compile (naga, as wgpu would) over both scalars.
@@ -654,7 +1310,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
 /// (`ant_*_from_words`, `ant_*_to_words`) over both scalars.
 #[test]
 fn values_survive_the_layout() {
-    fn check<S: Word>(gpu: &Gpu) {
+    fn check<S: TestScalar>(gpu: &Gpu) {
         let mut g = Gen(Rng::new(77));
         let plans: Vec<PlanCase<S>> = (0..2_000).map(|_| g.plan_case()).collect();
         let resolves: Vec<ResolveCase<S>> = plans.iter().map(|c| g.resolve_case(c)).collect();
