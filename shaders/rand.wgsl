@@ -1,9 +1,17 @@
 // Counter-based randomness (host-sim/src/gpu/shaders.rs, RAND): `swarm_core::rand`
 // (core-nostd/src/rand.rs), function by function. A random number is a pure function of
 // `(seed, agent, step, stream)`; the hash is 32-bit integer only (wrapping multiplies of u32,
-// xor-shifts), so every word equals the Rust one (host-sim/src/gpu/tests/rand.rs). The `_fx`
-// functions are the generic ones of rand.rs for `S = Fx` (uses fx.wgsl); a `StepCtx` is its
-// three words `seed, agent, step`.
+// xor-shifts), so every word equals the Rust one (host-sim/src/gpu/tests/rand.rs).
+// `rand_unit`, `rand_angle` and `rand_chance` are the generic functions of rand.rs over the
+// scalar `S` (a kernel composes a scalar module, scalar_fx.wgsl or scalar_f32.wgsl); they take
+// a `StepCtx` as its three words `seed, agent, step`.
+
+// swarm_core::StepCtx: where a decision sits in the run, the inputs of the random numbers.
+struct StepCtx {
+    seed: u32,
+    agent: u32,
+    step: u32,
+}
 
 // rand::stream: named streams, so two draws of one agent in one step never share bits.
 // ANT_STOP: ant, casual stop (xiang2018 §4.1).
@@ -39,18 +47,18 @@ fn rand_rand(seed: u32, agent: u32, step: u32, stream: u32) -> u32 {
     return rand_mix32(h2 ^ stream);
 }
 
-// rand::unit::<Fx>: a uniform number in the open interval (0, 1) for this step and stream.
-fn rand_unit_fx(seed: u32, agent: u32, step: u32, stream: u32) -> i32 {
-    return fx_unit_open(rand_rand(seed, agent, step, stream));
+// rand::unit: a uniform number in the open interval (0, 1) for this step and stream.
+fn rand_unit(seed: u32, agent: u32, step: u32, stream: u32) -> S {
+    return s_unit_open(rand_rand(seed, agent, step, stream));
 }
 
-// rand::angle::<Fx>: a uniform angle in the open interval (-θ, θ), (u + u - 1) · θ.
-fn rand_angle_fx(seed: u32, agent: u32, step: u32, stream: u32, theta: i32) -> i32 {
-    let u = rand_unit_fx(seed, agent, step, stream);
-    return fx_mul(fx_sub(fx_add(u, u), FX_ONE), theta);
+// rand::angle: a uniform angle in the open interval (-θ, θ), (u + u - 1) · θ.
+fn rand_angle(seed: u32, agent: u32, step: u32, stream: u32, theta: S) -> S {
+    let u = rand_unit(seed, agent, step, stream);
+    return s_mul(s_sub(s_add(u, u), S_ONE), theta);
 }
 
-// rand::chance::<Fx>: a Bernoulli draw, true with probability p (p ≤ 0 never, ≥ 1 always).
-fn rand_chance_fx(seed: u32, agent: u32, step: u32, stream: u32, p: i32) -> bool {
-    return rand_unit_fx(seed, agent, step, stream) < p;
+// rand::chance: a Bernoulli draw, true with probability p (p ≤ 0 never, ≥ 1 always).
+fn rand_chance(seed: u32, agent: u32, step: u32, stream: u32, p: S) -> bool {
+    return rand_unit(seed, agent, step, stream) < p;
 }

@@ -186,6 +186,15 @@ pub enum SimError {
         /// The compiler's diagnostic.
         message: String,
     },
+    /// A kernel wrote words that the layout of its values does not allow (a bug in `shaders/`:
+    /// an enum discriminant or status word no Rust value has).
+    #[error("GPU: a kernel wrote {word:#010x}, which is no {what} (a bug in shaders/)")]
+    GpuWords {
+        /// What the word should have been.
+        what: &'static str,
+        /// The word.
+        word: u32,
+    },
     /// A swarm larger than one storage binding of the adapter holds.
     #[error(
         "GPU: `{buffer}` needs {bytes} bytes, more than the adapter's largest storage binding \

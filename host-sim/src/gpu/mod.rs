@@ -4,15 +4,18 @@
 //!
 //! The kernels mirror `swarm-core` function by function: `shaders/fx.wgsl` is the I16F16
 //! arithmetic of [`swarm_core::Fx`], `shaders/rand.wgsl` its counter-based random numbers,
-//! `shaders/geom.wgsl` its vectors over `Fx`, each tested bit for bit against the Rust function
-//! on the GPU (lavapipe, Mesa's Vulkan driver on the CPU, where there is no GPU; the tests are
-//! in `tests/`).
+//! `shaders/geom.wgsl` its vectors, the last two written over the scalar `S` of a scalar module
+//! (`scalar_fx.wgsl` or `scalar_f32.wgsl`, see [`shaders`]) as the Rust is over `Scalar`; each
+//! is tested bit for bit against the Rust function over `Fx` on the GPU (lavapipe, Mesa's
+//! Vulkan driver on the CPU, where there is no GPU; the tests are in `tests/`). [`ant`] is the
+//! ant controller on these foundations, with the word layout of its values.
 //!
 //! ```no_run
 //! let gpu = swarm_sim::gpu::Gpu::new().unwrap(); // an error naming what to install if none
 //! println!("{}", gpu.info());
 //! ```
 
+pub mod ant;
 mod context;
 pub mod grid;
 pub mod kernel;

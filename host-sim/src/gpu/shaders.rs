@@ -5,6 +5,12 @@
 //! module is prefixed with the module's name (`fx_mul`, `rand_unit`), so modules never clash.
 //! The naga test of this module parses and validates every module and every kernel without a
 //! GPU.
+//!
+//! WGSL has no generics either: the modules written over the controllers' scalar (`geom`,
+//! `rand`'s `rand_unit`, the ant controller; [`Module::over_scalar`]) call the scalar `S` and
+//! its operations `s_add`, `s_sqrt`, ... by name, and a kernel composes exactly one *scalar
+//! module* with them: [`SCALAR_FX`] (`S = i32`, the bits of an `Fx`, bit for bit) or
+//! [`SCALAR_F32`] (`S = f32`, measured): `compose(&[&SCALAR_FX, &GEOM], kernel)`.
 
 /// One WGSL file of `shaders/`.
 #[derive(Debug)]
@@ -15,6 +21,9 @@ pub struct Module {
     pub source: &'static str,
     /// The modules its functions call.
     pub uses: &'static [&'static Module],
+    /// Whether it is written over the scalar `S`: a kernel that uses it composes one of
+    /// [`SCALARS`] too (which one is the kernel's choice, so it is not in `uses`).
+    pub over_scalar: bool,
 }
 
 /// The threads of a dispatch: `thread_index` numbers them across a 2D grid of workgroups (a
@@ -23,6 +32,7 @@ pub const DISPATCH: Module = Module {
     name: "dispatch",
     source: include_str!("../../../shaders/dispatch.wgsl"),
     uses: &[],
+    over_scalar: false,
 };
 
 /// I16F16 fixed point: the arithmetic of [`swarm_core::Fx`] (`core-nostd/src/scalar/fx.rs`) and
@@ -33,24 +43,124 @@ pub const FX: Module = Module {
     name: "fx",
     source: include_str!("../../../shaders/fx.wgsl"),
     uses: &[],
+    over_scalar: false,
 };
 
+/// The scalar `S` as I16F16 fixed point: the [`swarm_core::Scalar`] interface of
+/// [`swarm_core::Fx`] (`alias S = i32`, the bits; `s_add`, `s_mul`, `s_sqrt`, `s_sin_cos`,
+/// `s_from_f32`, ..., `S_ZERO`, `S_ONE`, `S_EPS`, `S_PI`, `S_DIRECT_LENGTH`) on the `fx_`
+/// functions: the generic modules composed with it give the bits of the Rust code for `Fx`.
+pub const SCALAR_FX: Module = Module {
+    name: "scalar_fx",
+    source: include_str!("../../../shaders/scalar_fx.wgsl"),
+    uses: &[&FX],
+    over_scalar: false,
+};
+
+/// The scalar `S` as `f32`: the same names as [`SCALAR_FX`] with the semantics of the `f32`
+/// [`swarm_core::Scalar`] (conversions, `floor_i32`, `unit_open`, `abs`, `min`, `max` exact;
+/// `sqrt`, the trigonometry, `exp` and the rounding of fused operations left to the GPU:
+/// measured, not promised).
+pub const SCALAR_F32: Module = Module {
+    name: "scalar_f32",
+    source: include_str!("../../../shaders/scalar_f32.wgsl"),
+    uses: &[],
+    over_scalar: false,
+};
+
+/// The scalar modules: a kernel of modules [`Module::over_scalar`] composes one of them.
+pub const SCALARS: &[&Module] = &[&SCALAR_FX, &SCALAR_F32];
+
 /// Counter-based random numbers: [`swarm_core::rand`] (`core-nostd/src/rand.rs`), bit for bit
-/// (`rand_mix32`, `rand_rand`, `rand_unit_fx`, `rand_angle_fx`, `rand_chance_fx`, the stream
-/// constants `RAND_ANT_STOP`, ...).
+/// (`rand_mix32`, `rand_rand`, the stream constants `RAND_ANT_STOP`, ..., `StepCtx`, and over
+/// the scalar `rand_unit`, `rand_angle`, `rand_chance`).
 pub const RAND: Module = Module {
     name: "rand",
     source: include_str!("../../../shaders/rand.wgsl"),
-    uses: &[&FX],
+    uses: &[],
+    over_scalar: true,
 };
 
-/// Small vectors over `Fx`: [`swarm_core::geom`] (`core-nostd/src/geom.rs`) for `S = Fx`, bit
-/// for bit: `Vec2` as `vec2<i32>` (`geom_dot`, `geom_length`, `geom_normalized`, ...), `Vec3`
-/// as `vec3<i32>` (`geom_vec3_*`), `Rect` as `GeomRect` (`geom_rect_*`).
+/// Small vectors over the scalar: [`swarm_core::geom`] (`core-nostd/src/geom.rs`), bit for bit
+/// for `S = Fx`: `Vec2` as `vec2<S>` (`geom_dot`, `geom_length`, `geom_normalized`, ...), `Vec3`
+/// as `vec3<S>` (`geom_vec3_*`), `Rect` as `GeomRect` (`geom_rect_*`); `S_DIRECT_LENGTH`
+/// chooses the length computation as `Scalar::DIRECT_LENGTH` does.
 pub const GEOM: Module = Module {
     name: "geom",
     source: include_str!("../../../shaders/geom.wgsl"),
-    uses: &[&FX],
+    uses: &[],
+    over_scalar: true,
+};
+
+/// The ant's state: [`swarm_core::ant::AntState`] (`core-nostd/src/ant/state.rs`) as
+/// `AntState` over the scalar, its validation (`ant_state_validate`, `ant_check_point`, ...),
+/// the enums' discriminants (`ANT_LABEL_*`, ...) and the status words of the errors
+/// (`ANT_ERROR_*`, `ANT_FIELD_*`, decoded by [`crate::gpu::ant::layout::status_error`]).
+pub const ANT_STATE: Module = Module {
+    name: "ant_state",
+    source: include_str!("../../../shaders/ant_state.wgsl"),
+    uses: &[&GEOM],
+    over_scalar: true,
+};
+
+/// The ant controller's parameters: [`swarm_core::ant::AntParams`] as `AntParams`.
+pub const ANT_PARAMS: Module = Module {
+    name: "ant_params",
+    source: include_str!("../../../shaders/ant_params.wgsl"),
+    uses: &[],
+    over_scalar: true,
+};
+
+/// The ant's sensor frames with the simulator's capacities: `core-nostd/src/ant/frame.rs`
+/// (`AntPlanFrame`, `AntResolveFrame`, `ant_plan_frame_validate`, ...).
+pub const ANT_FRAME: Module = Module {
+    name: "ant_frame",
+    source: include_str!("../../../shaders/ant_frame.wgsl"),
+    uses: &[&ANT_STATE],
+    over_scalar: true,
+};
+
+/// Obstacles: `core-nostd/src/ant/obstacle.rs` (`ant_obstacle_heading`, `ant_constrain`, ...).
+pub const ANT_OBSTACLE: Module = Module {
+    name: "ant_obstacle",
+    source: include_str!("../../../shaders/ant_obstacle.wgsl"),
+    uses: &[&ANT_FRAME, &ANT_PARAMS, &RAND],
+    over_scalar: true,
+};
+
+/// Interactions: `core-nostd/src/ant/interact.rs` (`ant_transfers`, `ant_informer`,
+/// `ant_environment`, ...).
+pub const ANT_INTERACT: Module = Module {
+    name: "ant_interact",
+    source: include_str!("../../../shaders/ant_interact.wgsl"),
+    uses: &[&ANT_OBSTACLE],
+    over_scalar: true,
+};
+
+/// Phase 1 of the ant tick: `core-nostd/src/ant/plan.rs` (`ant_plan_checked`, `ant_predict`).
+pub const ANT_PLAN: Module = Module {
+    name: "ant_plan",
+    source: include_str!("../../../shaders/ant_plan.wgsl"),
+    uses: &[&ANT_INTERACT],
+    over_scalar: true,
+};
+
+/// Phase 2 of the ant tick: `core-nostd/src/ant/resolve.rs` (`ant_resolve_checked`,
+/// `ant_repulsion`).
+pub const ANT_RESOLVE: Module = Module {
+    name: "ant_resolve",
+    source: include_str!("../../../shaders/ant_resolve.wgsl"),
+    uses: &[&ANT_PLAN, &ANT_OBSTACLE],
+    over_scalar: true,
+};
+
+/// The ant values as `u32` words, the layout of [`crate::gpu::ant::layout`]
+/// (`ant_state_from_words`, `ant_plan_to_words`, ...; `ANT_STATE_WORDS`, ...).
+pub const ANT_LAYOUT: Module = Module {
+    name: "ant_layout",
+    source: include_str!("../../../shaders/ant_layout.wgsl"),
+    uses: &[&ANT_PLAN, &ANT_FRAME, &ANT_PARAMS],
+    over_scalar: true,
 };
 
 /// The neighbour grid's kernels: agents sorted by cell (count, multi-level exclusive scan, a
@@ -59,10 +169,27 @@ pub const GRID: Module = Module {
     name: "grid",
     source: include_str!("../../../shaders/grid.wgsl"),
     uses: &[&DISPATCH],
+    over_scalar: false,
 };
 
 /// Every module, for the validation test.
-pub const ALL: &[&Module] = &[&DISPATCH, &FX, &RAND, &GEOM, &GRID];
+pub const ALL: &[&Module] = &[
+    &DISPATCH,
+    &FX,
+    &SCALAR_FX,
+    &SCALAR_F32,
+    &RAND,
+    &GEOM,
+    &ANT_STATE,
+    &ANT_PARAMS,
+    &ANT_FRAME,
+    &ANT_OBSTACLE,
+    &ANT_INTERACT,
+    &ANT_PLAN,
+    &ANT_RESOLVE,
+    &ANT_LAYOUT,
+    &GRID,
+];
 
 /// Threads per workgroup of every kernel (`WORKGROUP` in `dispatch.wgsl`).
 pub const WORKGROUP: u32 = 64;
@@ -110,10 +237,64 @@ pub(crate) mod tests {
         .unwrap_or_else(|e| panic!("{what}: {}", e.emit_to_string(source)));
     }
 
+    /// Every module, a module over the scalar composed with each scalar module.
     #[test]
     fn every_module_is_valid_wgsl() {
         for m in ALL {
-            validate(m.name, &compose(&[m], ""));
+            if m.over_scalar {
+                for scalar in SCALARS {
+                    validate(
+                        &format!("{} over {}", m.name, scalar.name),
+                        &compose(&[scalar, m], ""),
+                    );
+                }
+            } else {
+                validate(m.name, &compose(&[m], ""));
+            }
+        }
+    }
+
+    /// The two scalar modules declare the same names (so a generic module composes with
+    /// either), and nothing else declares the scalar's names.
+    #[test]
+    fn the_scalar_modules_have_one_interface() {
+        fn names(source: &str) -> Vec<String> {
+            let mut v: Vec<String> = source
+                .lines()
+                .filter_map(|l| {
+                    let l = l.trim_start();
+                    ["fn ", "const ", "alias "]
+                        .iter()
+                        .find_map(|k| l.strip_prefix(k))
+                        .map(|rest| {
+                            rest.split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                                .next()
+                                .unwrap_or_default()
+                                .to_string()
+                        })
+                })
+                .filter(|n| n == "S" || n.starts_with("s_") || n.starts_with("S_"))
+                .collect();
+            v.sort();
+            v
+        }
+        let fx = names(SCALAR_FX.source);
+        assert!(fx.len() > 30, "{fx:?}");
+        // `s_f32_is_nan` is scalar_f32's own helper.
+        let f32: Vec<String> = names(SCALAR_F32.source)
+            .into_iter()
+            .filter(|n| n != "s_f32_is_nan")
+            .collect();
+        assert_eq!(fx, f32);
+        for m in ALL
+            .iter()
+            .filter(|m| !SCALARS.iter().any(|s| s.name == m.name))
+        {
+            assert!(
+                names(m.source).is_empty(),
+                "{} declares a scalar name",
+                m.name
+            );
         }
     }
 
@@ -123,11 +304,13 @@ pub(crate) mod tests {
             name: "a",
             source: "fn a_f() {}",
             uses: &[],
+            over_scalar: false,
         };
         const B: Module = Module {
             name: "b",
             source: "fn b_f() { a_f(); }",
             uses: &[&A],
+            over_scalar: false,
         };
         let s = compose(&[&B, &A], "fn k() { b_f(); }");
         assert_eq!(s.matches("fn a_f").count(), 1);

@@ -1,9 +1,13 @@
-//! `shaders/geom.wgsl` against `swarm_core::geom` for `Fx`, bit for bit.
+//! `shaders/geom.wgsl` (composed with `scalar_fx.wgsl`) against `swarm_core::geom` for `Fx`,
+//! bit for bit.
 
 use swarm_core::{Fx, Rect, Scalar, Vec2, Vec3};
 
 use super::{FX_EDGES, RANDOM, Rng, check};
-use crate::gpu::shaders::GEOM;
+use crate::gpu::shaders::{GEOM, Module, SCALAR_FX};
+
+/// `geom.wgsl` over `Fx`.
+const FX_GEOM: &[&Module] = &[&SCALAR_FX, &GEOM];
 
 fn fx(w: u32) -> Fx {
     Fx::from_bits(w as i32)
@@ -61,7 +65,7 @@ fn f32_tuples<const N: usize>(seed: u32) -> Vec<[u32; N]> {
 fn from_f32_bits() {
     check(
         "geom_from_f32_bits",
-        &[&GEOM],
+        FX_GEOM,
         "let r = geom_from_f32_bits(vec2<u32>(u0, u1)); put_i32(0u, r.x); put_i32(1u, r.y);",
         &f32_tuples::<2>(60),
         |[x, y]| {
@@ -75,7 +79,7 @@ fn from_f32_bits() {
 fn dot() {
     check(
         "geom_dot",
-        &[&GEOM],
+        FX_GEOM,
         "put_i32(0u, geom_dot(vec2<i32>(a0, a1), vec2<i32>(a2, a3)));",
         &tuples::<4>(61),
         |[a, b, c, d]| [w(v2(a, b).dot(v2(c, d)))],
@@ -86,7 +90,7 @@ fn dot() {
 fn cross() {
     check(
         "geom_cross",
-        &[&GEOM],
+        FX_GEOM,
         "put_i32(0u, geom_cross(vec2<i32>(a0, a1), vec2<i32>(a2, a3)));",
         &tuples::<4>(62),
         |[a, b, c, d]| [w(v2(a, b).cross(v2(c, d)))],
@@ -97,7 +101,7 @@ fn cross() {
 fn length_sq() {
     check(
         "geom_length_sq",
-        &[&GEOM],
+        FX_GEOM,
         "put_i32(0u, geom_length_sq(vec2<i32>(a0, a1)));",
         &tuples::<2>(63),
         |[a, b]| [w(v2(a, b).length_sq())],
@@ -108,7 +112,7 @@ fn length_sq() {
 fn length() {
     check(
         "geom_length",
-        &[&GEOM],
+        FX_GEOM,
         "put_i32(0u, geom_length(vec2<i32>(a0, a1)));",
         &tuples::<2>(64),
         |[a, b]| [w(v2(a, b).length())],
@@ -119,7 +123,7 @@ fn length() {
 fn normalized() {
     check(
         "geom_normalized",
-        &[&GEOM],
+        FX_GEOM,
         "let r = geom_normalized(vec2<i32>(a0, a1));
          put_bool(0u, r.is_some); put_i32(1u, r.value.x); put_i32(2u, r.value.y);",
         &tuples::<2>(65),
@@ -134,7 +138,7 @@ fn normalized() {
 fn perp() {
     check(
         "geom_perp",
-        &[&GEOM],
+        FX_GEOM,
         "let r = geom_perp(vec2<i32>(a0, a1)); put_i32(0u, r.x); put_i32(1u, r.y);",
         &tuples::<2>(66),
         |[a, b]| {
@@ -148,7 +152,7 @@ fn perp() {
 fn rotated() {
     check(
         "geom_rotated",
-        &[&GEOM],
+        FX_GEOM,
         "let r = geom_rotated(vec2<i32>(a0, a1), a2); put_i32(0u, r.x); put_i32(1u, r.y);",
         &tuples::<3>(67),
         |[a, b, angle]| {
@@ -162,7 +166,7 @@ fn rotated() {
 fn from_angle() {
     check(
         "geom_from_angle",
-        &[&GEOM],
+        FX_GEOM,
         "let r = geom_from_angle(a0); put_i32(0u, r.x); put_i32(1u, r.y);",
         &tuples::<1>(68),
         |[angle]| {
@@ -176,7 +180,7 @@ fn from_angle() {
 fn check_finite() {
     check(
         "geom_check",
-        &[&GEOM],
+        FX_GEOM,
         "put_bool(0u, geom_check(vec2<i32>(a0, a1)));",
         &tuples::<2>(69),
         |[a, b]| [u32::from(v2(a, b).check("v").is_ok())],
@@ -187,7 +191,7 @@ fn check_finite() {
 fn to_f32_bits() {
     check(
         "geom_to_f32_bits",
-        &[&GEOM],
+        FX_GEOM,
         "let r = geom_to_f32_bits(vec2<i32>(a0, a1)); put(0u, r.x); put(1u, r.y);",
         &tuples::<2>(70),
         |[a, b]| {
@@ -201,7 +205,7 @@ fn to_f32_bits() {
 fn add() {
     check(
         "geom_add",
-        &[&GEOM],
+        FX_GEOM,
         "let r = geom_add(vec2<i32>(a0, a1), vec2<i32>(a2, a3)); put_i32(0u, r.x); put_i32(1u, r.y);",
         &tuples::<4>(71),
         |[a, b, c, d]| {
@@ -215,7 +219,7 @@ fn add() {
 fn sub() {
     check(
         "geom_sub",
-        &[&GEOM],
+        FX_GEOM,
         "let r = geom_sub(vec2<i32>(a0, a1), vec2<i32>(a2, a3)); put_i32(0u, r.x); put_i32(1u, r.y);",
         &tuples::<4>(72),
         |[a, b, c, d]| {
@@ -229,7 +233,7 @@ fn sub() {
 fn neg() {
     check(
         "geom_neg",
-        &[&GEOM],
+        FX_GEOM,
         "let r = geom_neg(vec2<i32>(a0, a1)); put_i32(0u, r.x); put_i32(1u, r.y);",
         &tuples::<2>(73),
         |[a, b]| {
@@ -243,7 +247,7 @@ fn neg() {
 fn mul() {
     check(
         "geom_mul",
-        &[&GEOM],
+        FX_GEOM,
         "let r = geom_mul(vec2<i32>(a0, a1), a2); put_i32(0u, r.x); put_i32(1u, r.y);",
         &tuples::<3>(74),
         |[a, b, k]| {
@@ -267,7 +271,7 @@ const PUT3: &str = "put_i32(0u, r.x); put_i32(1u, r.y); put_i32(2u, r.z);";
 fn vec3_up() {
     check(
         "geom_vec3_up",
-        &[&GEOM],
+        FX_GEOM,
         &format!("let r = geom_vec3_up(); {PUT3}"),
         &[[0]],
         |_| out3(Vec3::<Fx>::up()),
@@ -278,7 +282,7 @@ fn vec3_up() {
 fn vec3_from_f32_bits() {
     check(
         "geom_vec3_from_f32_bits",
-        &[&GEOM],
+        FX_GEOM,
         &format!("let r = geom_vec3_from_f32_bits(vec3<u32>(u0, u1, u2)); {PUT3}"),
         &f32_tuples::<3>(80),
         |[x, y, z]| {
@@ -292,7 +296,7 @@ fn vec3_from_f32_bits() {
 fn vec3_dot() {
     check(
         "geom_vec3_dot",
-        &[&GEOM],
+        FX_GEOM,
         "put_i32(0u, geom_vec3_dot(vec3<i32>(a0, a1, a2), vec3<i32>(a3, a4, a5)));",
         &tuples::<6>(81),
         |[a, b, c, d, e, f]| [w(v3(a, b, c).dot(v3(d, e, f)))],
@@ -303,7 +307,7 @@ fn vec3_dot() {
 fn vec3_cross() {
     check(
         "geom_vec3_cross",
-        &[&GEOM],
+        FX_GEOM,
         &format!("let r = geom_vec3_cross(vec3<i32>(a0, a1, a2), vec3<i32>(a3, a4, a5)); {PUT3}"),
         &tuples::<6>(82),
         |[a, b, c, d, e, f]| out3(v3(a, b, c).cross(v3(d, e, f))),
@@ -314,7 +318,7 @@ fn vec3_cross() {
 fn vec3_length_sq() {
     check(
         "geom_vec3_length_sq",
-        &[&GEOM],
+        FX_GEOM,
         "put_i32(0u, geom_vec3_length_sq(vec3<i32>(a0, a1, a2)));",
         &tuples::<3>(83),
         |[a, b, c]| [w(v3(a, b, c).length_sq())],
@@ -325,7 +329,7 @@ fn vec3_length_sq() {
 fn vec3_length() {
     check(
         "geom_vec3_length",
-        &[&GEOM],
+        FX_GEOM,
         "put_i32(0u, geom_vec3_length(vec3<i32>(a0, a1, a2)));",
         &tuples::<3>(84),
         |[a, b, c]| [w(v3(a, b, c).length())],
@@ -336,7 +340,7 @@ fn vec3_length() {
 fn vec3_normalized() {
     check(
         "geom_vec3_normalized",
-        &[&GEOM],
+        FX_GEOM,
         "let n = geom_vec3_normalized(vec3<i32>(a0, a1, a2)); let r = n.value;
          put_bool(3u, n.is_some); put_i32(0u, r.x); put_i32(1u, r.y); put_i32(2u, r.z);",
         &tuples::<3>(85),
@@ -351,7 +355,7 @@ fn vec3_normalized() {
 fn vec3_check() {
     check(
         "geom_vec3_check",
-        &[&GEOM],
+        FX_GEOM,
         "put_bool(0u, geom_vec3_check(vec3<i32>(a0, a1, a2)));",
         &tuples::<3>(86),
         |[a, b, c]| [u32::from(v3(a, b, c).check("v").is_ok())],
@@ -362,7 +366,7 @@ fn vec3_check() {
 fn vec3_to_f32_bits() {
     check(
         "geom_vec3_to_f32_bits",
-        &[&GEOM],
+        FX_GEOM,
         "let r = geom_vec3_to_f32_bits(vec3<i32>(a0, a1, a2)); put(0u, r.x); put(1u, r.y); put(2u, r.z);",
         &tuples::<3>(87),
         |[a, b, c]| {
@@ -376,7 +380,7 @@ fn vec3_to_f32_bits() {
 fn vec3_add() {
     check(
         "geom_vec3_add",
-        &[&GEOM],
+        FX_GEOM,
         &format!("let r = geom_vec3_add(vec3<i32>(a0, a1, a2), vec3<i32>(a3, a4, a5)); {PUT3}"),
         &tuples::<6>(88),
         |[a, b, c, d, e, f]| out3(v3(a, b, c) + v3(d, e, f)),
@@ -387,7 +391,7 @@ fn vec3_add() {
 fn vec3_sub() {
     check(
         "geom_vec3_sub",
-        &[&GEOM],
+        FX_GEOM,
         &format!("let r = geom_vec3_sub(vec3<i32>(a0, a1, a2), vec3<i32>(a3, a4, a5)); {PUT3}"),
         &tuples::<6>(89),
         |[a, b, c, d, e, f]| out3(v3(a, b, c) - v3(d, e, f)),
@@ -398,7 +402,7 @@ fn vec3_sub() {
 fn vec3_neg() {
     check(
         "geom_vec3_neg",
-        &[&GEOM],
+        FX_GEOM,
         &format!("let r = geom_vec3_neg(vec3<i32>(a0, a1, a2)); {PUT3}"),
         &tuples::<3>(90),
         |[a, b, c]| out3(-v3(a, b, c)),
@@ -409,7 +413,7 @@ fn vec3_neg() {
 fn vec3_mul() {
     check(
         "geom_vec3_mul",
-        &[&GEOM],
+        FX_GEOM,
         &format!("let r = geom_vec3_mul(vec3<i32>(a0, a1, a2), a3); {PUT3}"),
         &tuples::<4>(91),
         |[a, b, c, k]| out3(v3(a, b, c) * fx(k)),
@@ -447,7 +451,7 @@ fn rect([a, b, c, d]: [u32; 4]) -> Rect<Fx> {
 fn rect_contains() {
     check(
         "geom_rect_contains",
-        &[&GEOM],
+        FX_GEOM,
         &format!("put_bool(0u, geom_rect_contains({RECT}, vec2<i32>(a4, a5)));"),
         &rect_points(92),
         |[a, b, c, d, x, y]| [u32::from(rect([a, b, c, d]).contains(v2(x, y)))],
@@ -458,7 +462,7 @@ fn rect_contains() {
 fn rect_clamp() {
     check(
         "geom_rect_clamp",
-        &[&GEOM],
+        FX_GEOM,
         &format!(
             "let r = geom_rect_clamp({RECT}, vec2<i32>(a4, a5)); put_i32(0u, r.x); put_i32(1u, r.y);"
         ),
@@ -481,7 +485,7 @@ fn rect_check() {
     }
     check(
         "geom_rect_check",
-        &[&GEOM],
+        FX_GEOM,
         &format!("put_bool(0u, geom_rect_check({RECT}));"),
         &inputs,
         |[a, b, c, d]| [u32::from(rect([a, b, c, d]).check("r").is_ok())],
@@ -494,7 +498,7 @@ fn tiny_vectors_normalise() {
     let e = Fx::EPS.to_bits() as u32;
     check(
         "geom_normalized",
-        &[&GEOM],
+        FX_GEOM,
         "let r = geom_normalized(vec2<i32>(a0, a1)); put_i32(0u, r.value.x); put_i32(1u, r.value.y);",
         &[[e, 2 * e], [e, 0], [0, e.wrapping_neg()]],
         |[a, b]| {

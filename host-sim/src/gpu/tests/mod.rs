@@ -1,11 +1,13 @@
 //! Bit-for-bit tests of the WGSL modules against their Rust originals, on the GPU (lavapipe
-//! where there is none): every function of `shaders/fx.wgsl`, `rand.wgsl` and `geom.wgsl` runs
+//! where there is none): every function of `shaders/fx.wgsl`, `scalar_fx.wgsl`, `rand.wgsl`
+//! and `geom.wgsl` (the last two over `scalar_fx.wgsl`; `scalar_f32.wgsl` where exact) runs
 //! once per input in one dispatch ([`map_words`]), over its edge cases and a few hundred
 //! thousand pseudo-random inputs, and each output word must equal the Rust function's.
 
 mod fx;
 mod geom;
 mod rand;
+mod scalar;
 
 use crate::gpu::kernel::map_words;
 use crate::gpu::shaders::Module;

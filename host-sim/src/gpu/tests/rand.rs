@@ -4,7 +4,10 @@ use swarm_core::rand::{angle, chance, mix32, rand, stream, unit};
 use swarm_core::{Fx, StepCtx};
 
 use super::{FX_EDGES, RANDOM, Rng, check};
-use crate::gpu::shaders::RAND;
+use crate::gpu::shaders::{Module, RAND, SCALAR_FX};
+
+/// `rand.wgsl` over `Fx`.
+const FX_RAND: &[&Module] = &[&SCALAR_FX, &RAND];
 
 /// A step context and a stream: the pinned ones, small counters (as a run has them) and random
 /// words.
@@ -39,7 +42,7 @@ fn ctx([seed, agent, step]: [u32; 3]) -> StepCtx {
 fn streams() {
     check(
         "the RAND_ stream constants",
-        &[&RAND],
+        FX_RAND,
         "put(0u, RAND_ANT_STOP); put(1u, RAND_ANT_TURN); put(2u, RAND_ANT_FALLBACK);
          put(3u, RAND_ANT_SIDE); put(4u, RAND_BEE_PHASE); put(5u, RAND_BEE_PHASE_BASE);",
         &[[0]],
@@ -66,7 +69,7 @@ fn mix32_words() {
     inputs.extend((0..RANDOM).map(|i| [if i % 2 == 0 { g.next() } else { i as u32 }]));
     check(
         "rand_mix32",
-        &[&RAND],
+        FX_RAND,
         "put(0u, rand_mix32(u0));",
         &inputs,
         |[x]| [mix32(x)],
@@ -77,7 +80,7 @@ fn mix32_words() {
 fn rand_words() {
     check(
         "rand_rand",
-        &[&RAND],
+        FX_RAND,
         "put(0u, rand_rand(u0, u1, u2, u3));",
         &contexts(51),
         |[seed, agent, step, stream]| [rand(seed, agent, step, stream)],
@@ -87,9 +90,9 @@ fn rand_words() {
 #[test]
 fn unit_fx() {
     check(
-        "rand_unit_fx",
-        &[&RAND],
-        "put_i32(0u, rand_unit_fx(u0, u1, u2, u3));",
+        "rand_unit over Fx",
+        FX_RAND,
+        "put_i32(0u, rand_unit(u0, u1, u2, u3));",
         &contexts(52),
         |[seed, agent, step, stream]| {
             [unit::<Fx>(ctx([seed, agent, step]), stream).to_bits() as u32]
@@ -109,9 +112,9 @@ fn angle_fx() {
         })
         .collect();
     check(
-        "rand_angle_fx",
-        &[&RAND],
-        "put_i32(0u, rand_angle_fx(u0, u1, u2, u3, a4));",
+        "rand_angle over Fx",
+        FX_RAND,
+        "put_i32(0u, rand_angle(u0, u1, u2, u3, a4));",
         &inputs,
         |[seed, agent, step, stream, theta]| {
             let theta = Fx::from_bits(theta as i32);
@@ -139,9 +142,9 @@ fn chance_fx() {
         })
         .collect();
     check(
-        "rand_chance_fx",
-        &[&RAND],
-        "put_bool(0u, rand_chance_fx(u0, u1, u2, u3, a4));",
+        "rand_chance over Fx",
+        FX_RAND,
+        "put_bool(0u, rand_chance(u0, u1, u2, u3, a4));",
         &inputs,
         |[seed, agent, step, stream, p]| {
             let p = Fx::from_bits(p as i32);
