@@ -15,6 +15,12 @@ pub trait SimScalar:
     fn to_f64(self) -> f64;
     /// The nearest value to `v` (exact for values that came from `to_f64`).
     fn from_f64(v: f64) -> Self;
+    /// A sensed position in this scalar, from the grid's `f32` copy `copy` where that is exact
+    /// (`f32`: the same bits as converting the `f64`, without reading it), else from `exact()`.
+    fn sensed(copy: [f32; 3], exact: impl FnOnce() -> [f64; 2]) -> Vec2<Self> {
+        let _ = copy;
+        v2(exact())
+    }
 }
 
 impl SimScalar for f32 {
@@ -23,6 +29,9 @@ impl SimScalar for f32 {
     }
     fn from_f64(v: f64) -> f32 {
         v as f32
+    }
+    fn sensed(copy: [f32; 3], _: impl FnOnce() -> [f64; 2]) -> Vec2<f32> {
+        Vec2::new(copy[0], copy[1])
     }
 }
 

@@ -6,7 +6,7 @@
 use std::fmt::Write as _;
 
 use swarm_core::Scalar;
-use swarm_sim::ants::{AntObjectKind, AntSim, AnyAntGroup};
+use swarm_sim::ants::{AntObjectDef, AntObjectKind, AntSim, AnyAntGroup};
 use swarm_sim::scenario::Scenario;
 
 /// A small counter-based generator (splitmix64): the arenas are the same on every machine.
@@ -179,7 +179,9 @@ fn arena(seed: u64, scalar: &str) -> Scenario {
     Scenario::from_str(&toml, "random arena").unwrap_or_else(|e| panic!("{e}\n{toml}"))
 }
 
-fn positions(sim: &AntSim) -> Vec<(u32, [f32; 2])> {
+/// Every ant: its id, its position, and whether it is inside obstacle `o`, in its own scalar
+/// (as it senses the obstacle).
+fn insides(sim: &AntSim, o: &AntObjectDef) -> Vec<(u32, [f32; 2], bool)> {
     let mut out = Vec::new();
     for g in &sim.groups {
         match g {
@@ -187,13 +189,13 @@ fn positions(sim: &AntSim) -> Vec<(u32, [f32; 2])> {
                 g.ids
                     .iter()
                     .zip(&g.states)
-                    .map(|(&i, s)| (i, [s.pos.x, s.pos.y])),
+                    .map(|(&i, s)| (i, [s.pos.x, s.pos.y], o.closest(s.pos).1)),
             ),
             AnyAntGroup::Fixed(g) => out.extend(
                 g.ids
                     .iter()
                     .zip(&g.states)
-                    .map(|(&i, s)| (i, [s.pos.x.to_f32(), s.pos.y.to_f32()])),
+                    .map(|(&i, s)| (i, [s.pos.x.to_f32(), s.pos.y.to_f32()], o.closest(s.pos).1)),
             ),
         }
     }
@@ -216,11 +218,11 @@ fn no_ant_inside_any_obstacle(seed: u64, scalar: &str) {
         for e in sim.step().expect("tick") {
             delivered += matches!(e, swarm_sim::ants::AntEvent::Delivered { .. }) as u32;
         }
-        for (id, p) in positions(&sim) {
-            for o in sim.world.objects.iter().filter(|o| o.active) {
-                if o.kind == AntObjectKind::Obstacle {
+        for o in sim.world.objects.iter().filter(|o| o.active) {
+            if o.kind == AntObjectKind::Obstacle {
+                for (id, p, inside) in insides(&sim, o) {
                     assert!(
-                        !o.closest(p).1,
+                        !inside,
                         "arena {seed} ({scalar}): ant {id} ends tick {step} inside obstacle `{}` at {p:?}",
                         o.name
                     );

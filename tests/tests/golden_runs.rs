@@ -34,14 +34,14 @@ const PINNED: &[(&str, &str, u64, u64)] = &[
     (
         "ants-fig7b-obstacles",
         "f32",
-        0x67e3fde3508772a5,
-        0x81ad7de4a4af05ec,
+        0xf4bc2278a148493f,
+        0x318b4217ffb5c8eb,
     ),
     (
         "ants-fig7b-obstacles",
         "fixed",
-        0x94a61f625498983a,
-        0x791ebc007520a87e,
+        0xba506b95ee9cdfeb,
+        0x2109a63044cce655,
     ),
     (
         "ants-fig8a-hybrid",
@@ -58,14 +58,14 @@ const PINNED: &[(&str, &str, u64, u64)] = &[
     (
         "ants-fig8b-hybrid-obstacles",
         "f32",
-        0x3da4e0b4c3e2a563,
-        0x4c6ae1d22b745b4f,
+        0x344c1267f5db564e,
+        0x9753ec147251d357,
     ),
     (
         "ants-fig8b-hybrid-obstacles",
         "fixed",
-        0xe5bbba7c80d3b84c,
-        0x6f65372811ece2e3,
+        0x09c4206ee8eb16fe,
+        0xed2ebced32231086,
     ),
     (
         "ants-fig11-dynamic-obstacles",
@@ -106,14 +106,14 @@ const PINNED: &[(&str, &str, u64, u64)] = &[
     (
         "ants-fig1c-heart",
         "f32",
-        0xcb83b1fbb48a1266,
-        0x3614ef898cb8bad6,
+        0x3833c61a8a575a07,
+        0x7ee202e2c91cc74d,
     ),
     (
         "ants-fig1c-heart",
         "fixed",
-        0x15e2dc3450fe5893,
-        0x26332b685a7c1328,
+        0xffa2f29779987cd1,
+        0xfce581a8fdbdab90,
     ),
     (
         "ants-fig14-waypoints",

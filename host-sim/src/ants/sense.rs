@@ -21,23 +21,24 @@ pub type AntPlanFrame<S> = PlanFrame<S, N, O>;
 pub type AntResolveFrame<S> = ResolveFrame<S, N>;
 
 /// The `K` smallest `(key, tie)` pairs offered, in increasing order, each with its slot: a
-/// deterministic nearest-K selection whatever the order (or slots) candidates arrive in.
+/// deterministic nearest-K selection whatever the order (or slots) candidates arrive in. Keys
+/// are distances (or squared distances) in the sensing ant's scalar.
 #[derive(Debug)]
-struct Nearest<const K: usize> {
-    items: [(f32, u32, u32); K],
+struct Nearest<T, const K: usize> {
+    items: [(T, u32, u32); K],
     len: usize,
 }
 
-impl<const K: usize> Nearest<K> {
-    fn new() -> Self {
+impl<T: PartialOrd + Copy, const K: usize> Nearest<T, K> {
+    fn new(zero: T) -> Self {
         Nearest {
-            items: [(0.0, 0, 0); K],
+            items: [(zero, 0, 0); K],
             len: 0,
         }
     }
-    fn offer(&mut self, key: f32, tie: u32, slot: u32) {
+    fn offer(&mut self, key: T, tie: u32, slot: u32) {
         let item = (key, tie, slot);
-        let less = |a: (f32, u32, u32), b: (f32, u32, u32)| a.0 < b.0 || (a.0 == b.0 && a.1 < b.1);
+        let less = |a: (T, u32, u32), b: (T, u32, u32)| a.0 < b.0 || (a.0 == b.0 && a.1 < b.1);
         if self.len == K {
             if K == 0 || !less(item, self.items[K - 1]) {
                 return;
@@ -90,10 +91,29 @@ impl Around {
     }
 }
 
-/// Squared distance in the plane, from the grid's `f32` copy of the positions (selection
-/// only: the frame itself carries the exact positions).
+/// Squared distance in the plane, from the grid's `f32` copy of the positions: a cheap
+/// pre-selection (with [`AntWorld::rounding_margin`] added to its radius) before the exact key.
 fn d2f(a: [f32; 3], b: [f32; 3]) -> f32 {
     (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1])
+}
+
+/// The selection key of an ant at `q` seen from `p`: the squared distance in the sensing ant's
+/// scalar (in fixed point saturating, which keeps every in-range key exact and every other one
+/// out of range), so every backend selects the same neighbours (`docs/gpu.md`).
+fn key<S: SimScalar>(q: Vec2<S>, p: Vec2<S>) -> S {
+    (q - p).length_sq()
+}
+
+/// `r` squared, in `S`.
+fn squared<S: SimScalar>(r: f32) -> S {
+    let r = S::from_f32(r);
+    r * r
+}
+
+/// `r` plus the rounding margin, squared: the radius of the `f32` pre-selection.
+fn loose2(w: &AntWorld, r: f32) -> f32 {
+    let r = r + w.rounding_margin();
+    r * r
 }
 
 /// The arena as a robot senses it.
@@ -137,23 +157,31 @@ pub(crate) fn fill_plan_frame_noting<S: SimScalar>(
     let home = w.sensed.nest[i];
     // On a route, only the ants of the same leg (same nest) have news of this leg's ends.
     let same_leg = |j: usize| w.route.is_empty() || w.sensed.nest[j] == home;
-    let r2 = w.contact_range * w.contact_range;
-    let mut near = Nearest::<N>::new();
+    let (me_s, r2, loose) = (
+        v2::<S>(me),
+        squared::<S>(w.contact_range),
+        loose2(w, w.contact_range),
+    );
+    let mut near = Nearest::<S, N>::new(S::ZERO);
     let p = [me[0] as f32, me[1] as f32, 0.0];
     // Noting costs nothing when not asked for: a reach of -1 keeps no ant.
     let mut scratch = Around::default();
     let indexed = engine.is_some();
+    let contact = w.contact_range + w.rounding_margin();
     let (list, radius, reach2) = match engine {
-        Some((list, reach)) => (list, reach.max(w.contact_range), reach * reach),
-        None => (&mut scratch, w.contact_range, -1.0),
+        Some((list, reach)) => (list, reach.max(contact), reach * reach),
+        None => (&mut scratch, contact, -1.0),
     };
     // The slots go straight to the list; the count stays in a register through the scan.
     let mut len = 0u8;
     w.grid.for_each_candidate(p, radius, |j, q| {
         let d = d2f(q, p);
         len = list.note(len, j, (d <= reach2) & (j as usize != i));
-        if j as usize != i && d <= r2 && same_leg(j as usize) {
-            near.offer(d, w.sensed.id[j as usize], j);
+        if j as usize != i && d <= loose && same_leg(j as usize) {
+            let k = key(S::sensed(q, || w.sensed.pos[j as usize]), me_s);
+            if k <= r2 {
+                near.offer(k, w.sensed.id[j as usize], j);
+            }
         }
     });
     list.len = len;
@@ -169,8 +197,12 @@ pub(crate) fn fill_plan_frame_noting<S: SimScalar>(
         });
     }
 
-    let mut objects = Nearest::<O>::new();
+    let mut objects = Nearest::<S, O>::new(S::ZERO);
     let p2 = [me[0] as f32, me[1] as f32];
+    let (sense, loose_sense) = (
+        S::from_f32(w.sense_range),
+        w.sense_range + w.rounding_margin(),
+    );
     let target = w.target_of(home);
     let on_leg = |o: &AntObjectDef| match o.kind {
         AntObjectKind::Waypoint { .. } => o.id == home || Some(o.id) == target,
@@ -178,16 +210,16 @@ pub(crate) fn fill_plan_frame_noting<S: SimScalar>(
         _ => true,
     };
     let mut visit = |k: usize, o: &AntObjectDef| {
-        if !o.active || !o.may_be_within(p2, w.sense_range) || !on_leg(o) {
+        if !o.active || !o.may_be_within(p2, loose_sense) || !on_leg(o) {
             return;
         }
-        let (closest, inside) = o.closest(p2);
+        let (closest, inside) = o.closest(me_s);
         let dist = if inside {
-            0.0
+            S::ZERO
         } else {
-            (closest[0] - p2[0]).hypot(closest[1] - p2[1])
+            (closest - me_s).length()
         };
-        if dist <= w.sense_range {
+        if dist <= sense {
             objects.offer(dist, k as u32, k as u32);
         }
     };
@@ -207,11 +239,8 @@ pub(crate) fn fill_plan_frame_noting<S: SimScalar>(
         let c = |p: [f32; 2]| Vec2::new(S::from_f32(p[0]), S::from_f32(p[1]));
         let sensed = match (&o.kind, o.circle()) {
             (AntObjectKind::Obstacle, _) => {
-                let (closest, normal, _) = o.surface(p2);
-                AntObject::Obstacle(Surface {
-                    closest: c(closest),
-                    normal: c(normal),
-                })
+                let (closest, normal, _) = o.surface(me_s);
+                AntObject::Obstacle(Surface { closest, normal })
             }
             (AntObjectKind::Waypoint { .. }, Some((center, radius))) if o.id == home => {
                 AntObject::Nest {
@@ -266,14 +295,12 @@ pub(crate) fn fill_resolve_frame_from<S: SimScalar>(
     fill_obstacles(w, i, frame);
     frame.neighbours.clear();
     let me = w.predicted[i];
-    let r2 = w.collision_range * w.collision_range;
-    let p = [me[0] as f32, me[1] as f32, 0.0];
-    let mut near = Nearest::<N>::new();
+    let (me_s, r2) = (v2::<S>(me), squared::<S>(w.collision_range));
+    let mut near = Nearest::<S, N>::new(S::ZERO);
     for &j in slots {
-        let [x, y] = w.predicted[j as usize];
-        let d = d2f([x as f32, y as f32, 0.0], p);
-        if d < r2 {
-            near.offer(d, w.sensed.id[j as usize], j);
+        let k = key(v2(w.predicted[j as usize]), me_s);
+        if k < r2 {
+            near.offer(k, w.sensed.id[j as usize], j);
         }
     }
     for j in near.slots() {
@@ -290,8 +317,9 @@ pub(crate) fn fill_resolve_frame<S: SimScalar>(
     fill_obstacles(w, i, frame);
     frame.neighbours.clear();
     let me = w.predicted[i];
-    let r2 = w.collision_range * w.collision_range;
-    let mut near = Nearest::<N>::new();
+    let (me_s, r2) = (v2::<S>(me), squared::<S>(w.collision_range));
+    let loose = loose2(w, w.collision_range);
+    let mut near = Nearest::<S, N>::new(S::ZERO);
     let p = [me[0] as f32, me[1] as f32, 0.0];
     // Every prediction lies within `max_shift` of its ant's sensed position, so
     // the ants sensed within `collision_range + max_shift` of p* include every ant predicted
@@ -299,9 +327,11 @@ pub(crate) fn fill_resolve_frame<S: SimScalar>(
     let reach = w.collision_range + w.max_shift + w.rounding_margin();
     w.grid.for_each_candidate(p, reach, |j, _| {
         let [x, y] = w.predicted[j as usize];
-        let d = d2f([x as f32, y as f32, 0.0], p);
-        if j as usize != i && d < r2 {
-            near.offer(d, w.sensed.id[j as usize], j);
+        if j as usize != i && d2f([x as f32, y as f32, 0.0], p) < loose {
+            let k = key(v2(w.predicted[j as usize]), me_s);
+            if k < r2 {
+                near.offer(k, w.sensed.id[j as usize], j);
+            }
         }
     });
     for j in near.slots() {
@@ -325,15 +355,16 @@ fn fill_obstacles<S: SimScalar>(w: &AntWorld, i: usize, frame: &mut AntResolveFr
     if indexed == Some(0) {
         return;
     }
+    let (me_s, reach_s, loose) = (v2::<S>(me), S::from_f32(reach), reach + w.rounding_margin());
     // Pieces offered (more than this many within one step are not sensed).
-    let mut found = [([0.0f32; 2], [0.0f32; 2]); 4 * SURFACES];
+    let mut found = [(Vec2::<S>::zero(), Vec2::<S>::zero()); 4 * SURFACES];
     let mut len = 0usize;
-    let mut near = Nearest::<SURFACES>::new();
+    let mut near = Nearest::<S, SURFACES>::new(S::ZERO);
     let mut visit = |o: &AntObjectDef| {
-        if !o.active || o.kind != AntObjectKind::Obstacle || !o.may_be_within(p, reach) {
+        if !o.active || o.kind != AntObjectKind::Obstacle || !o.may_be_within(p, loose) {
             return;
         }
-        o.pieces_within(p, reach, |q, n, d| {
+        o.pieces_within(me_s, reach_s, |q, n, d| {
             if len < found.len() && !found[..len].iter().any(|f| f.0 == q) {
                 found[len] = (q, n);
                 near.offer(d, len as u32, len as u32);
@@ -351,13 +382,9 @@ fn fill_obstacles<S: SimScalar>(w: &AntWorld, i: usize, frame: &mut AntResolveFr
         }
         None => w.objects.iter().for_each(&mut visit),
     }
-    let c = |p: [f32; 2]| Vec2::new(S::from_f32(p[0]), S::from_f32(p[1]));
     for k in near.slots() {
-        let (q, n) = found[k];
-        let _ = frame.obstacles.push(Surface {
-            closest: c(q),
-            normal: c(n),
-        });
+        let (closest, normal) = found[k];
+        let _ = frame.obstacles.push(Surface { closest, normal });
     }
 }
 
@@ -388,9 +415,9 @@ mod tests {
 
     #[test]
     fn nearest_keeps_the_k_smallest_in_order_whatever_the_arrival_order() {
-        let keys = [5.0, 1.0, 3.0, 1.0, 9.0, 0.5, 3.0];
-        let mut a = Nearest::<4>::new();
-        let mut b = Nearest::<4>::new();
+        let keys = [5.0f32, 1.0, 3.0, 1.0, 9.0, 0.5, 3.0];
+        let mut a = Nearest::<f32, 4>::new(0.0);
+        let mut b = Nearest::<f32, 4>::new(0.0);
         for (i, k) in keys.iter().enumerate() {
             a.offer(*k, i as u32, i as u32);
         }

@@ -7,7 +7,7 @@ use swarm_core::ant::{
     self, AntParams, AntPlan, AntState, Label, PlanFrame, ResolveFrame, StopReason,
 };
 use swarm_core::rand;
-use swarm_core::{Checked, Fx, StepCtx, Vec2};
+use swarm_core::{Checked, Fx, Rect, StepCtx, Vec2};
 
 use super::sense::{
     Around, bounds, fill_plan_frame_noting, fill_resolve_frame, fill_resolve_frame_from,
@@ -192,27 +192,18 @@ impl<S: SimScalar> AntGroup<S> {
     /// Moves the group's ants that are inside an active obstacle of `objects` out (see
     /// [`AntSim::move_out_of_obstacles`]); returns how many.
     fn move_out(&mut self, objects: &[AntObjectDef], min: [f32; 2], max: [f32; 2]) -> usize {
-        let beyond = 2.0 * ant::SURFACE_MARGIN;
+        let arena = Rect::new(
+            Vec2::new(S::from_f32(min[0]), S::from_f32(min[1])),
+            Vec2::new(S::from_f32(max[0]), S::from_f32(max[1])),
+        );
+        let obstacles: Vec<&AntObjectDef> = objects
+            .iter()
+            .filter(|o| o.active && o.kind == AntObjectKind::Obstacle)
+            .collect();
         let mut moved = 0;
         for s in &mut self.states {
-            let mut p = [s.pos.x.to_f32(), s.pos.y.to_f32()];
-            let mut inside = false;
-            // Out of one obstacle may be into another that overlaps it: a few rounds.
-            for _ in 0..4 {
-                let hit = objects
-                    .iter()
-                    .filter(|o| o.active && o.kind == AntObjectKind::Obstacle)
-                    .map(|o| o.surface(p))
-                    .find(|&(_, _, inside)| inside);
-                let Some((q, n, _)) = hit else { break };
-                inside = true;
-                p = [
-                    (q[0] + n[0] * beyond).clamp(min[0], max[0]),
-                    (q[1] + n[1] * beyond).clamp(min[1], max[1]),
-                ];
-            }
-            if inside {
-                s.pos = Vec2::new(S::from_f32(p[0]), S::from_f32(p[1]));
+            if let Some(p) = way_out(&obstacles, arena, s.pos) {
+                s.pos = p;
                 s.follow = None;
                 moved += 1;
             }
@@ -242,6 +233,57 @@ impl<S: SimScalar> AntGroup<S> {
         v.sort_unstable_by_key(|&(id, _)| id);
         v
     }
+}
+
+/// Where an ant at `p` inside one of `obstacles` goes: just beyond the boundary point nearest
+/// to it (twice [`ant::SURFACE_MARGIN`] out) of an obstacle it is in, if that point is clear
+/// of every obstacle (the nearest such point); else, where obstacles overlap, the first clear
+/// point on rings around `p` (radius growing by a quarter unit, 8 points per quarter unit of
+/// radius, in angle order: deterministic). Clamped to the arena. `None` if `p` is free; `p`
+/// itself stays if nothing within 64 units is clear.
+fn way_out<S: SimScalar>(
+    obstacles: &[&AntObjectDef],
+    arena: Rect<S>,
+    p: Vec2<S>,
+) -> Option<Vec2<S>> {
+    let margin = S::from_f32(ant::SURFACE_MARGIN);
+    let beyond = margin + margin;
+    let clear = |q: Vec2<S>| {
+        obstacles.iter().all(|o| {
+            let (b, _, inside) = o.surface(q);
+            !inside && (q - b).length() >= margin
+        })
+    };
+    if !obstacles.iter().any(|o| o.closest(p).1) {
+        return None;
+    }
+    let nearest = obstacles
+        .iter()
+        .map(|o| o.surface(p))
+        .filter(|&(_, _, inside)| inside)
+        .map(|(b, n, _)| arena.clamp(b + n * beyond))
+        .filter(|&q| clear(q))
+        .min_by(|a, b| {
+            let (da, db) = ((*a - p).length(), (*b - p).length());
+            da.partial_cmp(&db).unwrap_or(core::cmp::Ordering::Equal)
+        });
+    if nearest.is_some() {
+        return nearest;
+    }
+    let quarter = S::from_f32(0.25);
+    let turn = swarm_core::scalar::pi::<S>() * S::from_i32(2);
+    for ring in 1..=256 {
+        let r = quarter * S::from_i32(ring);
+        let count = 8 * ring;
+        for k in 0..count {
+            let a = turn * S::from_i32(k) / S::from_i32(count);
+            let q = arena.clamp(p + Vec2::from_angle(a) * r);
+            if clear(q) {
+                return Some(q);
+            }
+        }
+    }
+    Some(p)
 }
 
 /// A group of either scalar type.

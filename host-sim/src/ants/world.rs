@@ -3,6 +3,7 @@
 
 use rayon::prelude::*;
 use swarm_core::ant::{AntState, Label};
+use swarm_core::{Scalar, Vec2};
 
 use crate::grid::Grid;
 use crate::scalar::{SimScalar, a2};
@@ -61,41 +62,42 @@ pub struct AntObjectDef {
 }
 
 impl AntObjectDef {
-    /// The point of the object's boundary closest to `p`, and whether `p` is inside it.
-    pub fn closest(&self, p: [f32; 2]) -> ([f32; 2], bool) {
+    /// The point of the object's boundary closest to `p`, and whether `p` is inside it, in the
+    /// scalar `S` of the ant that senses it: the same bits on every backend (in fixed point,
+    /// integer arithmetic only; see `docs/gpu.md`).
+    pub fn closest<S: Scalar>(&self, p: Vec2<S>) -> (Vec2<S>, bool) {
         match &self.shape {
             Shape2::Circle { center, radius } => {
-                let d = [p[0] - center[0], p[1] - center[1]];
-                let len = d[0].hypot(d[1]);
-                if len == 0.0 {
-                    return ([center[0] + radius, center[1]], true);
+                let (c, r) = (at::<S>(*center), S::from_f32(*radius));
+                let d = p - c;
+                match d.normalized() {
+                    Some(u) => (c + u * r, d.length() <= r),
+                    None => (c + Vec2::new(r, S::ZERO), true),
                 }
-                let k = radius / len;
-                ([center[0] + d[0] * k, center[1] + d[1] * k], len <= *radius)
             }
-            Shape2::Polygon { points } => closest_on_polygon(points, p),
+            Shape2::Polygon { points } => {
+                let (q, inside, _, _) = closest_on_polygon_edge(points, p);
+                (q, inside)
+            }
         }
     }
 
     /// The object's surface as an ant at `p` senses it: the closest boundary point, the unit
     /// outward normal there (pointing into free space; for `p` inside, from `p` through the
     /// closest point, the way out), and whether `p` is inside.
-    pub fn surface(&self, p: [f32; 2]) -> ([f32; 2], [f32; 2], bool) {
+    pub fn surface<S: Scalar>(&self, p: Vec2<S>) -> (Vec2<S>, Vec2<S>, bool) {
         match &self.shape {
             Shape2::Circle { center, .. } => {
                 let (q, inside) = self.closest(p);
-                let n = unit([q[0] - center[0], q[1] - center[1]]).unwrap_or([1.0, 0.0]);
+                let n = (q - at::<S>(*center))
+                    .normalized()
+                    .unwrap_or(Vec2::new(S::ONE, S::ZERO));
                 (q, n, inside)
             }
             Shape2::Polygon { points } => {
-                let (q, inside, edge) = closest_on_polygon_edge(points, p);
-                let d = if inside {
-                    [q[0] - p[0], q[1] - p[1]]
-                } else {
-                    [p[0] - q[0], p[1] - q[1]]
-                };
-                let n = unit(d).unwrap_or_else(|| edge_normal(points, edge));
-                (q, n, inside)
+                let (q, inside, edge, on_edge) = closest_on_polygon_edge(points, p);
+                let d = if inside { q - p } else { p - q };
+                (q, facing(d, on_edge, points, edge), inside)
             }
         }
     }
@@ -105,21 +107,17 @@ impl AntObjectDef {
     /// that staying in front of each keeps an ant out of a concave polygon too; edges meeting
     /// at a vertex may give the same point twice). From inside, the one way out: the closest
     /// boundary point.
-    pub fn pieces_within(
+    pub fn pieces_within<S: Scalar>(
         &self,
-        p: [f32; 2],
-        reach: f32,
-        mut f: impl FnMut([f32; 2], [f32; 2], f32),
+        p: Vec2<S>,
+        reach: S,
+        mut f: impl FnMut(Vec2<S>, Vec2<S>, S),
     ) {
         let (q, n, inside) = self.surface(p);
         let points = match &self.shape {
             Shape2::Polygon { points } if !inside => points,
             _ => {
-                let d = if inside {
-                    0.0
-                } else {
-                    (p[0] - q[0]).hypot(p[1] - q[1])
-                };
+                let d = if inside { S::ZERO } else { (p - q).length() };
                 if d <= reach {
                     f(q, n, d);
                 }
@@ -128,16 +126,17 @@ impl AntObjectDef {
         };
         let k = points.len();
         for e in 0..k {
-            let q = closest_on_segment(points[e], points[(e + 1) % k], p);
-            let d = (p[0] - q[0]).hypot(p[1] - q[1]);
+            let (q, on_edge) = closest_on_segment(at(points[e]), at(points[(e + 1) % k]), p);
+            let d = (p - q).length();
             if d <= reach {
-                let n = unit([p[0] - q[0], p[1] - q[1]]).unwrap_or_else(|| edge_normal(points, e));
-                f(q, n, d);
+                f(q, facing(p - q, on_edge, points, e), d);
             }
         }
     }
 
-    /// A cheap test: false only if `p` is certainly farther than `range` from the object.
+    /// A cheap test in `f32`: false only if `p` is certainly farther than `range` from the
+    /// object. Callers add [`AntWorld::rounding_margin`] to `range` for the rounding of a
+    /// fixed-point position to `f32`.
     pub fn may_be_within(&self, p: [f32; 2], range: f32) -> bool {
         match &self.shape {
             Shape2::Circle { center, radius } => {
@@ -176,54 +175,77 @@ impl AntObjectDef {
     }
 }
 
-/// Closest boundary point of a polygon and whether `p` is inside (even-odd rule).
-fn closest_on_polygon(points: &[[f32; 2]], p: [f32; 2]) -> ([f32; 2], bool) {
-    let (q, inside, _) = closest_on_polygon_edge(points, p);
-    (q, inside)
+/// A scenario point (`f32`) in the scalar `S`.
+fn at<S: Scalar>(p: [f32; 2]) -> Vec2<S> {
+    Vec2::new(S::from_f32(p[0]), S::from_f32(p[1]))
 }
 
-/// [`closest_on_polygon`], and the edge (from vertex `k` to `k + 1`) the point is on.
-fn closest_on_polygon_edge(points: &[[f32; 2]], p: [f32; 2]) -> ([f32; 2], bool, usize) {
-    let mut best = (f32::INFINITY, p, 0);
+/// The closest boundary point of a polygon to `p`, whether `p` is inside (even-odd rule), the
+/// edge (from vertex `k` to `k + 1`) the point is on, and whether it lies strictly between the
+/// edge's ends (see [`closest_on_segment`]).
+fn closest_on_polygon_edge<S: Scalar>(
+    points: &[[f32; 2]],
+    p: Vec2<S>,
+) -> (Vec2<S>, bool, usize, bool) {
+    let mut best: Option<(S, Vec2<S>, usize, bool)> = None;
     let mut inside = false;
     let n = points.len();
     for k in 0..n {
-        let (a, b) = (points[k], points[(k + 1) % n]);
-        let q = closest_on_segment(a, b, p);
-        let d = (p[0] - q[0]).hypot(p[1] - q[1]);
-        if d < best.0 {
-            best = (d, q, k);
+        let (a, b) = (at::<S>(points[k]), at::<S>(points[(k + 1) % n]));
+        let (q, on_edge) = closest_on_segment(a, b, p);
+        let d = (p - q).length();
+        if best.is_none_or(|(bd, ..)| d < bd) {
+            best = Some((d, q, k, on_edge));
         }
-        if (a[1] > p[1]) != (b[1] > p[1])
-            && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0])
-        {
+        // The edge crosses the horizontal through p (so b.y ≠ a.y, and the fraction is in
+        // [0, 1]), to the right of p.
+        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
             inside = !inside;
         }
     }
-    (best.1, inside, best.2)
+    let (_, q, k, on_edge) = best.unwrap_or((S::ZERO, p, 0, false));
+    (q, inside, k, on_edge)
 }
 
-/// The point of segment `a`-`b` closest to `p`.
-fn closest_on_segment(a: [f32; 2], b: [f32; 2], p: [f32; 2]) -> [f32; 2] {
-    let ab = [b[0] - a[0], b[1] - a[1]];
-    let ap = [p[0] - a[0], p[1] - a[1]];
-    let len2 = ab[0] * ab[0] + ab[1] * ab[1];
-    let t = if len2 > 0.0 {
-        ((ap[0] * ab[0] + ap[1] * ab[1]) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
+/// The point of segment `a`-`b` closest to `p`, and whether it lies strictly between `a` and
+/// `b` (else it is one of them, exactly): the projection on the segment's unit direction,
+/// clamped to its length (no squared lengths, which overflow fixed point on long edges).
+///
+/// Between the ends the sensed normal is the edge's own ([`edge_normal`]), not the direction
+/// from the point to `p`: the point carries the rounding of the projection along the edge, and
+/// seen from an ant a margin away that tilts the direction by degrees in fixed point.
+fn closest_on_segment<S: Scalar>(a: Vec2<S>, b: Vec2<S>, p: Vec2<S>) -> (Vec2<S>, bool) {
+    let ab = b - a;
+    let Some(u) = ab.normalized() else {
+        return (a, false);
     };
-    [a[0] + ab[0] * t, a[1] + ab[1] * t]
+    let len = ab.length();
+    let t = (p - a).dot(u);
+    if t <= S::ZERO {
+        (a, false)
+    } else if t >= len {
+        (b, false)
+    } else {
+        (a + u * t, true)
+    }
 }
 
-/// `v` scaled to unit length (`None` for a zero vector).
-fn unit(v: [f32; 2]) -> Option<[f32; 2]> {
-    let l = v[0].hypot(v[1]);
-    (l > 1e-12).then(|| [v[0] / l, v[1] / l])
+/// The unit normal of a sensed polygon piece, pointing along `d` (from the piece toward the
+/// ant, or the way out): for a point between the ends of edge `k` the edge's own normal turned
+/// toward `d` (see [`closest_on_segment`]), for a vertex `d` itself; the edge's outward normal
+/// when `d` is zero.
+fn facing<S: Scalar>(d: Vec2<S>, on_edge: bool, points: &[[f32; 2]], k: usize) -> Vec2<S> {
+    let out = edge_normal::<S>(points, k);
+    if on_edge {
+        if d.dot(out) < S::ZERO { -out } else { out }
+    } else {
+        d.normalized().unwrap_or(out)
+    }
 }
 
-/// The outward unit normal of edge `k` of a polygon (for a point exactly on it).
-fn edge_normal(points: &[[f32; 2]], k: usize) -> [f32; 2] {
+/// The outward unit normal of edge `k` of a polygon (for a point exactly on it): scenario
+/// geometry, computed in `f32` and then converted, so every backend gets the same bits.
+fn edge_normal<S: Scalar>(points: &[[f32; 2]], k: usize) -> Vec2<S> {
     let n = points.len();
     let (a, b) = (points[k], points[(k + 1) % n]);
     // Twice the signed area: positive for counter-clockwise vertices, whose outside is on the
@@ -240,7 +262,12 @@ fn edge_normal(points: &[[f32; 2]], k: usize) -> [f32; 2] {
     } else {
         [-right[0], -right[1]]
     };
-    unit(out).unwrap_or([1.0, 0.0])
+    let l = out[0].hypot(out[1]);
+    if l > 1e-12 {
+        at([out[0] / l, out[1] / l])
+    } else {
+        Vec2::new(S::ONE, S::ZERO)
+    }
 }
 
 /// The arena, its objects and the sensed ants.

@@ -50,8 +50,8 @@ impl Solid {
     /// (inside, distance from `p` to the boundary) for the 2D solids.
     fn polygon_probe(def: &AntObjectDef, p: &[f32]) -> (bool, f32) {
         let p = [p[0], p.get(1).copied().unwrap_or(0.0)];
-        let (q, inside) = def.closest(p);
-        (inside, dist(&p, &q))
+        let (q, inside) = def.closest(swarm_core::Vec2::new(p[0], p[1]));
+        (inside, dist(&p, &[q.x, q.y]))
     }
 
     /// Whether the point `p` (`dim` numbers) lies inside (borders included).
