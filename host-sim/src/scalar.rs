@@ -21,6 +21,13 @@ pub trait SimScalar:
         let _ = copy;
         v2(exact())
     }
+    /// [`SimScalar::sensed`] in 3D.
+    fn sensed3(copy: [f32; 3], exact: impl FnOnce() -> [f64; 3]) -> Vec3<Self> {
+        let _ = copy;
+        v3(exact())
+    }
+    /// The bits of a value `≥ 0` as a `u32` that orders like the values (selection keys).
+    fn order_bits(self) -> u32;
 }
 
 impl SimScalar for f32 {
@@ -32,6 +39,12 @@ impl SimScalar for f32 {
     }
     fn sensed(copy: [f32; 3], _: impl FnOnce() -> [f64; 2]) -> Vec2<f32> {
         Vec2::new(copy[0], copy[1])
+    }
+    fn sensed3(copy: [f32; 3], _: impl FnOnce() -> [f64; 3]) -> Vec3<f32> {
+        Vec3::new(copy[0], copy[1], copy[2])
+    }
+    fn order_bits(self) -> u32 {
+        self.to_bits()
     }
 }
 
@@ -45,6 +58,9 @@ impl SimScalar for Fx {
         } else {
             Fx(swarm_core::scalar::I16F16::saturating_from_num(v))
         }
+    }
+    fn order_bits(self) -> u32 {
+        self.to_bits().max(0) as u32
     }
 }
 

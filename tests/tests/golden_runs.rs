@@ -136,8 +136,8 @@ const PINNED: &[(&str, &str, u64, u64)] = &[
     (
         "bees-fig11-grassland",
         "fixed",
-        0x2a20d82670abee82,
-        0x8d743707b2c6a872,
+        0xb947fb53cb3c5f00,
+        0x6dd29240aebd6af1,
     ),
     (
         "bees-fig15-nest",
@@ -148,20 +148,20 @@ const PINNED: &[(&str, &str, u64, u64)] = &[
     (
         "bees-fig15-nest",
         "fixed",
-        0xc91d9a28f579025b,
+        0x790386d5d0da2f50,
         0x65ce4e59620c49e9,
     ),
     (
         "bees-fig14-shafts",
         "f32",
-        0xea0cbb8ccb8c256b,
+        0x17b9f4f984e68400,
         0x76a66de4d82592ff,
     ),
     (
         "bees-fig14-shafts",
         "fixed",
-        0x2f7a556a5022c43c,
-        0x7e16d8eef5a8c411,
+        0x084204fd380b454f,
+        0xda9d258703e03517,
     ),
 ];
 

@@ -24,11 +24,11 @@ const SCAN: usize = 48;
 /// Room for a merge: `SCAN` candidates plus the `K ≤ 16` kept so far.
 const KEYED: usize = 64;
 
-/// Selection key: squared distance bits (non-negative, so they order like the distances), then
-/// the tie key.
+/// Selection key: the order bits of the squared distance in the sensing bee's scalar
+/// ([`SimScalar::order_bits`]), then the tie key.
 #[inline]
-fn key(d: f32, tie: u32) -> u64 {
-    (u64::from(d.to_bits()) << 32) | u64::from(tie)
+fn key(d: u32, tie: u32) -> u64 {
+    (u64::from(d) << 32) | u64::from(tie)
 }
 
 /// The `K` nearest entries of a query, sorted by squared distance then tie key, each as
@@ -53,9 +53,9 @@ impl<const K: usize> Selected<K> {
         self.items[..self.len].iter().map(|&(_, s)| s as usize)
     }
 
-    /// Merges buffered `(squared distance, slot)` candidates: keeps the `K` smallest
-    /// `(distance, tie(slot))`.
-    fn merge(&mut self, cands: &[(f32, u32)], tie: &impl Fn(u32) -> u32) {
+    /// Merges buffered `(squared distance order bits, slot)` candidates: keeps the `K`
+    /// smallest `(distance, tie(slot))`.
+    fn merge(&mut self, cands: &[(u32, u32)], tie: &impl Fn(u32) -> u32) {
         if cands.is_empty() {
             return;
         }
@@ -119,37 +119,58 @@ fn rank_distinct(keyed: &[(u64, u32)], out: &mut [(u64, u32); N]) -> bool {
     placed == (1u32 << keyed.len()) - 1
 }
 
-/// The `K` entries of `grid` nearest to `p` strictly within `range`, `skip` excluded, ties
-/// broken by `tie(slot)`.
-///
-/// The scan appends every candidate to a small buffer and advances the buffer only for those
-/// in range (no data-dependent branch per candidate); the few in range are then sorted.
-pub(crate) fn select<const K: usize>(
+/// The `K` entries of `grid` nearest to `me` strictly within `range`, `skip` excluded, ties
+/// broken by `tie(slot)`, by squared distance in the scalar `S` (`at(slot, copy)`: an entry's
+/// position in `S` from its slot and the grid's `f32` copy `copy`). The grid query and an
+/// `f32` pre-selection (`range` plus a rounding margin) only narrow the candidates.
+pub(crate) fn select<S: SimScalar, const K: usize>(
     grid: &Grid,
-    p: [f32; 3],
+    me: Vec3<S>,
     range: f32,
     skip: u32,
+    at: impl Fn(u32, [f32; 3]) -> Vec3<S>,
     tie: impl Fn(u32) -> u32,
 ) -> Selected<K> {
-    let r2 = range * range;
+    let p = me.to_f32();
+    let p = [p.x, p.y, p.z];
+    let (r2, loose) = (squared::<S>(range), loose2(range));
     let mut out = Selected::new();
-    let mut buf = [(0f32, 0u32); SCAN + 1];
+    let mut buf = [(0u32, 0u32); SCAN];
     let mut len = 0usize;
-    grid.for_each_candidate(p, range, |j, q| {
-        let d = d2f(q, p);
-        buf[len.min(SCAN)] = (d, j);
-        len += usize::from((d < r2) & (j != skip));
-        if len == SCAN {
-            out.merge(&buf[..SCAN], &tie);
-            len = 0;
+    grid.for_each_candidate(p, range + MARGIN, |j, q| {
+        if j == skip || d2f(q, p) >= loose {
+            return;
+        }
+        let d = (at(j, q) - me).length_sq();
+        if d < r2 {
+            buf[len] = (d.order_bits(), j);
+            len += 1;
+            if len == SCAN {
+                out.merge(&buf[..SCAN], &tie);
+                len = 0;
+            }
         }
     });
     out.merge(&buf[..len], &tie);
     out
 }
 
-/// Squared distance, from the grid's `f32` copy of the positions (selection only: the frame
-/// itself carries the exact positions).
+/// What the `f32` pre-selections add to a range for the rounding of positions to `f32`.
+const MARGIN: f32 = 1e-3;
+
+/// `r` squared, in `S`.
+fn squared<S: SimScalar>(r: f32) -> S {
+    let r = S::from_f32(r);
+    r * r
+}
+
+/// `r` plus [`MARGIN`] (relative too), squared: the radius of an `f32` pre-selection.
+fn loose2(r: f32) -> f32 {
+    let r = r + MARGIN * (1.0 + r);
+    r * r
+}
+
+/// Squared distance, from the grid's `f32` copy of the positions (pre-selection only).
 #[inline]
 fn d2f(a: [f32; 3], b: [f32; 3]) -> f32 {
     let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
@@ -158,18 +179,18 @@ fn d2f(a: [f32; 3], b: [f32; 3]) -> f32 {
 
 /// The `N` bees nearest to slot `i` within the world's neighbour range (strictly: capsule gap
 /// below h), nearest first, ties by stable id: the same bees whatever the slot order.
-fn neighbours(w: &BeeWorld, i: usize) -> Selected<N> {
-    let me = w.sensed.pos[i];
-    let p = [me[0] as f32, me[1] as f32, me[2] as f32];
+fn neighbours<S: SimScalar>(w: &BeeWorld, i: usize) -> Selected<N> {
+    let me = v3::<S>(w.sensed.pos[i]);
     let ids = &w.sensed.id;
-    select::<N>(&w.grid, p, w.range, i as u32, |j| ids[j as usize])
+    let at = |j: u32, q: [f32; 3]| S::sensed3(q, || w.sensed.pos[j as usize]);
+    select::<S, N>(&w.grid, me, w.range, i as u32, at, |j| ids[j as usize])
 }
 
 /// The sensed slots of the `N` bees nearest to slot `i` within the world's neighbour range
 /// (strictly: capsule gap below h), nearest first, ties by stable id: the same bees whatever
 /// the slot order.
-pub fn neighbour_slots(w: &BeeWorld, i: usize) -> impl Iterator<Item = usize> {
-    let near = neighbours(w, i);
+pub fn neighbour_slots<S: SimScalar>(w: &BeeWorld, i: usize) -> impl Iterator<Item = usize> {
+    let near = neighbours::<S>(w, i);
     (0..near.len).map(move |k| near.items[k].1 as usize)
 }
 
@@ -197,11 +218,11 @@ pub(crate) struct BlockCache {
 
 impl BlockCache {
     /// The `N` neighbours of slot `i` (as [`neighbour_slots`]).
-    pub(crate) fn neighbours(&mut self, w: &BeeWorld, i: usize) -> Selected<N> {
+    pub(crate) fn neighbours<S: SimScalar>(&mut self, w: &BeeWorld, i: usize) -> Selected<N> {
         let me = w.sensed.pos[i];
         let p = [me[0] as f32, me[1] as f32, me[2] as f32];
         let Some((cell, center)) = w.grid.cell_center(p) else {
-            return neighbours(w, i);
+            return neighbours::<S>(w, i);
         };
         debug_assert_eq!(cell, w.grid.cell_of(p));
         if self.cell != Some(cell) {
@@ -214,9 +235,11 @@ impl BlockCache {
             let (dx, dy, dz) = (x - p[0], y - p[1], z - p[2]);
             *d = dx * dx + dy * dy + dz * dz;
         }
-        // Keys (distance bits, stable id: the order `neighbour_slots` uses) of those in range:
-        // a bit mask per 64 candidates (vectorizable), then one step per set bit.
-        let (r2, me, ids) = (w.range * w.range, i as u32, &w.sensed.id);
+        // Keys (distance in `S`, stable id: the order `neighbour_slots` uses) of those in
+        // range: an `f32` pre-selection as a bit mask per 64 candidates (vectorizable), then
+        // one step per set bit.
+        let (loose, me_slot, ids) = (loose2(w.range), i as u32, &w.sensed.id);
+        let (me_s, r2) = (v3::<S>(me), squared::<S>(w.range));
         let mut len = 0usize;
         // `d` is padded with +∞ to whole chunks of 64 (see `fill`).
         for (c, ds) in self.d[..n.next_multiple_of(64)]
@@ -225,7 +248,7 @@ impl BlockCache {
         {
             let mut flags = [0u8; 64];
             for (f, &d) in flags.iter_mut().zip(ds) {
-                *f = u8::from(d < r2);
+                *f = u8::from(d < loose);
             }
             // Eight 0/1 bytes to eight bits at a time.
             let mut mask = 0u64;
@@ -237,8 +260,10 @@ impl BlockCache {
                 let k = c * 64 + mask.trailing_zeros() as usize;
                 mask &= mask - 1;
                 let slot = self.slots[k];
-                self.keyed[len] = (key(self.d[k], ids[slot as usize]), slot);
-                len += usize::from(slot != me);
+                let q = [self.xs[k], self.ys[k], self.zs[k]];
+                let d = (S::sensed3(q, || w.sensed.pos[slot as usize]) - me_s).length_sq();
+                self.keyed[len] = (key(d.order_bits(), ids[slot as usize]), slot);
+                len += usize::from(slot != me_slot && d < r2);
             }
         }
         let keyed = &mut self.keyed[..len];
@@ -306,7 +331,7 @@ pub fn bee_frame<S: SimScalar>(
     t: S,
 ) -> BeeSimFrame<S> {
     let mut frame = BeeFrame::new(t);
-    fill_with(w, i, &neighbours(w, i), group_goal, t, &mut frame);
+    fill_with(w, i, &neighbours::<S>(w, i), group_goal, t, &mut frame);
     frame
 }
 
@@ -333,7 +358,7 @@ pub(crate) fn fill_frame<S: SimScalar>(
     cache: &mut BlockCache,
     frame: &mut BeeSimFrame<S>,
 ) {
-    let near = cache.neighbours(w, i);
+    let near = cache.neighbours::<S>(w, i);
     fill_with(w, i, &near, group_goal, t, frame);
 }
 
@@ -359,13 +384,15 @@ fn fill_with<S: SimScalar>(
     }
 
     let p = [me[0] as f32, me[1] as f32, me[2] as f32];
+    let me_s = v3::<S>(me);
     // Particles lie on their targets' spheres: query only near one (a margin for rounding).
     let near_target = w.target_spheres.iter().any(|&(c, r)| {
         let reach = r + w.range + 1e-3 * (1.0 + r);
         d2f(c, p) <= reach * reach
     });
     if near_target {
-        let near = select::<P>(&w.particle_grid, p, w.range, u32::MAX, |j| j);
+        let at = |_, q: [f32; 3]| Vec3::from_f32(q[0], q[1], q[2]);
+        let near = select::<S, P>(&w.particle_grid, me_s, w.range, u32::MAX, at, |j| j);
         for j in near.slots() {
             let q = w.particles[j];
             let _ = frame.targets.push(Vec3::from_f32(q[0], q[1], q[2]));
@@ -374,18 +401,18 @@ fn fill_with<S: SimScalar>(
 
     frame.goal = group_goal.map(|g| Vec3::from_f32(g[0], g[1], g[2]));
 
-    let range = f64::from(w.sense_range);
-    let mut best: Option<(f64, ObstacleSense<S>)> = None;
+    let range = S::from_f32(w.sense_range);
+    let mut best: Option<(S, ObstacleSense<S>)> = None;
     for o in w.obstacles.iter().filter(|o| o.active) {
-        if !o.may_be_within(me, range) {
+        if !o.may_be_within(me, f64::from(w.sense_range)) {
             continue;
         }
-        let surf = w.surface(o, me);
-        let dist = if surf.inside { 0.0 } else { surf.distance };
+        let surf = w.surface(o, me_s);
+        let dist = if surf.inside { S::ZERO } else { surf.distance };
         if dist <= range && best.as_ref().is_none_or(|(b, _)| dist < *b) {
             let sensed = ObstacleSense {
-                point: v3(surf.point),
-                normal: v3(surf.normal),
+                point: surf.point,
+                normal: surf.normal,
             };
             best = Some((dist, sensed));
         }
@@ -397,6 +424,10 @@ fn fill_with<S: SimScalar>(
 mod tests {
     use super::*;
     use crate::bees::world::{BeeObstacle, BeeTarget, Shape3};
+
+    fn v(p: [f32; 3]) -> Vec3<f32> {
+        Vec3::new(p[0], p[1], p[2])
+    }
 
     #[test]
     fn select_keeps_the_k_nearest_in_order_even_past_the_scan_buffer() {
@@ -413,7 +444,10 @@ mod tests {
         let tie = |j: u32| 1000 - j;
         let p = [5.5, 5.5, 5.5];
         for range in [0.3f32, 1.0, 3.0] {
-            let got: Vec<usize> = select::<16>(&grid, p, range, 7, tie).slots().collect();
+            let at = |j: u32, _| v(pts[j as usize]);
+            let got: Vec<usize> = select::<f32, 16>(&grid, v(p), range, 7, at, tie)
+                .slots()
+                .collect();
             let mut want: Vec<(f32, u32, usize)> = (0..pts.len())
                 .filter(|&j| j != 7)
                 .map(|j| (d2f(pts[j], p), tie(j as u32), j))
@@ -456,7 +490,9 @@ mod tests {
     fn neighbour_selection_matches_brute_force_whatever_the_slot_order() {
         let r2 = 3.5f32 * 3.5;
         let ids_of = |w: &BeeWorld, slot: usize| -> Vec<u32> {
-            neighbour_slots(w, slot).map(|j| w.sensed.id[j]).collect()
+            neighbour_slots::<f32>(w, slot)
+                .map(|j| w.sensed.id[j])
+                .collect()
         };
         let (a, b) = (dense_world(0), dense_world(5));
         let slot_of = |w: &BeeWorld, id: u32| w.sensed.id.iter().position(|&x| x == id).unwrap();

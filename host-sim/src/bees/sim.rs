@@ -478,7 +478,12 @@ mod tests {
         for _ in 0..300 {
             sim.step().unwrap();
             for p in &sim.world.sensed.pos {
-                assert!(sim.world.inside_obstacle(*p).is_none(), "{p:?}");
+                assert!(
+                    sim.world
+                        .inside_obstacle(crate::scalar::v3::<f32>(*p))
+                        .is_none(),
+                    "{p:?}"
+                );
                 assert!(
                     (0..3).all(|k| p[k] >= f64::from(sim.world.min[k])
                         && p[k] <= f64::from(sim.world.max[k]))

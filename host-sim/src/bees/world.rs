@@ -1,78 +1,66 @@
 //! The bee world: the volume, its obstacles and targets, and the *sensed* state of every bee
 //! (struct of arrays, `f64`, as of the previous step) from which sensor frames are built.
 //!
-//! Obstacle geometry is computed in `f64`: the closest point of a surface and its outward unit
-//! normal, for points outside and inside the solid ([`Surface`]).
+//! Obstacle geometry is computed in the scalar of the bee that senses it (`f32`, or `Fx`
+//! arithmetic only in fixed point, so the GPU backend reproduces every bit; `docs/gpu.md`):
+//! the closest point of a surface and its outward unit normal, for points outside and inside
+//! the solid ([`Surface`]).
 
 use rayon::prelude::*;
 use swarm_core::bee::BeeState;
+use swarm_core::{Scalar, Vec2, Vec3};
 
 use crate::grid::Grid;
 use crate::scalar::{SimScalar, a3};
 use crate::scenario::ObjectKind;
 
 /// How far outside the surface the world puts a bee it pushes out of an obstacle.
-pub const SURFACE_OFFSET: f64 = 1e-3;
+pub const SURFACE_OFFSET: f32 = 1e-3;
 
-/// The closest point of an obstacle's surface to a query point.
+/// The closest point of an obstacle's surface to a query point, in scalar `S`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Surface {
+pub struct Surface<S> {
     /// The closest point on the surface.
-    pub point: [f64; 3],
+    pub point: Vec3<S>,
     /// The outward unit normal there (for a point outside: the unit vector from `point` to the
     /// query point, which is the surface normal on faces and the bisecting direction on edges and
     /// corners).
-    pub normal: [f64; 3],
+    pub normal: Vec3<S>,
     /// The distance from the query point to `point`.
-    pub distance: f64,
+    pub distance: S,
     /// Whether the query point lies inside the solid (on an open surface: not inside).
     pub inside: bool,
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+/// A scenario point (`f32`) in the scalar `S`.
+fn at<S: Scalar>(p: [f32; 3]) -> Vec3<S> {
+    Vec3::new(S::from_f32(p[0]), S::from_f32(p[1]), S::from_f32(p[2]))
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
-}
-
-fn f64s(a: [f32; 3]) -> [f64; 3] {
-    a.map(f64::from)
+/// Straight up, the normal of last resort.
+fn up<S: Scalar>() -> Vec3<S> {
+    Vec3::new(S::ZERO, S::ONE, S::ZERO)
 }
 
 /// A surface point seen from outside: `p` is off the solid, `q` the closest solid point.
-fn from_outside(p: [f64; 3], q: [f64; 3]) -> Surface {
-    let d = sub(p, q);
-    let len = norm(d);
+fn from_outside<S: Scalar>(p: Vec3<S>, q: Vec3<S>) -> Surface<S> {
+    let d = p - q;
     Surface {
         point: q,
-        normal: [d[0] / len, d[1] / len, d[2] / len],
-        distance: len,
+        normal: d.normalized().unwrap_or_else(up),
+        distance: d.length(),
         inside: false,
     }
 }
 
 /// The sphere (`center`, `radius`): the radial projection of `p` and the radial normal (the
 /// centre itself: the top point, normal up).
-pub fn sphere_surface(center: [f64; 3], radius: f64, p: [f64; 3]) -> Surface {
-    let d = sub(p, center);
-    let len = norm(d);
-    let normal = if len > 0.0 {
-        [d[0] / len, d[1] / len, d[2] / len]
-    } else {
-        [0.0, 1.0, 0.0]
-    };
+pub fn sphere_surface<S: Scalar>(center: Vec3<S>, radius: S, p: Vec3<S>) -> Surface<S> {
+    let d = p - center;
+    let len = d.length();
+    let normal = d.normalized().unwrap_or_else(up);
     Surface {
-        point: [
-            center[0] + normal[0] * radius,
-            center[1] + normal[1] * radius,
-            center[2] + normal[2] * radius,
-        ],
+        point: center + normal * radius,
         normal,
         distance: (len - radius).abs(),
         inside: len < radius,
@@ -80,16 +68,44 @@ pub fn sphere_surface(center: [f64; 3], radius: f64, p: [f64; 3]) -> Surface {
 }
 
 /// The axis-aligned box `[min, max]` with every face open (see [`box_surface_open`]).
-pub fn box_surface(min: [f64; 3], max: [f64; 3], p: [f64; 3]) -> Surface {
+pub fn box_surface<S: Scalar>(min: Vec3<S>, max: Vec3<S>, p: Vec3<S>) -> Surface<S> {
     box_surface_open(min, max, p, [true; 6])
+}
+
+/// Component `k` of `v`.
+fn axis<S: Copy>(v: Vec3<S>, k: usize) -> S {
+    match k {
+        0 => v.x,
+        1 => v.y,
+        _ => v.z,
+    }
+}
+
+/// `v` with component `k` set to `x`.
+fn with_axis<S>(mut v: Vec3<S>, k: usize, x: S) -> Vec3<S> {
+    match k {
+        0 => v.x = x,
+        1 => v.y = x,
+        _ => v.z = x,
+    }
+    v
 }
 
 /// The axis-aligned box `[min, max]`. Outside: the clamped point, the normal from it to `p`
 /// (face, edge or corner). Inside: the nearest *open* face (faces `-x, +x, -y, +y, -z, +z`;
 /// ties in that order), its normal; a closed face is one the bee cannot leave through (it lies
 /// on the world's boundary) and a point on it counts as inside. With no face open, all are.
-pub fn box_surface_open(min: [f64; 3], max: [f64; 3], p: [f64; 3], open: [bool; 6]) -> Surface {
-    let q: [f64; 3] = std::array::from_fn(|k| p[k].clamp(min[k], max[k]));
+pub fn box_surface_open<S: Scalar>(
+    min: Vec3<S>,
+    max: Vec3<S>,
+    p: Vec3<S>,
+    open: [bool; 6],
+) -> Surface<S> {
+    let q = Vec3::new(
+        p.x.clamp_to(min.x, max.x),
+        p.y.clamp_to(min.y, max.y),
+        p.z.clamp_to(min.z, max.z),
+    );
     if q != p {
         return from_outside(p, q);
     }
@@ -98,41 +114,36 @@ pub fn box_surface_open(min: [f64; 3], max: [f64; 3], p: [f64; 3], open: [bool; 
     } else {
         [true; 6]
     };
-    let mut best = (f64::INFINITY, 0usize);
+    let mut best: Option<(S, usize)> = None;
     for (face, &is_open) in open.iter().enumerate() {
-        let axis = face / 2;
+        let k = face / 2;
         let dist = if face % 2 == 0 {
-            p[axis] - min[axis]
+            axis(p, k) - axis(min, k)
         } else {
-            max[axis] - p[axis]
+            axis(max, k) - axis(p, k)
         };
-        if is_open && dist < best.0 {
-            best = (dist, face);
+        if is_open && best.is_none_or(|(b, _)| dist < b) {
+            best = Some((dist, face));
         }
     }
-    let (distance, face) = best;
-    let axis = face / 2;
-    let mut point = p;
-    let mut normal = [0.0; 3];
-    if face % 2 == 0 {
-        point[axis] = min[axis];
-        normal[axis] = -1.0;
+    let (distance, face) = best.unwrap_or((S::ZERO, 0));
+    let k = face / 2;
+    let (point, normal) = if face % 2 == 0 {
+        (
+            with_axis(p, k, axis(min, k)),
+            with_axis(Vec3::zero(), k, -S::ONE),
+        )
     } else {
-        point[axis] = max[axis];
-        normal[axis] = 1.0;
-    }
+        (
+            with_axis(p, k, axis(max, k)),
+            with_axis(Vec3::zero(), k, S::ONE),
+        )
+    };
     let inside = (0..3).all(|k| {
-        let lo = if open[2 * k] {
-            p[k] > min[k]
-        } else {
-            p[k] >= min[k]
-        };
-        let hi = if open[2 * k + 1] {
-            p[k] < max[k]
-        } else {
-            p[k] <= max[k]
-        };
-        lo && hi
+        let (x, lo, hi) = (axis(p, k), axis(min, k), axis(max, k));
+        let above = if open[2 * k] { x > lo } else { x >= lo };
+        let below = if open[2 * k + 1] { x < hi } else { x <= hi };
+        above && below
     });
     Surface {
         point,
@@ -144,13 +155,13 @@ pub fn box_surface_open(min: [f64; 3], max: [f64; 3], p: [f64; 3], open: [bool; 
 
 /// The vertical cylinder with axis `center = [x, z]`, `radius`, from `y_min` to `y_max`, both
 /// caps open (see [`shaft_surface_open`]).
-pub fn shaft_surface(
-    center: [f64; 2],
-    radius: f64,
-    y_min: f64,
-    y_max: f64,
-    p: [f64; 3],
-) -> Surface {
+pub fn shaft_surface<S: Scalar>(
+    center: Vec2<S>,
+    radius: S,
+    y_min: S,
+    y_max: S,
+    p: Vec3<S>,
+) -> Surface<S> {
     shaft_surface_open(center, radius, y_min, y_max, p, [true; 2])
 }
 
@@ -158,50 +169,46 @@ pub fn shaft_surface(
 /// Outside: the closest point on the side, a cap or the rim edge between them, the normal from
 /// it to `p`. Inside: the nearest of the side (radial normal; on the axis, +x) and the open caps
 /// (`open = [bottom, top]`; ties: side, bottom, top); a point on a closed cap counts as inside.
-pub fn shaft_surface_open(
-    center: [f64; 2],
-    radius: f64,
-    y_min: f64,
-    y_max: f64,
-    p: [f64; 3],
+pub fn shaft_surface_open<S: Scalar>(
+    center: Vec2<S>,
+    radius: S,
+    y_min: S,
+    y_max: S,
+    p: Vec3<S>,
     open: [bool; 2],
-) -> Surface {
-    let (dx, dz) = (p[0] - center[0], p[2] - center[1]);
-    let rho = dx.hypot(dz);
-    let radial = if rho > 0.0 {
-        [dx / rho, dz / rho]
-    } else {
-        [1.0, 0.0]
-    };
-    if rho > radius || p[1] < y_min || p[1] > y_max {
+) -> Surface<S> {
+    let d = Vec2::new(p.x - center.x, p.z - center.y);
+    let rho = d.length();
+    let radial = d.normalized().unwrap_or(Vec2::new(S::ONE, S::ZERO));
+    if rho > radius || p.y < y_min || p.y > y_max {
         let r = rho.min(radius);
-        let q = [
-            center[0] + radial[0] * r,
-            p[1].clamp(y_min, y_max),
-            center[1] + radial[1] * r,
-        ];
+        let q = Vec3::new(
+            center.x + radial.x * r,
+            p.y.clamp_to(y_min, y_max),
+            center.y + radial.y * r,
+        );
         return from_outside(p, q);
     }
     let side = Surface {
-        point: [
-            center[0] + radial[0] * radius,
-            p[1],
-            center[1] + radial[1] * radius,
-        ],
-        normal: [radial[0], 0.0, radial[1]],
+        point: Vec3::new(
+            center.x + radial.x * radius,
+            p.y,
+            center.y + radial.y * radius,
+        ),
+        normal: Vec3::new(radial.x, S::ZERO, radial.y),
         distance: radius - rho,
         inside: false,
     };
     let bottom = Surface {
-        point: [p[0], y_min, p[2]],
-        normal: [0.0, -1.0, 0.0],
-        distance: p[1] - y_min,
+        point: Vec3::new(p.x, y_min, p.z),
+        normal: -up::<S>(),
+        distance: p.y - y_min,
         inside: false,
     };
     let top = Surface {
-        point: [p[0], y_max, p[2]],
-        normal: [0.0, 1.0, 0.0],
-        distance: y_max - p[1],
+        point: Vec3::new(p.x, y_max, p.z),
+        normal: up(),
+        distance: y_max - p.y,
         inside: false,
     };
     let mut best = side;
@@ -210,8 +217,8 @@ pub fn shaft_surface_open(
             best = s;
         }
     }
-    let lo = if open[0] { p[1] > y_min } else { p[1] >= y_min };
-    let hi = if open[1] { p[1] < y_max } else { p[1] <= y_max };
+    let lo = if open[0] { p.y > y_min } else { p.y >= y_min };
+    let hi = if open[1] { p.y < y_max } else { p.y <= y_max };
     best.inside = rho < radius && lo && hi;
     best
 }
@@ -288,9 +295,9 @@ impl Shape3 {
 
     /// The closest surface point to `p`, with the faces lying on or beyond the world bounds
     /// `[lo, hi]` closed (a bee is never pushed out of the world through them).
-    pub fn surface(&self, p: [f64; 3], lo: [f32; 3], hi: [f32; 3]) -> Surface {
+    pub fn surface<S: Scalar>(&self, p: Vec3<S>, lo: [f32; 3], hi: [f32; 3]) -> Surface<S> {
         match *self {
-            Shape3::Sphere { center, radius } => sphere_surface(f64s(center), f64::from(radius), p),
+            Shape3::Sphere { center, radius } => sphere_surface(at(center), S::from_f32(radius), p),
             Shape3::Box { min, max } => {
                 let open = std::array::from_fn(|face| {
                     let k = face / 2;
@@ -300,7 +307,7 @@ impl Shape3 {
                         max[k] < hi[k]
                     }
                 });
-                box_surface_open(f64s(min), f64s(max), p, open)
+                box_surface_open(at(min), at(max), p, open)
             }
             Shape3::Shaft {
                 center,
@@ -308,10 +315,10 @@ impl Shape3 {
                 y_min,
                 y_max,
             } => shaft_surface_open(
-                center.map(f64::from),
-                f64::from(radius),
-                f64::from(y_min),
-                f64::from(y_max),
+                Vec2::new(S::from_f32(center[0]), S::from_f32(center[1])),
+                S::from_f32(radius),
+                S::from_f32(y_min),
+                S::from_f32(y_max),
                 p,
                 [y_min > lo[1], y_max < hi[1]],
             ),
@@ -356,10 +363,12 @@ impl BeeObstacle {
         }
     }
 
-    /// A cheap test: false only if `p` is certainly farther than `range` from the obstacle.
+    /// A cheap test: false only if `p` is certainly farther than `range` from the obstacle
+    /// (with a margin for the rounding of the scenario's `f32` geometry to the bee's scalar).
     #[inline]
     pub fn may_be_within(&self, p: [f64; 3], range: f64) -> bool {
         let (lo, hi) = self.aabb;
+        let range = range + 1e-3;
         (0..3).all(|k| p[k] >= f64::from(lo[k]) - range && p[k] <= f64::from(hi[k]) + range)
     }
 
@@ -588,21 +597,23 @@ impl BeeWorld {
 
     /// The closest surface point of obstacle `o` to `p` (faces on the world bounds closed).
     #[inline]
-    pub fn surface(&self, o: &BeeObstacle, p: [f64; 3]) -> Surface {
+    pub fn surface<S: Scalar>(&self, o: &BeeObstacle, p: Vec3<S>) -> Surface<S> {
         o.shape.surface(p, self.min, self.max)
     }
 
     /// Keeps a bee's new state physical: out of every active obstacle (put back on the surface,
     /// [`SURFACE_OFFSET`] along the normal, the inward normal velocity removed) and inside the
-    /// bounds (clamped, the outward velocity removed). Returns what was corrected: bit 0 an
-    /// obstacle, bit 1 the bounds.
+    /// bounds (clamped, the outward velocity removed), in the bee's scalar. Returns what was
+    /// corrected: bit 0 an obstacle, bit 1 the bounds.
     pub fn confine<S: SimScalar>(&self, s: &mut BeeState<S>) -> u8 {
-        let (mut p, mut v) = (a3(s.pos), a3(s.vel));
+        let (mut p, mut v) = (s.pos, s.vel);
+        let offset = S::from_f32(SURFACE_OFFSET);
+        let (lo, hi) = (at::<S>(self.min), at::<S>(self.max));
         let mut flags = 0u8;
         for _ in 0..4 {
             let mut moved = false;
             for o in self.obstacles.iter().filter(|o| o.active) {
-                if !o.may_be_within(p, 0.0) {
+                if !o.may_be_within(a3(p), 0.0) {
                     continue;
                 }
                 let surf = self.surface(o, p);
@@ -610,24 +621,24 @@ impl BeeWorld {
                     continue;
                 }
                 let n = surf.normal;
-                p = std::array::from_fn(|k| surf.point[k] + n[k] * SURFACE_OFFSET);
-                let vn = dot(v, n);
-                if vn < 0.0 {
-                    v = std::array::from_fn(|k| v[k] - n[k] * vn);
+                p = surf.point + n * offset;
+                let vn = v.dot(n);
+                if vn < S::ZERO {
+                    v -= n * vn;
                 }
                 flags |= 1;
                 moved = true;
             }
             for k in 0..3 {
-                let (lo, hi) = (f64::from(self.min[k]), f64::from(self.max[k]));
-                if p[k] < lo {
-                    p[k] = lo;
-                    v[k] = v[k].max(0.0);
+                let (x, min, max) = (axis(p, k), axis(lo, k), axis(hi, k));
+                if x < min {
+                    p = with_axis(p, k, min);
+                    v = with_axis(v, k, axis(v, k).max(S::ZERO));
                     flags |= 2;
                     moved = true;
-                } else if p[k] > hi {
-                    p[k] = hi;
-                    v[k] = v[k].min(0.0);
+                } else if x > max {
+                    p = with_axis(p, k, max);
+                    v = with_axis(v, k, axis(v, k).min(S::ZERO));
                     flags |= 2;
                     moved = true;
                 }
@@ -637,17 +648,18 @@ impl BeeWorld {
             }
         }
         if flags != 0 {
-            s.pos = crate::scalar::v3(p);
-            s.vel = crate::scalar::v3(v);
+            s.pos = p;
+            s.vel = v;
         }
         flags
     }
 
-    /// Whether `p` lies inside an active obstacle (strictly; see [`Shape3::surface`]).
-    pub fn inside_obstacle(&self, p: [f64; 3]) -> Option<&BeeObstacle> {
+    /// Whether `p` lies inside an active obstacle (strictly; see [`Shape3::surface`]), in the
+    /// scalar `S`.
+    pub fn inside_obstacle<S: SimScalar>(&self, p: Vec3<S>) -> Option<&BeeObstacle> {
         self.obstacles
             .iter()
-            .filter(|o| o.active && o.may_be_within(p, 0.0))
+            .filter(|o| o.active && o.may_be_within(a3(p), 0.0))
             .find(|o| self.surface(o, p).inside)
     }
 }
@@ -656,90 +668,94 @@ impl BeeWorld {
 mod tests {
     use super::*;
 
-    fn close(a: [f64; 3], b: [f64; 3]) -> bool {
-        (0..3).all(|k| (a[k] - b[k]).abs() < 1e-12)
+    fn close(a: Vec3<f32>, b: [f32; 3]) -> bool {
+        (a.x - b[0]).abs() < 1e-6 && (a.y - b[1]).abs() < 1e-6 && (a.z - b[2]).abs() < 1e-6
+    }
+
+    fn v(p: [f32; 3]) -> Vec3<f32> {
+        Vec3::new(p[0], p[1], p[2])
     }
 
     #[test]
     fn sphere_closest_point_and_normal() {
-        let c = [1.0, 2.0, 3.0];
-        let s = sphere_surface(c, 2.0, [1.0, 2.0, 7.0]);
+        let c = v([1.0, 2.0, 3.0]);
+        let s = sphere_surface(c, 2.0, v([1.0, 2.0, 7.0]));
         assert!(close(s.point, [1.0, 2.0, 5.0]) && close(s.normal, [0.0, 0.0, 1.0]));
-        assert!(!s.inside && (s.distance - 2.0).abs() < 1e-12);
+        assert!(!s.inside && (s.distance - 2.0).abs() < 1e-6);
         // Inside: the radial projection, normal still outward.
-        let s = sphere_surface(c, 2.0, [1.5, 2.0, 3.0]);
+        let s = sphere_surface(c, 2.0, v([1.5, 2.0, 3.0]));
         assert!(close(s.point, [3.0, 2.0, 3.0]) && close(s.normal, [1.0, 0.0, 0.0]));
-        assert!(s.inside && (s.distance - 1.5).abs() < 1e-12);
+        assert!(s.inside && (s.distance - 1.5).abs() < 1e-6);
         let s = sphere_surface(c, 2.0, c);
         assert!(s.inside && close(s.normal, [0.0, 1.0, 0.0]) && close(s.point, [1.0, 4.0, 3.0]));
     }
 
     #[test]
     fn box_closest_point_and_normal_outside_and_inside() {
-        let (lo, hi) = ([0.0, 0.0, 0.0], [4.0, 2.0, 6.0]);
+        let (lo, hi) = (v([0.0, 0.0, 0.0]), v([4.0, 2.0, 6.0]));
         // Face.
-        let s = box_surface(lo, hi, [2.0, 5.0, 3.0]);
+        let s = box_surface(lo, hi, v([2.0, 5.0, 3.0]));
         assert!(close(s.point, [2.0, 2.0, 3.0]) && close(s.normal, [0.0, 1.0, 0.0]));
-        assert!(!s.inside && (s.distance - 3.0).abs() < 1e-12);
+        assert!(!s.inside && (s.distance - 3.0).abs() < 1e-6);
         // Edge: the normal bisects.
-        let s = box_surface(lo, hi, [5.0, 3.0, 3.0]);
-        let r = 0.5f64.sqrt();
+        let s = box_surface(lo, hi, v([5.0, 3.0, 3.0]));
+        let r = 0.5f32.sqrt();
         assert!(close(s.point, [4.0, 2.0, 3.0]) && close(s.normal, [r, r, 0.0]));
         // Corner.
-        let s = box_surface(lo, hi, [-1.0, -1.0, -1.0]);
-        let r = 1.0 / 3f64.sqrt();
+        let s = box_surface(lo, hi, v([-1.0, -1.0, -1.0]));
+        let r = 1.0 / 3f32.sqrt();
         assert!(close(s.point, [0.0; 3]) && close(s.normal, [-r, -r, -r]));
         // Inside: the nearest face.
-        let s = box_surface(lo, hi, [3.5, 1.0, 3.0]);
+        let s = box_surface(lo, hi, v([3.5, 1.0, 3.0]));
         assert!(s.inside && close(s.point, [4.0, 1.0, 3.0]) && close(s.normal, [1.0, 0.0, 0.0]));
-        assert!((s.distance - 0.5).abs() < 1e-12);
-        let s = box_surface(lo, hi, [2.0, 0.2, 3.0]);
+        assert!((s.distance - 0.5).abs() < 1e-6);
+        let s = box_surface(lo, hi, v([2.0, 0.2, 3.0]));
         assert!(s.inside && close(s.point, [2.0, 0.0, 3.0]) && close(s.normal, [0.0, -1.0, 0.0]));
         // On the surface: not inside, distance 0.
-        let s = box_surface(lo, hi, [2.0, 2.0, 3.0]);
+        let s = box_surface(lo, hi, v([2.0, 2.0, 3.0]));
         assert!(!s.inside && s.distance == 0.0 && close(s.normal, [0.0, 1.0, 0.0]));
         // Closed faces: only the top is open, like a ground slab spanning the world.
         let open = [false, false, false, true, false, false];
-        let s = box_surface_open(lo, hi, [0.1, 0.5, 3.0], open);
+        let s = box_surface_open(lo, hi, v([0.1, 0.5, 3.0]), open);
         assert!(s.inside && close(s.point, [0.1, 2.0, 3.0]) && close(s.normal, [0.0, 1.0, 0.0]));
-        let s = box_surface_open(lo, hi, [2.0, 0.0, 3.0], open);
+        let s = box_surface_open(lo, hi, v([2.0, 0.0, 3.0]), open);
         assert!(s.inside, "a point on a closed face is inside");
     }
 
     #[test]
     fn shaft_closest_point_and_normal_side_caps_edges_inside() {
-        let (c, r, y0, y1) = ([10.0, 20.0], 2.0, 1.0, 9.0);
+        let (c, r, y0, y1) = (Vec2::new(10.0, 20.0), 2.0, 1.0, 9.0);
         // Side.
-        let s = shaft_surface(c, r, y0, y1, [15.0, 5.0, 20.0]);
+        let s = shaft_surface(c, r, y0, y1, v([15.0, 5.0, 20.0]));
         assert!(close(s.point, [12.0, 5.0, 20.0]) && close(s.normal, [1.0, 0.0, 0.0]));
-        assert!(!s.inside && (s.distance - 3.0).abs() < 1e-12);
-        let s = shaft_surface(c, r, y0, y1, [10.0, 5.0, 16.0]);
+        assert!(!s.inside && (s.distance - 3.0).abs() < 1e-6);
+        let s = shaft_surface(c, r, y0, y1, v([10.0, 5.0, 16.0]));
         assert!(close(s.point, [10.0, 5.0, 18.0]) && close(s.normal, [0.0, 0.0, -1.0]));
         // Caps.
-        let s = shaft_surface(c, r, y0, y1, [10.5, 12.0, 20.5]);
+        let s = shaft_surface(c, r, y0, y1, v([10.5, 12.0, 20.5]));
         assert!(close(s.point, [10.5, 9.0, 20.5]) && close(s.normal, [0.0, 1.0, 0.0]));
-        let s = shaft_surface(c, r, y0, y1, [9.0, 0.0, 20.0]);
+        let s = shaft_surface(c, r, y0, y1, v([9.0, 0.0, 20.0]));
         assert!(close(s.point, [9.0, 1.0, 20.0]) && close(s.normal, [0.0, -1.0, 0.0]));
         // Rim edge.
-        let s = shaft_surface(c, r, y0, y1, [13.0, 10.0, 20.0]);
-        let h = 0.5f64.sqrt();
+        let s = shaft_surface(c, r, y0, y1, v([13.0, 10.0, 20.0]));
+        let h = 0.5f32.sqrt();
         assert!(close(s.point, [12.0, 9.0, 20.0]) && close(s.normal, [h, h, 0.0]));
         // Inside, nearest the side.
-        let s = shaft_surface(c, r, y0, y1, [11.5, 5.0, 20.0]);
+        let s = shaft_surface(c, r, y0, y1, v([11.5, 5.0, 20.0]));
         assert!(s.inside && close(s.point, [12.0, 5.0, 20.0]) && close(s.normal, [1.0, 0.0, 0.0]));
         // Inside, nearest the top cap.
-        let s = shaft_surface(c, r, y0, y1, [10.2, 8.8, 20.0]);
+        let s = shaft_surface(c, r, y0, y1, v([10.2, 8.8, 20.0]));
         assert!(s.inside && close(s.point, [10.2, 9.0, 20.0]) && close(s.normal, [0.0, 1.0, 0.0]));
         // The top closed (the shaft reaches the ceiling): the side instead.
-        let s = shaft_surface_open(c, r, y0, y1, [10.2, 8.8, 20.0], [true, false]);
+        let s = shaft_surface_open(c, r, y0, y1, v([10.2, 8.8, 20.0]), [true, false]);
         assert!(s.inside && close(s.point, [12.0, 8.8, 20.0]) && close(s.normal, [1.0, 0.0, 0.0]));
         // On the axis: +x.
-        let s = shaft_surface(c, r, y0, y1, [10.0, 5.0, 20.0]);
+        let s = shaft_surface(c, r, y0, y1, v([10.0, 5.0, 20.0]));
         assert!(s.inside && close(s.normal, [1.0, 0.0, 0.0]));
         // Normals are unit length everywhere.
         for p in [[3.0, -4.0, 25.0], [10.0, 20.0, 20.0], [11.0, 1.5, 21.0]] {
-            let s = shaft_surface(c, r, y0, y1, p);
-            assert!((norm(s.normal) - 1.0).abs() < 1e-12, "{p:?}");
+            let s = shaft_surface(c, r, y0, y1, v(p));
+            assert!((s.normal.length() - 1.0).abs() < 1e-6, "{p:?}");
         }
     }
 
@@ -765,7 +781,7 @@ mod tests {
         // Out through the side (the top lies on the ceiling), inward velocity removed.
         assert!((s.pos.x - (11.0 + 1e-3)).abs() < 1e-5 && s.pos.y == 9.9);
         assert_eq!((s.vel.x, s.vel.y, s.vel.z), (0.0, 0.5, 1.0));
-        assert!(w.inside_obstacle(a3(s.pos)).is_none());
+        assert!(w.inside_obstacle(s.pos).is_none());
         let mut s = BeeState::new(
             swarm_core::Vec3::new(-1.0f32, 12.0, 3.0),
             swarm_core::Vec3::new(-1.0, 2.0, 1.0),
