@@ -4,11 +4,12 @@
 //! [`Fx`](swarm_core::Fx); [`SCALAR_F32`]: measured), the word layout of its values
 //! ([`layout`]), and kernels that run `ant_plan_checked` / `ant_resolve_checked` once per
 //! element of packed words ([`AntKernels`]): the harness of the tests, and the controllers of
-//! the GPU engine to come.
+//! the GPU engine to come. [`world`] packs the ant world into words for the sensing kernels.
 
 pub mod layout;
 #[cfg(test)]
 mod tests;
+pub mod world;
 
 use swarm_core::{Scalar, ScalarKind};
 
