@@ -174,6 +174,18 @@ pub const ANT_WORLD: Module = Module {
     over_scalar: true,
 };
 
+/// What an ant senses: `host-sim/src/ants/sense.rs` and the object geometry of
+/// `host-sim/src/ants/world.rs` over the scalar (`ant_plan_frame`, `ant_resolve_frame`,
+/// `ant_sense_closest`, `ant_sense_surface`, `ant_sense_pieces_within`), from the sensed ants
+/// (struct of arrays) and the GPU grid; bit for bit over `Fx`. Driven by
+/// [`AntSense`](crate::gpu::ant::sense::AntSense).
+pub const ANT_SENSE: Module = Module {
+    name: "ant_sense",
+    source: include_str!("../../../shaders/ant_sense.wgsl"),
+    uses: &[&ANT_WORLD, &ANT_FRAME],
+    over_scalar: true,
+};
+
 /// The neighbour grid's kernels: agents sorted by cell (count, multi-level exclusive scan, a
 /// stable radix sort), driven by [`GpuGrid`](super::grid::GpuGrid).
 pub const GRID: Module = Module {
@@ -200,6 +212,7 @@ pub const ALL: &[&Module] = &[
     &ANT_RESOLVE,
     &ANT_LAYOUT,
     &ANT_WORLD,
+    &ANT_SENSE,
     &GRID,
 ];
 
