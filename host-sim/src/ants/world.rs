@@ -135,7 +135,7 @@ impl AntObjectDef {
     }
 
     /// A cheap test in `f32`: false only if `p` is certainly farther than `range` from the
-    /// object. Callers add [`AntWorld::rounding_margin`] to `range` for the rounding of a
+    /// object. Callers add `AntWorld::rounding_margin` to `range` for the rounding of a
     /// fixed-point position to `f32`.
     pub fn may_be_within(&self, p: [f32; 2], range: f32) -> bool {
         match &self.shape {
@@ -245,7 +245,7 @@ fn facing<S: Scalar>(d: Vec2<S>, on_edge: bool, points: &[[f32; 2]], k: usize) -
 
 /// The outward unit normal of edge `k` of a polygon (for a point exactly on it): scenario
 /// geometry, computed in `f32` and then converted, so every backend gets the same bits.
-fn edge_normal<S: Scalar>(points: &[[f32; 2]], k: usize) -> Vec2<S> {
+pub(crate) fn edge_normal<S: Scalar>(points: &[[f32; 2]], k: usize) -> Vec2<S> {
     let n = points.len();
     let (a, b) = (points[k], points[(k + 1) % n]);
     // Twice the signed area: positive for counter-clockwise vertices, whose outside is on the

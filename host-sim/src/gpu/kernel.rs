@@ -78,6 +78,24 @@ impl Kernel {
         })
     }
 
+    /// A bind group for bind group 0 of the bindings `entries` (binding number, buffer): for
+    /// kernels whose modules fix their binding numbers, an entry point using only some of them
+    /// (its layout holds only the bindings it uses).
+    pub fn bind_at(&self, gpu: &Gpu, entries: &[(u32, &wgpu::Buffer)]) -> wgpu::BindGroup {
+        let entries: Vec<wgpu::BindGroupEntry<'_>> = entries
+            .iter()
+            .map(|&(binding, b)| wgpu::BindGroupEntry {
+                binding,
+                resource: b.as_entire_binding(),
+            })
+            .collect();
+        gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(self.name),
+            layout: &self.pipeline.get_bind_group_layout(0),
+            entries: &entries,
+        })
+    }
+
     /// Records a dispatch of one thread per element of `threads` (see `thread_index` in
     /// `shaders/dispatch.wgsl`) into `pass`.
     pub fn dispatch(

@@ -163,6 +163,29 @@ pub const ANT_LAYOUT: Module = Module {
     over_scalar: true,
 };
 
+/// The ant world as `u32` words, the layout of [`crate::gpu::ant::world`] (binding 1): its
+/// objects (`ant_world_object`; polygon edges with their precomputed normal, direction and
+/// length, `ant_world_edge`), the arena, the ranges, the route (`ant_world_target_of`) and the
+/// grid's cell of a point over the scalar (`ant_world_cell`).
+pub const ANT_WORLD: Module = Module {
+    name: "ant_world",
+    source: include_str!("../../../shaders/ant_world.wgsl"),
+    uses: &[&GEOM],
+    over_scalar: true,
+};
+
+/// What an ant senses: `host-sim/src/ants/sense.rs` and the object geometry of
+/// `host-sim/src/ants/world.rs` over the scalar (`ant_plan_frame`, `ant_resolve_frame`,
+/// `ant_sense_closest`, `ant_sense_surface`, `ant_sense_pieces_within`), from the sensed ants
+/// (struct of arrays) and the GPU grid; bit for bit over `Fx`. Driven by
+/// [`AntSense`](crate::gpu::ant::sense::AntSense).
+pub const ANT_SENSE: Module = Module {
+    name: "ant_sense",
+    source: include_str!("../../../shaders/ant_sense.wgsl"),
+    uses: &[&ANT_WORLD, &ANT_FRAME],
+    over_scalar: true,
+};
+
 /// The neighbour grid's kernels: agents sorted by cell (count, multi-level exclusive scan, a
 /// stable radix sort), driven by [`GpuGrid`](super::grid::GpuGrid).
 pub const GRID: Module = Module {
@@ -188,6 +211,8 @@ pub const ALL: &[&Module] = &[
     &ANT_PLAN,
     &ANT_RESOLVE,
     &ANT_LAYOUT,
+    &ANT_WORLD,
+    &ANT_SENSE,
     &GRID,
 ];
 

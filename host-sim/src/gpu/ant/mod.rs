@@ -4,11 +4,16 @@
 //! [`Fx`](swarm_core::Fx); [`SCALAR_F32`]: measured), the word layout of its values
 //! ([`layout`]), and kernels that run `ant_plan_checked` / `ant_resolve_checked` once per
 //! element of packed words ([`AntKernels`]): the harness of the tests, and the controllers of
-//! the GPU engine to come.
+//! the GPU engine to come. [`sense`] builds the ants' sensor frames on the GPU from the world's
+//! words ([`world`]) and the GPU grid, bit for bit over `Fx`.
 
 pub mod layout;
+pub mod sense;
+#[cfg(test)]
+mod sense_tests;
 #[cfg(test)]
 mod tests;
+pub mod world;
 
 use swarm_core::{Scalar, ScalarKind};
 
