@@ -39,5 +39,7 @@ pub(crate) fn check(c: &GroupCheck<'_>) -> std::result::Result<(), Problem> {
         "`goal` is for bee groups; ants forage between their `nest` and the food sources",
     )?;
     let params = c.params::<AntParamsOverride>()?.apply(AntParams::default());
-    c.check_params(&params, |p| p.cast::<Fx>().validate())
+    c.check_params(&params, |p| p.cast::<Fx>().validate())?;
+    c.fixed_range("contact_range", "contact_range", params.contact_range)?;
+    c.fixed_range("collision_range", "collision_range", params.collision_range)
 }

@@ -99,7 +99,8 @@ fn d2f(a: [f32; 3], b: [f32; 3]) -> f32 {
 
 /// The selection key of an ant at `q` seen from `p`: the squared distance in the sensing ant's
 /// scalar (in fixed point saturating, which keeps every in-range key exact and every other one
-/// out of range), so every backend selects the same neighbours (`docs/gpu.md`).
+/// out of range, the ranges being below 181: `GroupCheck::fixed_range`), so every backend
+/// selects the same neighbours (`docs/gpu.md`).
 fn key<S: SimScalar>(q: Vec2<S>, p: Vec2<S>) -> S {
     (q - p).length_sq()
 }

@@ -60,7 +60,13 @@ pub(crate) fn check(c: &GroupCheck<'_>) -> std::result::Result<(), Problem> {
         c.object_of_kind("goal", goal, "target")?;
     }
     let params = c.params::<BeeParamsOverride>()?.params();
-    c.check_params(&params, |p| p.cast::<Fx>().validate())
+    c.check_params(&params, |p| p.cast::<Fx>().validate())?;
+    // The neighbour range is h + 2r (the capsule gap below h).
+    c.fixed_range(
+        "h",
+        "the neighbour range h + 2·radius",
+        params.h + 2.0 * params.radius,
+    )
 }
 
 #[cfg(test)]

@@ -106,6 +106,30 @@ impl<'a> GroupCheck<'a> {
         })
     }
 
+    /// For a fixed-point group, refuses a sensing range `value` (`range`: the parameter `field`
+    /// of the model's table, or an expression of its parameters) whose square does not fit
+    /// I16F16 (below
+    /// 32768, so below 181.02): the neighbours of a fixed-point agent are selected by squared
+    /// distance in fixed point, and a saturated square would take in every agent the grid
+    /// query returns.
+    ///
+    /// # Errors
+    ///
+    /// A problem at `<model>.<field>` saying so.
+    pub fn fixed_range(&self, field: &str, range: &str, value: f32) -> Result<(), Problem> {
+        if self.group.scalar != ScalarType::Fixed || value * value < 32_768.0 {
+            return Ok(());
+        }
+        let model = self.group.model.as_str();
+        Err(self.problem(
+            &format!("{model}.{field}"),
+            format!(
+                "{range} = {value} is too large for a fixed-point group: ranges are squared in \
+                 I16F16, so they must stay below 181 (or use scalar = \"f32\")"
+            ),
+        ))
+    }
+
     /// Checks the group's parameters `params`, and for a fixed-point group also `in_fixed` of
     /// them (their check once converted to the fixed-point type).
     ///

@@ -564,6 +564,31 @@ fn parameter_overrides_are_validated_by_the_controllers() {
     assert!(Scenario::from_str(&big, FILE).is_ok());
     let text = edit(&big, "count = 30", "count = 30\nscalar = \"fixed\"");
     assert!(Scenario::from_str(&text, FILE).is_ok());
+    // Fixed point squares the neighbour ranges: they must stay below 181.
+    let wide = edit(
+        ANTS,
+        "nest = \"nest\"",
+        "nest = \"nest\"\nant = { contact_range = 200.0 }",
+    );
+    assert!(Scenario::from_str(&wide, FILE).is_ok(), "f32 takes it");
+    rejects(
+        &wide,
+        "count = 20",
+        "count = 20\nscalar = \"fixed\"",
+        "ant = {",
+        "groups[0].ant.contact_range",
+        "contact_range = 200 is too large for a fixed-point group",
+    );
+    let wide = edit(BEES, "kappa2 = 3.0", "kappa2 = 3.0, h = 181.0");
+    assert!(Scenario::from_str(&wide, FILE).is_ok(), "f32 takes it");
+    rejects(
+        &wide,
+        "count = 30",
+        "count = 30\nscalar = \"fixed\"",
+        "bee = {",
+        "groups[0].bee.h",
+        "the neighbour range h + 2·radius = 181.5 is too large",
+    );
     rejects(
         BEES,
         "preset = \"around_nest\"",
