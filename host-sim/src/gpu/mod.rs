@@ -16,6 +16,7 @@
 //! ```
 
 pub mod ant;
+pub mod bee;
 mod context;
 pub mod grid;
 pub mod kernel;
