@@ -19,6 +19,11 @@
 //   positive `i32` divisor, as in the Rust code.
 // * there is no 64-bit integer: an `i64`/`u64` of fx.rs is a `vec2<u32>` (low word, high word),
 //   two's complement for `i64` (the `fx_u64_*` and `fx_i64_*` helpers).
+//
+// And one of the drivers: lavapipe's compile time grows faster than linearly with the number of
+// loops in a kernel (every call is inlined; 20 small loops compile in about a second, 80 in
+// 47 s), so division and square root, used dozens of times by a controller, have no loop whose
+// count the compiler cannot see (fx_div_q16, fx_isqrt_q16: fixed counts, unrolled).
 
 // ---- 64-bit integers as two words (the i64/u64 arithmetic of fx.rs) ----
 
@@ -254,24 +259,23 @@ fn fx_div(a: i32, b: i32) -> i32 {
     return fx_sat(q);
 }
 
-// div_q16 (fx.rs) as div_q16_words: `(n << 16) / d`, truncated (`d > 0`), by long division with
-// the 32-bit divide: the integer part in one step, then the 16 fraction bits in digits of as
-// many bits `k` as keep `r << k` within 32 bits (`r < d`).
+// div_q16 (fx.rs): `(n << 16) / d`, truncated (`d > 0`, `n ≤ 2^31`, `d ≤ 2^31`): the integer part
+// with the 32-bit divide, then the 16 fraction bits by restoring division, one bit a step (the
+// remainder `r < d ≤ 2^31`, so `r << 1` fits in 32 bits): the same quotient as div_q16_words'
+// digits. A loop of a fixed 16 steps, which compilers unroll: lavapipe's compile time grows
+// faster than linearly with the number of loops in a kernel (a loop per division made the bee
+// controller's kernel take minutes to compile).
 fn fx_div_q16(n: u32, d: u32) -> vec2<u32> {
-    var q = fx_u64_from_u32(n / d);
-    var r = n % d;
-    // `r < d < 2^(32 - lz)`, so `r << lz` fits; for `d = 2^31` (lz 0), `r << 1` does.
-    let digit = max(countLeadingZeros(d), 1u);
-    var left = 16u;
-    while (left > 0u) {
-        let k = min(digit, left);
-        let x = r << k;
-        q = fx_u64_shl(q, k);
-        q.x = q.x | (x / d);
-        r = x % d;
-        left = left - k;
+    let q = n / d;
+    var r = n - q * d;
+    var f = 0u;
+    for (var i = 0u; i < 16u; i = i + 1u) {
+        r = r << 1u;
+        let bit = r >= d;
+        r = select(r, r - d, bit);
+        f = (f << 1u) | select(0u, 1u, bit);
     }
-    return q;
+    return vec2<u32>((q << 16u) | f, q >> 16u);
 }
 
 // Neg for Fx: `i32::saturating_neg` (-MIN = MAX).
@@ -390,8 +394,34 @@ fn fx_sqrt(a: i32) -> i32 {
     if (r <= 0) {
         return FX_ZERO;
     }
-    // `isqrt(..) as i32`: the low word (the root is below 2^24).
-    return bitcast<i32>(fx_isqrt(fx_u64_shl(fx_u64_from_u32(bitcast<u32>(r)), 16u)).x);
+    // `isqrt(..) as i32` (the root is below 2^24).
+    return bitcast<i32>(fx_isqrt_q16(bitcast<u32>(r)));
+}
+
+// isqrt (fx.rs) of `a << 16` for a u32 `a`: the same digit-by-digit method as fx_isqrt, on the
+// 24 pairs of bits of `a << 16` from the top (the 16 of `a`, then 8 zero pairs; leading zero
+// pairs leave the root at 0, so starting at the top equals isqrt's skipping them), the partial
+// root and remainder in 32 bits (the remainder stays at most twice the root, below 2^25). Loops
+// of a fixed 16 and 8 steps, which compilers unroll (see fx_div_q16).
+fn fx_isqrt_q16(a: u32) -> u32 {
+    // (remainder, root)
+    var s = vec2<u32>(0u, 0u);
+    for (var i = 0u; i < 16u; i = i + 1u) {
+        s = fx_isqrt_digit(s, (a >> (30u - 2u * i)) & 3u);
+    }
+    for (var i = 0u; i < 8u; i = i + 1u) {
+        s = fx_isqrt_digit(s, 0u);
+    }
+    return s.y;
+}
+
+// One digit of fx_isqrt_q16: the next pair of bits into the remainder, and the root's next bit
+// (1 if the remainder holds 4·root + 1).
+fn fx_isqrt_digit(s: vec2<u32>, pair: u32) -> vec2<u32> {
+    let rem = (s.x << 2u) | pair;
+    let trial = (s.y << 2u) | 1u;
+    let one = rem >= trial;
+    return vec2<u32>(select(rem, rem - trial, one), (s.y << 1u) | select(0u, 1u, one));
 }
 
 // Scalar::sin for Fx.

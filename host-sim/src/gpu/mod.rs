@@ -7,8 +7,9 @@
 //! `shaders/geom.wgsl` its vectors, the last two written over the scalar `S` of a scalar module
 //! (`scalar_fx.wgsl` or `scalar_f32.wgsl`, see [`shaders`]) as the Rust is over `Scalar`; each
 //! is tested bit for bit against the Rust function over `Fx` on the GPU (lavapipe, Mesa's
-//! Vulkan driver on the CPU, where there is no GPU; the tests are in `tests/`). [`ant`] is the
-//! ant controller on these foundations, with the word layout of its values.
+//! Vulkan driver on the CPU, where there is no GPU; the tests are in `tests/`). [`ant`] and
+//! [`bee`] are the ant and bee controllers on these foundations, with the word layouts of their
+//! values.
 //!
 //! ```no_run
 //! let gpu = swarm_sim::gpu::Gpu::new().unwrap(); // an error naming what to install if none
@@ -16,6 +17,7 @@
 //! ```
 
 pub mod ant;
+pub mod bee;
 mod context;
 pub mod grid;
 pub mod kernel;

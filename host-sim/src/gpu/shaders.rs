@@ -7,7 +7,7 @@
 //! GPU.
 //!
 //! WGSL has no generics either: the modules written over the controllers' scalar (`geom`,
-//! `rand`'s `rand_unit`, the ant controller; [`Module::over_scalar`]) call the scalar `S` and
+//! `rand`'s `rand_unit`, the ant and bee controllers; [`Module::over_scalar`]) call the scalar `S` and
 //! its operations `s_add`, `s_sqrt`, ... by name, and a kernel composes exactly one *scalar
 //! module* with them: [`SCALAR_FX`] (`S = i32`, the bits of an `Fx`, bit for bit) or
 //! [`SCALAR_F32`] (`S = f32`, measured): `compose(&[&SCALAR_FX, &GEOM], kernel)`.
@@ -186,6 +186,90 @@ pub const ANT_SENSE: Module = Module {
     over_scalar: true,
 };
 
+/// The bee controller's parameters: [`swarm_core::bee::BeeParams`] as `BeeParams` (and
+/// `BEE_LIMIT`).
+pub const BEE_PARAMS: Module = Module {
+    name: "bee_params",
+    source: include_str!("../../../shaders/bee_params.wgsl"),
+    uses: &[],
+    over_scalar: true,
+};
+
+/// The bee's state, frame (with the simulator's capacities) and decision:
+/// `core-nostd/src/bee/frame.rs` (`BeeState`, `BeeFrame`, `BeeDecision`, `bee_state_validate`,
+/// `bee_frame_validate`) and the status words of the errors (`BEE_ERROR_*`, `BEE_FIELD_*`,
+/// decoded by [`crate::gpu::bee::layout::status_error`]).
+pub const BEE_FRAME: Module = Module {
+    name: "bee_frame",
+    source: include_str!("../../../shaders/bee_frame.wgsl"),
+    uses: &[&GEOM, &BEE_PARAMS],
+    over_scalar: true,
+};
+
+/// 3D Perlin noise with its analytic gradient: `core-nostd/src/bee/perlin.rs` (`bee_perlin`,
+/// `BeeLattice`, `bee_lattice_new`, `bee_lattice_noise`, `bee_lattice_grad`). Self-contained
+/// (only [`GEOM`]), for any model's noise.
+pub const BEE_PERLIN: Module = Module {
+    name: "bee_perlin",
+    source: include_str!("../../../shaders/bee_perlin.wgsl"),
+    uses: &[&GEOM],
+    over_scalar: true,
+};
+
+/// The curl-noise force of chen eq. 8-9: `core-nostd/src/bee/curl.rs` (`bee_potential`,
+/// `bee_curl_force`), on [`BEE_PERLIN`] alone.
+pub const BEE_CURL: Module = Module {
+    name: "bee_curl",
+    source: include_str!("../../../shaders/bee_curl.wgsl"),
+    uses: &[&BEE_PERLIN],
+    over_scalar: true,
+};
+
+/// The SPH density and repulsion: `core-nostd/src/bee/sph.rs` (`BeeKernels`, `bee_density`,
+/// `bee_repulsion`, `bee_interact_with`, ...).
+pub const BEE_SPH: Module = Module {
+    name: "bee_sph",
+    source: include_str!("../../../shaders/bee_sph.wgsl"),
+    uses: &[&BEE_FRAME],
+    over_scalar: true,
+};
+
+/// Roll-to-avoidance: `core-nostd/src/bee/vision.rs` (`bee_near`, `bee_in_view`, `bee_ramp`,
+/// `bee_tune_velocity`, `bee_avoidance_roll_deg`, ...).
+pub const BEE_VISION: Module = Module {
+    name: "bee_vision",
+    source: include_str!("../../../shaders/bee_vision.wgsl"),
+    uses: &[&BEE_FRAME],
+    over_scalar: true,
+};
+
+/// Body oscillation: `core-nostd/src/bee/oscillation.rs` (`bee_pitch_deg`, `bee_roll_deg`,
+/// `bee_forward_axis`, `bee_oscillation_force`, ...).
+pub const BEE_OSCILLATION: Module = Module {
+    name: "bee_oscillation",
+    source: include_str!("../../../shaders/bee_oscillation.wgsl"),
+    uses: &[&GEOM, &BEE_PARAMS],
+    over_scalar: true,
+};
+
+/// One step of the bee controller: `core-nostd/src/bee/step.rs` (`bee_step_checked`,
+/// `bee_step_with`, `BeeStepConsts`).
+pub const BEE_STEP: Module = Module {
+    name: "bee_step",
+    source: include_str!("../../../shaders/bee_step.wgsl"),
+    uses: &[&BEE_OSCILLATION, &BEE_VISION, &BEE_SPH, &BEE_CURL],
+    over_scalar: true,
+};
+
+/// The bee values as `u32` words, the layout of [`crate::gpu::bee::layout`]
+/// (`bee_state_from_words`, `bee_frame_from_words`, ...; `BEE_STATE_WORDS`, ...).
+pub const BEE_LAYOUT: Module = Module {
+    name: "bee_layout",
+    source: include_str!("../../../shaders/bee_layout.wgsl"),
+    uses: &[&BEE_STEP],
+    over_scalar: true,
+};
+
 /// The neighbour grid's kernels: agents sorted by cell (count, multi-level exclusive scan, a
 /// stable radix sort), driven by [`GpuGrid`](super::grid::GpuGrid).
 pub const GRID: Module = Module {
@@ -213,6 +297,15 @@ pub const ALL: &[&Module] = &[
     &ANT_LAYOUT,
     &ANT_WORLD,
     &ANT_SENSE,
+    &BEE_PARAMS,
+    &BEE_FRAME,
+    &BEE_PERLIN,
+    &BEE_CURL,
+    &BEE_SPH,
+    &BEE_VISION,
+    &BEE_OSCILLATION,
+    &BEE_STEP,
+    &BEE_LAYOUT,
     &GRID,
 ];
 

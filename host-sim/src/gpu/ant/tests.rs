@@ -1297,7 +1297,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
     {body}
 }}"
     );
-    let uses = modules(&shaders::SCALAR_FX);
+    // Every module over the scalar (the constants are anyone's), with `scalar_fx`.
+    let mut uses = vec![&shaders::SCALAR_FX];
+    uses.extend(shaders::ALL.iter().filter(|m| m.over_scalar));
     let got = map_words(&test_gpu(), &uses, &kernel, "main", &[0], 1, 2 * args.len()).unwrap();
     for (k, a) in args.iter().enumerate() {
         let v = value(a);

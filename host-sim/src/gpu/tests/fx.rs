@@ -344,6 +344,31 @@ fn isqrt() {
     );
 }
 
+#[test]
+fn isqrt_q16() {
+    // `isqrt(a << 16)` for every u32 `a` (sqrt's operands are the positive i32s): the edges, all
+    // values below 2^18, the neighbours of the `a` whose `a << 16` is a square, and the mixture.
+    let mut inputs: Vec<[u32; 1]> = [u32::MAX, u32::MAX - 1, 1 << 31, (1 << 31) - 1]
+        .into_iter()
+        .chain(0..1 << 18)
+        .map(|a| [a])
+        .collect();
+    let mut g = Rng::new(16);
+    for _ in 0..RANDOM / 4 {
+        // k² = a << 16 for k a multiple of 256.
+        let a = (g.next() >> 16) * (g.next() >> 16);
+        inputs.extend([a.wrapping_sub(1), a, a.wrapping_add(1)].map(|a| [a]));
+    }
+    inputs.extend((0..RANDOM).map(|_| [g.next() >> g.below(32)]));
+    check(
+        "fx_isqrt_q16",
+        &[&FX],
+        "put(0u, fx_isqrt_q16(u0));",
+        &inputs,
+        |[a]| [(u64::from(a) << 16).isqrt() as u32],
+    );
+}
+
 // ---- Fx and Scalar ----
 
 #[test]
