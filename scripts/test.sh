@@ -39,8 +39,8 @@ stage() {
 need_pkgs=()
 have_embedded_rustup() {
     command -v rustup >/dev/null 2>&1 &&
-        rustup target list --installed 2>/dev/null | grep -q thumbv7m-none-eabi &&
-        rustup target list --installed 2>/dev/null | grep -q thumbv7em-none-eabihf
+        rustup target list --installed 2>/dev/null | grep thumbv7m-none-eabi >/dev/null &&
+        rustup target list --installed 2>/dev/null | grep thumbv7em-none-eabihf >/dev/null
 }
 if ! have_embedded_rustup; then
     [[ -x /usr/bin/cargo && -x /usr/bin/rustc && -d /usr/lib/rustlib/src/rust/library ]] ||
@@ -52,7 +52,7 @@ command -v qemu-system-arm >/dev/null 2>&1 || need_pkgs+=(qemu-system-arm)
 # The GPU backend's tests (part of cargo test, so also with --quick) need a Vulkan loader and a
 # driver: Mesa's lavapipe runs them on the CPU where there is no GPU.
 have_vulkan() {
-    ldconfig -p 2>/dev/null | grep -q 'libvulkan\.so\.1' &&
+    ldconfig -p 2>/dev/null | grep 'libvulkan\.so\.1' >/dev/null &&
         compgen -G '/usr/share/vulkan/icd.d/*.json' >/dev/null
 }
 have_vulkan || need_pkgs+=(mesa-vulkan-drivers libvulkan1)
