@@ -63,6 +63,16 @@ pub trait Engine: Send {
         }
         Ok(())
     }
+    /// Brings the host's view of the simulation up to date (a GPU engine reads its states and
+    /// counts back): the run loop calls it before it records a frame and before the closing.
+    /// A CPU engine's view is always current.
+    ///
+    /// # Errors
+    ///
+    /// A backend's failure to read back, or a controller's refusal it noticed since.
+    fn sync(&mut self) -> Result<()> {
+        Ok(())
+    }
     /// For each of `agents` (ids), the request phase `phase` ran on and the engine's reply
     /// (call between [`Engine::decide`] and [`Engine::publish`] of that phase).
     ///

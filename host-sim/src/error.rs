@@ -164,6 +164,23 @@ pub enum SimError {
         /// wgpu's error.
         source: wgpu::RequestDeviceError,
     },
+    /// `--backend gpu` for groups of both scalar types.
+    #[error(
+        "--backend gpu: groups `{first}` and `{other}` have different scalar types; the GPU \
+         engine runs one scalar type per simulation"
+    )]
+    GpuMixedScalars {
+        /// The first group.
+        first: String,
+        /// A group of another scalar type.
+        other: String,
+    },
+    /// `--backend gpu` for a model that has no GPU engine.
+    #[error("--backend gpu: the `{model}` model has no GPU engine yet (run it with --backend cpu)")]
+    NoGpuEngine {
+        /// The model.
+        model: String,
+    },
     /// The GPU stopped answering (device lost, or a wait timed out).
     #[error("GPU: {source}")]
     GpuLost {

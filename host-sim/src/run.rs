@@ -169,6 +169,7 @@ fn run_loop(
         engine.after_tick(&mut summary);
         let done = step + 1;
         if done % every == 0 || done == sc.steps {
+            engine.sync()?;
             let f = engine.frame();
             record(&mut summary, &f, done);
             engine.on_record(&mut summary, done);
@@ -176,6 +177,7 @@ fn run_loop(
         }
         bar.inc(1);
     }
+    engine.sync()?;
     bar.finish_and_clear();
     summary.wall_seconds = t0.elapsed().as_secs_f64();
     summary.agent_steps_per_s =

@@ -186,6 +186,17 @@ pub const ANT_SENSE: Module = Module {
     over_scalar: true,
 };
 
+/// The ant tick of the GPU engine ([`GpuAntSim`](crate::gpu::ant::engine::GpuAntSim)): the
+/// kernels `ant_tick_plan_main` and `ant_tick_resolve_main` (sense and decide in one pass),
+/// `ant_tick_commit_main` (events, route, states made current) and `ant_tick_end_main` (food
+/// taken, the first refusal kept), on the states kept on the GPU.
+pub const ANT_TICK: Module = Module {
+    name: "ant_tick",
+    source: include_str!("../../../shaders/ant_tick.wgsl"),
+    uses: &[&ANT_SENSE, &ANT_RESOLVE, &ANT_LAYOUT],
+    over_scalar: true,
+};
+
 /// The bee controller's parameters: [`swarm_core::bee::BeeParams`] as `BeeParams` (and
 /// `BEE_LIMIT`).
 pub const BEE_PARAMS: Module = Module {
@@ -297,6 +308,7 @@ pub const ALL: &[&Module] = &[
     &ANT_LAYOUT,
     &ANT_WORLD,
     &ANT_SENSE,
+    &ANT_TICK,
     &BEE_PARAMS,
     &BEE_FRAME,
     &BEE_PERLIN,

@@ -7,6 +7,9 @@
 //! the GPU engine to come. [`sense`] builds the ants' sensor frames on the GPU from the world's
 //! words ([`world`]) and the GPU grid, bit for bit over `Fx`.
 
+pub mod engine;
+#[cfg(test)]
+mod engine_tests;
 pub mod layout;
 pub mod sense;
 #[cfg(test)]
