@@ -114,6 +114,7 @@ fn plain_run(sc: &Scenario, dir: &Path) -> Frame {
         steps: None,
         seed: None,
         threads: Some(1),
+        backend: None,
         progress: false,
         warnings: Vec::new(),
     };

@@ -7,6 +7,38 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::Result;
+use crate::scenario::{Backend, ScalarType};
+
+/// What to benchmark.
+#[derive(Clone, Debug)]
+pub struct BenchSpec {
+    /// The model (`ant`, `bee`, ...).
+    pub model: String,
+    /// Number of agents.
+    pub agents: usize,
+    /// Timed steps.
+    pub steps: u32,
+    /// Worker threads (`None`: one per core).
+    pub threads: Option<usize>,
+    /// The controllers' scalar type.
+    pub scalar: ScalarType,
+    /// Who decides: the CPU engine or the model's GPU engine.
+    pub backend: Backend,
+}
+
+impl BenchSpec {
+    /// `agents` agents of `model` for `steps` steps, in `f32` on the CPU with all cores.
+    pub fn new(model: &str, agents: usize, steps: u32) -> BenchSpec {
+        BenchSpec {
+            model: model.into(),
+            agents,
+            steps,
+            threads: None,
+            scalar: ScalarType::F32,
+            backend: Backend::Cpu,
+        }
+    }
+}
 
 /// What `swarm bench` measures and prints.
 #[derive(Clone, Debug, Serialize)]
@@ -15,6 +47,9 @@ pub struct BenchReport {
     pub model: String,
     /// `cpu` or `gpu`.
     pub backend: String,
+    /// The GPU adapter (`gpu` backend).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub adapter: Option<String>,
     /// Number of agents.
     pub agents: usize,
     /// Steps timed (after one untimed warm-up step).
@@ -25,6 +60,8 @@ pub struct BenchReport {
     pub seconds: f64,
     /// agents × steps / seconds.
     pub agent_steps_per_s: f64,
+    /// Milliseconds per tick (seconds / steps).
+    pub ms_per_tick: f64,
     /// Peak resident memory of the process (VmHWM), bytes; 0 where unavailable.
     pub peak_rss_bytes: u64,
     /// Scalar type of the controllers.
@@ -33,42 +70,45 @@ pub struct BenchReport {
     pub machine: String,
 }
 
-/// Times `steps` ticks of `agents` agents of `model` in its benchmark world
-/// ([`bench_engine`](crate::models::bench_engine)), inside a pool of `threads` workers (`None`:
-/// one per core), after one untimed warm-up tick.
+/// Times `spec.steps` ticks of `spec.agents` agents of `spec.model` in its benchmark world
+/// ([`bench_engine`](crate::models::bench_engine)) on `spec.backend`, inside a pool of
+/// `spec.threads` workers, after one untimed warm-up tick; the timing ends when the engine
+/// has finished (a GPU engine is synchronised).
 ///
 /// # Errors
 ///
 /// [`SimError::EmptyBench`](crate::SimError::EmptyBench) for no agents or no steps, the pool's
-/// error, a controller's refusal.
-pub fn bench(
-    model: &str,
-    agents: usize,
-    steps: u32,
-    threads: Option<usize>,
-) -> Result<BenchReport> {
+/// error, a controller's refusal, [`SimError::NoGpuEngine`](crate::SimError::NoGpuEngine) and
+/// the GPU's errors.
+pub fn bench(spec: &BenchSpec) -> Result<BenchReport> {
+    let (agents, steps) = (spec.agents, spec.steps);
     if agents == 0 || steps == 0 {
         return Err(crate::SimError::EmptyBench { agents, steps });
     }
-    let (pool, threads) = crate::par::pool(threads)?;
+    let (pool, threads) = crate::par::pool(spec.threads)?;
     pool.install(|| {
-        let mut engine = crate::models::bench_engine(model, agents, 1)?;
+        let mut engine =
+            crate::models::bench_engine(&spec.model, agents, 1, spec.scalar, spec.backend)?;
         engine.tick()?;
+        engine.sync()?;
         let t0 = Instant::now();
         for _ in 0..steps {
             engine.tick()?;
         }
+        engine.sync()?;
         let seconds = t0.elapsed().as_secs_f64();
         Ok(BenchReport {
             model: engine.model().to_owned(),
             backend: engine.backend().into(),
+            adapter: engine.adapter(),
             agents,
             steps,
             threads,
             seconds,
             agent_steps_per_s: agents as f64 * f64::from(steps) / seconds.max(1e-9),
+            ms_per_tick: seconds * 1e3 / f64::from(steps),
             peak_rss_bytes: peak_rss_bytes(),
-            scalar: "f32".into(),
+            scalar: format!("{:?}", spec.scalar.kind()),
             machine: machine(),
         })
     })
@@ -107,16 +147,20 @@ mod tests {
 
     #[test]
     fn a_bench_reports_what_ran_and_refuses_an_empty_one() {
-        let r = bench("ant", 500, 2, Some(1)).unwrap();
+        let spec = |model, agents, steps, threads| BenchSpec {
+            threads,
+            ..BenchSpec::new(model, agents, steps)
+        };
+        let r = bench(&spec("ant", 500, 2, Some(1))).unwrap();
         assert_eq!(
             (r.model.as_str(), r.agents, r.steps, r.threads),
             ("ant", 500, 2, 1)
         );
         assert!(r.seconds > 0.0 && r.agent_steps_per_s > 0.0);
-        let r = bench("bee", 200, 1, Some(2)).unwrap();
+        let r = bench(&spec("bee", 200, 1, Some(2))).unwrap();
         assert_eq!((r.model.as_str(), r.agents, r.threads), ("bee", 200, 2));
         for (agents, steps, threads) in [(0, 5, Some(1)), (10, 0, Some(1)), (10, 5, Some(0))] {
-            let e = bench("ant", agents, steps, threads)
+            let e = bench(&spec("ant", agents, steps, threads))
                 .unwrap_err()
                 .to_string();
             assert!(e.contains("at least"), "{e}");

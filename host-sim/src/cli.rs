@@ -15,6 +15,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use crate::models;
+use crate::scenario::{Backend, ScalarType};
 
 /// Insect-swarm simulator: ant colonies (xiang2018) and bee swarms (chen) driven through the
 /// swarm-core controllers.
@@ -44,6 +45,10 @@ enum Command {
         /// Worker threads (default: all cores; results are identical for any count).
         #[arg(long)]
         threads: Option<usize>,
+        /// Who decides: `cpu` or `gpu` (wgpu; Mesa's lavapipe where there is no GPU). Default:
+        /// the scenario's `backend`, else `cpu`. In fixed point both decide the same bits.
+        #[arg(long, value_enum)]
+        backend: Option<Backend>,
         /// Output folder (default: `out/<scenario name>`); a finished run replaces it whole, a
         /// killed or failed one leaves it as it was.
         #[arg(long)]
@@ -71,6 +76,12 @@ enum Command {
         /// Worker threads (default: all cores).
         #[arg(long)]
         threads: Option<usize>,
+        /// Who decides: `cpu` or `gpu`.
+        #[arg(long, value_enum, default_value_t = Backend::Cpu)]
+        backend: Backend,
+        /// The controllers' scalar type: `f32` or `fixed` (I16F16).
+        #[arg(long, value_enum, default_value_t = ScalarType::F32)]
+        scalar: ScalarType,
         /// Write the JSON report here (it is printed too).
         #[arg(long)]
         json: Option<PathBuf>,
@@ -109,6 +120,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             steps,
             seed,
             threads,
+            backend,
             out,
             quiet,
         } => {
@@ -131,6 +143,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 steps,
                 seed,
                 threads,
+                backend,
                 progress: !quiet && std::io::IsTerminal::is_terminal(&std::io::stderr()),
                 warnings,
             };
@@ -140,6 +153,9 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 "{}: {} agents, {} ticks in {:.2} s ({:.3e} agent-steps/s, {} threads)",
                 s.scenario, s.agents, s.steps, s.wall_seconds, s.agent_steps_per_s, s.threads
             );
+            if let Some(a) = &s.adapter {
+                println!("  on the GPU: {a}");
+            }
             for (nest, n) in &s.deliveries_per_nest {
                 println!("  delivered to {nest}: {n}");
             }
@@ -168,6 +184,8 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             agents,
             steps,
             threads,
+            backend,
+            scalar,
             json,
         } => {
             crate::scenario::check_steps(steps, "--steps")?;
@@ -183,7 +201,14 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 Some(one) if models::find(&model).is_none() && models::find(one).is_some() => one,
                 _ => &model,
             };
-            let report = crate::bench::bench(model, agents, steps, threads)?;
+            let report = crate::bench::bench(&crate::bench::BenchSpec {
+                model: model.into(),
+                agents,
+                steps,
+                threads,
+                scalar,
+                backend,
+            })?;
             let text = serde_json::to_string_pretty(&report)?;
             println!("{text}");
             if let Some(path) = json {

@@ -38,6 +38,10 @@ pub trait Engine: Send {
     fn backend(&self) -> &'static str {
         "cpu"
     }
+    /// The GPU adapter a GPU engine runs on (name, API, driver); `None` on the CPU.
+    fn adapter(&self) -> Option<String> {
+        None
+    }
     /// Runs phase `phase` of the current tick for every agent, from what the previous phase
     /// published; publishes nothing.
     ///

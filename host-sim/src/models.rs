@@ -8,7 +8,9 @@ use crate::ants::{AntSim, bench_ant_world};
 use crate::bees::{BeeSim, bench_bee_world};
 use crate::engine::Engine;
 use crate::error::{Result, SimError};
-use crate::scenario::{GroupCheck, Problem, Scenario};
+use crate::gpu::Gpu;
+use crate::gpu::ant::engine::GpuAntSim;
+use crate::scenario::{Backend, GroupCheck, Problem, ScalarType, Scenario};
 
 /// What the simulator knows of a model: the world it lives in, the rules of its groups, how
 /// to build its engine for a scenario, and its benchmark world.
@@ -27,9 +29,24 @@ pub struct ModelEntry {
     pub check: fn(&GroupCheck<'_>) -> std::result::Result<(), Problem>,
     /// Its engine for a scenario (every group of which is of this model) and a seed.
     pub engine: fn(&Scenario, u32) -> Result<Box<dyn Engine>>,
-    /// Its synthetic benchmark world of `agents` agents and a seed (`swarm bench`).
-    pub bench_world: fn(usize, u32) -> Box<dyn Engine>,
+    /// Its synthetic benchmark world of `agents` agents, a seed and a scalar type (`swarm
+    /// bench`).
+    pub bench_world: fn(usize, u32, ScalarType) -> Box<dyn Engine>,
+    /// Its GPU engine, if it has one (`--backend gpu`).
+    pub gpu: Option<GpuEntry>,
 }
+
+/// A model's GPU engine: the same simulation as its CPU engine, decided on the GPU.
+#[derive(Clone, Copy, Debug)]
+pub struct GpuEntry {
+    /// Its GPU engine for a scenario and a seed, on a GPU.
+    pub engine: fn(&Scenario, u32, Gpu) -> Result<Box<dyn Engine>>,
+    /// Its benchmark world on a GPU, as [`ModelEntry::bench_world`].
+    pub bench_world: GpuBenchWorld,
+}
+
+/// [`GpuEntry::bench_world`]: agents, seed, scalar type, the GPU.
+pub type GpuBenchWorld = fn(usize, u32, ScalarType, Gpu) -> Result<Box<dyn Engine>>;
 
 /// Every built-in model.
 pub const BUILTIN: &[ModelEntry] = &[
@@ -39,7 +56,21 @@ pub const BUILTIN: &[ModelEntry] = &[
         dim: 2,
         check: crate::ants::scenario::check,
         engine: |sc, seed| Ok(Box::new(AntSim::from_scenario(sc, seed)?)),
-        bench_world: |n, seed| Box::new(bench_ant_world(n, seed)),
+        bench_world: |n, seed, scalar| Box::new(bench_ant_world(n, seed, scalar)),
+        gpu: Some(GpuEntry {
+            engine: |sc, seed, gpu| {
+                Ok(Box::new(GpuAntSim::new(
+                    AntSim::from_scenario(sc, seed)?,
+                    gpu,
+                )?))
+            },
+            bench_world: |n, seed, scalar, gpu| {
+                Ok(Box::new(GpuAntSim::new(
+                    bench_ant_world(n, seed, scalar),
+                    gpu,
+                )?))
+            },
+        }),
     },
     ModelEntry {
         name: "bee",
@@ -47,7 +78,8 @@ pub const BUILTIN: &[ModelEntry] = &[
         dim: 3,
         check: crate::bees::scenario::check,
         engine: |sc, seed| Ok(Box::new(BeeSim::from_scenario(sc, seed)?)),
-        bench_world: |n, seed| Box::new(bench_bee_world(n, seed)),
+        bench_world: |n, seed, scalar| Box::new(bench_bee_world(n, seed, scalar)),
+        gpu: None,
     },
 ];
 
@@ -126,7 +158,18 @@ pub fn get(name: &str) -> Result<&'static ModelEntry> {
 /// [`BeeSim::from_scenario`]).
 pub fn engine(sc: &Scenario, seed: u32) -> Result<Box<dyn Engine>> {
     let model = sc.groups.first().ok_or(SimError::NoAgents)?.model.as_str();
-    (get(model)?.engine)(sc, seed)
+    let entry = get(model)?;
+    match sc.backend {
+        Backend::Cpu => (entry.engine)(sc, seed),
+        Backend::Gpu => (gpu_entry(entry)?.engine)(sc, seed, Gpu::new()?),
+    }
+}
+
+/// The GPU engine of `entry`, or [`SimError::NoGpuEngine`].
+fn gpu_entry(entry: &ModelEntry) -> Result<GpuEntry> {
+    entry.gpu.ok_or_else(|| SimError::NoGpuEngine {
+        model: entry.name.into(),
+    })
 }
 
 /// The synthetic benchmark world of model `name` with `agents` agents ([`bench_ant_world`],
@@ -135,8 +178,18 @@ pub fn engine(sc: &Scenario, seed: u32) -> Result<Box<dyn Engine>> {
 /// # Errors
 ///
 /// [`SimError::UnknownModel`] for a model without an entry.
-pub fn bench_engine(name: &str, agents: usize, seed: u32) -> Result<Box<dyn Engine>> {
-    Ok((get(name)?.bench_world)(agents, seed))
+pub fn bench_engine(
+    name: &str,
+    agents: usize,
+    seed: u32,
+    scalar: ScalarType,
+    backend: Backend,
+) -> Result<Box<dyn Engine>> {
+    let entry = get(name)?;
+    match backend {
+        Backend::Cpu => Ok((entry.bench_world)(agents, seed, scalar)),
+        Backend::Gpu => (gpu_entry(entry)?.bench_world)(agents, seed, scalar, Gpu::new()?),
+    }
 }
 
 #[cfg(test)]
@@ -147,7 +200,7 @@ mod tests {
     fn every_built_in_model_names_itself() {
         for m in BUILTIN {
             assert_eq!(find(m.name).map(|e| e.name), Some(m.name));
-            assert_eq!((m.bench_world)(10, 1).model(), m.name);
+            assert_eq!((m.bench_world)(10, 1, ScalarType::F32).model(), m.name);
         }
         assert!(matches!(
             get("wasp"),

@@ -11,7 +11,7 @@ use crate::output::{
     self, Frame, RenderOptions, RunLog, Scene, Shape, ShapeKind, Summary,
     summary::{GroupSummary, pair_stats, state_counts_of},
 };
-use crate::scenario::{Action, ObjectKind, Scenario, ScenarioWarning, World};
+use crate::scenario::{Action, Backend, ObjectKind, Scenario, ScenarioWarning, World};
 use crate::{Result, SimError};
 
 /// How to run a scenario.
@@ -26,6 +26,8 @@ pub struct RunOptions {
     pub seed: Option<u32>,
     /// Worker threads (default: all cores).
     pub threads: Option<usize>,
+    /// Override the scenario's backend.
+    pub backend: Option<Backend>,
     /// Show a progress bar.
     pub progress: bool,
     /// The scenario's warnings (from [`scenario::resolve_with_warnings`]), recorded in the run
@@ -66,6 +68,9 @@ pub fn run_with(
     if let Some(steps) = opts.steps {
         sc.set_steps(steps);
     }
+    if let Some(backend) = opts.backend {
+        sc.backend = backend;
+    }
     // The overrides go through the scenario's own rules (`--steps 0` like `steps = 0`).
     sc.validate()?;
     let seed = opts.seed.unwrap_or(sc.seed);
@@ -89,6 +94,9 @@ pub fn run_with(
             let dir = stage.path();
             pool.install(|| {
                 let engine = engine(&sc, seed)?;
+                if let Some(a) = engine.adapter() {
+                    log.line(format_args!("backend gpu: {a}"))?;
+                }
                 let summary = summary_for(&sc, seed, threads, &*engine);
                 run_loop(&sc, engine, summary, opts, dir, &mut log)
             })
@@ -133,6 +141,7 @@ fn summary_for(sc: &Scenario, seed: u32, threads: usize, engine: &dyn Engine) ->
             })
             .collect(),
         backend: engine.backend().into(),
+        adapter: engine.adapter(),
         threads: threads as u32,
         collision_distance: engine.collision_distance(),
         ..Summary::default()

@@ -191,6 +191,7 @@ fn hashes(name: &str, scalar: ScalarType) -> (u64, u64) {
         steps: Some(STEPS.min(sc.steps)),
         seed: None,
         threads: Some(2),
+        backend: None,
         progress: false,
         warnings: Vec::new(),
     };

@@ -13,6 +13,7 @@ fn run_fig7a(out: &Path, threads: usize) -> swarm_sim::output::Summary {
         steps: Some(600),
         seed: None,
         threads: Some(threads),
+        backend: None,
         progress: false,
         warnings: Vec::new(),
     };

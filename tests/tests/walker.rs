@@ -102,6 +102,7 @@ fn the_run_loop_writes_the_walkers_outputs() {
         steps: None,
         seed: None,
         threads: Some(1),
+        backend: None,
         progress: false,
         warnings: Vec::new(),
     };

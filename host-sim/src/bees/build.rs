@@ -204,8 +204,18 @@ pub const FIG11_DENSITY: f32 = 1000.0 / (40.0 * 12.0 * 40.0);
 /// A swarm of `n` bees (Table I "over grassland", `f32`) spread uniformly at the density of
 /// chen Fig. 11 in a 40:12:40 box, over a ground slab, among four shafts, flying to a nest
 /// target in the middle: every kind of interaction happens somewhere. For n = 1000 the volume
-/// is the Fig. 11 scenario's (60 × 30 × 60).
-pub fn bench_bee_world(n: usize, seed: u32) -> BeeSim {
+/// is the Fig. 11 scenario's (60 × 30 × 60). The bees compute in `scalar`.
+pub fn bench_bee_world(n: usize, seed: u32, scalar: ScalarType) -> BeeSim {
+    match scalar {
+        ScalarType::F32 => bench_world::<f32>(n, seed),
+        ScalarType::Fixed => bench_world::<Fx>(n, seed),
+    }
+}
+
+fn bench_world<S: SimScalar>(n: usize, seed: u32) -> BeeSim
+where
+    AnyBeeGroup: From<BeeGroup<S>>,
+{
     let params = BeeParams::<f32>::grassland();
     let s = ((n.max(1) as f32 / (FIG11_DENSITY * 40.0 * 12.0 * 40.0)).cbrt()).clamp(0.2, 300.0);
     let (sx, sy) = (40.0 * s, 12.0 * s);
@@ -250,12 +260,14 @@ pub fn bench_bee_world(n: usize, seed: u32) -> BeeSim {
         .map(|i| {
             let r = |k| draw(seed, i, k);
             BeeState::new(
-                Vec3::new(10.0 + r(0) * sx, 4.0 + r(1) * sy, 10.0 + r(2) * sx),
+                Vec3::from_f32(10.0 + r(0) * sx, 4.0 + r(1) * sy, 10.0 + r(2) * sx),
                 Vec3::zero(),
             )
         })
         .collect();
-    let params = params.checked().expect("Table I parameters are valid");
+    let params = BeeParams::<S>::grassland()
+        .checked()
+        .expect("Table I parameters are valid");
     let group = BeeGroup::new("bench".into(), 0, params, Some(5), states);
     BeeSim::new(w, vec![group.into()], seed)
 }

@@ -188,7 +188,11 @@ fn long_runs_wrap_the_frame_time_below_the_input_limit() {
 #[test]
 #[ignore = "timing; run in release with --ignored --nocapture"]
 fn bees_throughput() {
-    let r = crate::bench::bench("bee", 100_000, 20, Some(2)).unwrap();
+    let r = crate::bench::bench(&crate::bench::BenchSpec {
+        threads: Some(2),
+        ..crate::bench::BenchSpec::new("bee", 100_000, 20)
+    })
+    .unwrap();
     println!(
         "{} bees × {} steps on {} threads: {:.3} s, {:.3e} agent-steps/s ({})",
         r.agents, r.steps, r.threads, r.seconds, r.agent_steps_per_s, r.machine

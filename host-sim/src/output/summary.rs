@@ -53,6 +53,9 @@ pub struct Summary {
     pub groups: Vec<GroupSummary>,
     /// Backend ("cpu" or "gpu").
     pub backend: String,
+    /// The GPU adapter of the `gpu` backend.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub adapter: Option<String>,
     /// Worker threads.
     pub threads: u32,
     /// Wall-clock time of the simulation loop, seconds.
@@ -350,6 +353,7 @@ mod tests {
                 scalar: "f32".into(),
             }],
             backend: "cpu".into(),
+            adapter: None,
             threads: 2,
             wall_seconds: 1.5,
             agent_steps_per_s: 1.0e6,

@@ -82,6 +82,7 @@ impl RawScenario {
             objects,
             events,
             outputs: self.outputs,
+            backend: self.backend,
             source: None,
         })
     }
@@ -118,6 +119,7 @@ impl From<Scenario> for RawScenario {
             objects: s.objects.into_iter().map(Into::into).collect(),
             events: s.events.into_iter().map(Into::into).collect(),
             outputs: s.outputs,
+            backend: s.backend,
         }
     }
 }

@@ -71,7 +71,7 @@ pub use load::check_steps;
 pub use params::{ParamsOverride, Preset, PresetOverride};
 pub use problem::Problem;
 pub use types::{
-    Action, Event, Group, MAX_AGENTS, MAX_COORD, MAX_TARGET_PARTICLES, Model, Object, ObjectKind,
-    Outputs, ScalarType, Scenario, Spawn, SpawnRegion, World,
+    Action, Backend, Event, Group, MAX_AGENTS, MAX_COORD, MAX_TARGET_PARTICLES, Model, Object,
+    ObjectKind, Outputs, ScalarType, Scenario, Spawn, SpawnRegion, World,
 };
 pub use warning::{ScenarioWarning, WarningKind};

@@ -11,7 +11,7 @@ use serde::de::{self, MapAccess, Visitor};
 use serde::ser::SerializeMap;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use super::types::{Model, Outputs, ScalarType};
+use super::types::{Backend, Model, Outputs, ScalarType};
 
 /// The whole file.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -33,6 +33,8 @@ pub(crate) struct RawScenario {
     pub events: Vec<RawEvent>,
     #[serde(default)]
     pub outputs: Outputs,
+    #[serde(default, skip_serializing_if = "Backend::is_default")]
+    pub backend: Backend,
 }
 
 /// `[world]`.

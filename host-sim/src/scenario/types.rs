@@ -47,6 +47,8 @@ pub struct Scenario {
     pub events: Vec<Event>,
     /// What a run records.
     pub outputs: Outputs,
+    /// Who computes the decisions (`backend = "gpu"`; default `cpu`).
+    pub backend: Backend,
     /// The file the scenario was read from (not serialized).
     pub source: Option<PathBuf>,
 }
@@ -206,8 +208,40 @@ impl fmt::Display for Model {
     }
 }
 
+/// Who computes the agents' decisions: `backend = "cpu"` (the default; rayon over the cores)
+/// or `"gpu"` (wgpu compute kernels; `--backend` on `swarm run` overrides the file). In fixed
+/// point both decide the same bits.
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum,
+)]
+#[serde(rename_all = "snake_case")]
+pub enum Backend {
+    /// The CPU engine (the default).
+    #[default]
+    Cpu,
+    /// The GPU engine of the model (wgpu; lavapipe where there is no GPU).
+    Gpu,
+}
+
+impl Backend {
+    /// `cpu` or `gpu`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Backend::Cpu => "cpu",
+            Backend::Gpu => "gpu",
+        }
+    }
+
+    /// Whether it is the default (`cpu`): not written in a scenario file.
+    pub fn is_default(&self) -> bool {
+        *self == Backend::Cpu
+    }
+}
+
 /// The scalar type a group's controllers compute in.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum ScalarType {
     /// `"f32"` (the default).

@@ -28,7 +28,11 @@ pub static ENTRY: ModelEntry = ModelEntry {
     dim: 2,
     check,
     engine: |sc, seed| from_scenario(sc, seed),
-    bench_world: |n, seed| Box::new(WalkSim::<f32>::new(checked(WalkParams::default()), n, seed)),
+    // The walker benchmarks in f32 whatever the scalar asked for (a test model).
+    bench_world: |n, seed, _scalar| {
+        Box::new(WalkSim::<f32>::new(checked(WalkParams::default()), n, seed))
+    },
+    gpu: None,
 };
 
 /// Parameters the rules have passed.

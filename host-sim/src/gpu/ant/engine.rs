@@ -500,6 +500,9 @@ impl Engine for GpuAntSim {
     fn backend(&self) -> &'static str {
         "gpu"
     }
+    fn adapter(&self) -> Option<String> {
+        Some(self.gpu.info().to_string())
+    }
     fn decide(&mut self, phase: usize) -> Result<()> {
         if let Some(e) = self.failed.take() {
             return Err(e);

@@ -1,0 +1,126 @@
+//! The GPU backend's promise, end to end: every built-in scenario of a model with a GPU engine,
+//! in fixed point, run by `swarm run` on the GPU writes the CPU run's bytes: `positions.npy`,
+//! `trajectories.csv`, `scene.json` and `summary.json` (without what depends on the machine and
+//! the moment: wall time, rate, threads, backend, adapter), over 1,000 ticks with the
+//! scenario's events moved into them, with 1 and 2 CPU threads. On lavapipe in CI (the test
+//! command installs it); a machine without any Vulkan driver fails here, as it should.
+
+use std::path::Path;
+
+use swarm_sim::run::{RunOptions, run};
+use swarm_sim::scenario::{self, Backend, ScalarType, Scenario};
+
+/// Ticks per run.
+const STEPS: u32 = 1000;
+
+/// The files compared byte for byte (the summary separately, normalised).
+const FILES: &[&str] = &["positions.npy", "trajectories.csv", "scene.json"];
+
+/// Built-in scenario `name` in fixed point over [`STEPS`] ticks, its events moved into them
+/// (scaled by their step), no pictures.
+fn fixed(name: &str) -> Scenario {
+    let mut sc = scenario::builtin(name).expect("built-in");
+    for g in &mut sc.groups {
+        g.scalar = ScalarType::Fixed;
+    }
+    for e in &mut sc.events {
+        e.step = (u64::from(e.step) * u64::from(STEPS) / u64::from(sc.steps)) as u32;
+    }
+    sc.steps = STEPS;
+    sc.outputs.render = false;
+    sc.outputs.gif = false;
+    sc.outputs.trajectories = true;
+    sc.outputs.npy = true;
+    sc
+}
+
+/// The summary without what depends on the machine, the moment and the backend.
+fn normalised_summary(dir: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(dir.join("summary.json")).expect("summary.json");
+    let mut v: serde_json::Value = serde_json::from_str(&text).expect("summary is JSON");
+    let obj = v.as_object_mut().expect("summary is an object");
+    for k in [
+        "wall_seconds",
+        "agent_steps_per_s",
+        "threads",
+        "backend",
+        "adapter",
+    ] {
+        obj.remove(k);
+    }
+    v
+}
+
+/// Runs `sc` on `backend` with `threads` threads into `dir`; returns the backend the summary
+/// names.
+fn run_on(sc: &Scenario, backend: Backend, threads: usize, dir: &Path) -> String {
+    let opts = RunOptions {
+        out: dir.to_path_buf(),
+        steps: None,
+        seed: None,
+        threads: Some(threads),
+        backend: Some(backend),
+        progress: false,
+        warnings: Vec::new(),
+    };
+    let report = run(sc, &opts).unwrap_or_else(|e| panic!("{} on {backend:?}: {e}", sc.name));
+    report.summary.backend
+}
+
+fn same_bytes_on_the_gpu(name: &str) {
+    let sc = fixed(name);
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let cpu = tmp.path().join("cpu");
+    assert_eq!(run_on(&sc, Backend::Cpu, 2, &cpu), "cpu");
+    for threads in [1, 2] {
+        let gpu = tmp.path().join(format!("gpu-{threads}"));
+        assert_eq!(run_on(&sc, Backend::Gpu, threads, &gpu), "gpu");
+        for f in FILES {
+            let (a, b) = (std::fs::read(cpu.join(f)), std::fs::read(gpu.join(f)));
+            let (a, b) = (a.expect("CPU output"), b.expect("GPU output"));
+            assert!(a == b, "{name}: {f} differs on the GPU ({threads} threads)");
+        }
+        assert_eq!(
+            normalised_summary(&cpu),
+            normalised_summary(&gpu),
+            "{name}: summary.json differs on the GPU ({threads} threads)"
+        );
+    }
+}
+
+/// One test per built-in scenario of the models with a GPU engine.
+macro_rules! gpu_is_cpu {
+    ($($test:ident: $name:literal,)*) => {$(
+        #[test]
+        fn $test() {
+            same_bytes_on_the_gpu($name);
+        }
+    )*};
+}
+
+gpu_is_cpu! {
+    ants_fig7a: "ants-fig7a-single-colony",
+    ants_fig7b: "ants-fig7b-obstacles",
+    ants_fig8a: "ants-fig8a-hybrid",
+    ants_fig8b: "ants-fig8b-hybrid-obstacles",
+    ants_fig11: "ants-fig11-dynamic-obstacles",
+    ants_fig12: "ants-fig12-moved-food",
+    ants_fig13: "ants-fig13-disturbance",
+    ants_fig14: "ants-fig14-waypoints",
+    ants_fig1c: "ants-fig1c-heart",
+}
+
+/// Every built-in scenario is covered: a model's scenarios join the list above when its GPU
+/// engine lands.
+#[test]
+fn every_built_in_ant_scenario_is_compared() {
+    let here = include_str!("gpu_runs.rs");
+    for name in scenario::builtin_names() {
+        if name.starts_with("ants-") {
+            assert!(
+                here.contains(&format!("\"{name}\"")),
+                "{name} is not compared"
+            );
+        }
+    }
+}
