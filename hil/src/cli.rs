@@ -15,7 +15,7 @@ use crate::qemu::{QemuRun, mirror_in_qemu};
 use crate::transport::{FaultSpec, Faulty, SerialTransport, TcpTransport, Transport};
 use crate::{HilError, Verdict};
 use clap::{Parser, Subcommand, ValueEnum};
-use swarm_sim::scenario::{ScalarType, Scenario};
+use swarm_sim::scenario::{Backend, ScalarType, Scenario};
 
 #[derive(Parser)]
 #[command(
@@ -83,6 +83,10 @@ struct Run {
     /// Number type of the device (every group of the scenario runs in it).
     #[arg(long, value_enum, default_value_t = Scalar::F32)]
     scalar: Scalar,
+    /// Who makes the host's decisions the device is compared with: `cpu` or `gpu` (the model's
+    /// GPU engine; in fixed point the same bits). Default: the scenario's `backend`.
+    #[arg(long, value_enum)]
+    backend: Option<Backend>,
     /// Requests in flight at most: cut after the handshake to what the device says it
     /// buffers while computing (`Identity.rx_buffer`; 1 for a polled UART) unless
     /// `--flow-control`.
@@ -386,6 +390,10 @@ fn checked(run: &Run, reset_at_step: Option<u32>) -> Result<(Scenario, FaultSpec
         .inject
         .parse()
         .map_err(|e: crate::HilError| usage(e.to_string()))?;
+    let mut sc = sc;
+    if let Some(b) = run.backend {
+        sc.backend = b;
+    }
     Ok((sc, faults))
 }
 

@@ -90,6 +90,11 @@ pub struct MirrorReport {
     pub scenario: String,
     /// The model (`ant`, `bee`, ...: [`Engine::model`]).
     pub model: String,
+    /// Who made the host's decisions: `cpu` or `gpu` ([`Engine::backend`]).
+    pub backend: String,
+    /// The GPU adapter of the `gpu` backend.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub adapter: Option<String>,
     /// The device's identity.
     pub device: String,
     /// The link.
@@ -181,6 +186,9 @@ impl MirrorReport {
             self.mismatches,
             self.verdict
         );
+        if let Some(a) = &self.adapter {
+            s += &format!("host decisions made on the GPU: {a}\n");
+        }
         if let Some(f) = &self.failure {
             s += &format!("stopped: {f}\n");
         }
@@ -343,7 +351,12 @@ fn mirror_steps<T: Transport>(
         chosen: pick_agents(engine.agents(), opts.agents),
     };
     let model = engine.model();
-    run.finish(
+    let (backend, adapter) = (engine.backend(), engine.adapter());
+    let host = |r: &mut MirrorReport| {
+        r.backend = backend.into();
+        r.adapter = adapter.clone();
+    };
+    let result = run.finish(
         name,
         model,
         client,
@@ -364,7 +377,14 @@ fn mirror_steps<T: Transport>(
             }
             Ok(())
         },
-    )
+    );
+    match result {
+        Ok(mut r) => {
+            host(&mut r);
+            Ok(r)
+        }
+        Err(e) => Err(e.with_report(host)),
+    }
 }
 
 /// An open session with the device, re-opened when the device loses it (a reset).
@@ -523,6 +543,8 @@ fn report<T: Transport>(
     MirrorReport {
         scenario: scenario.to_string(),
         model: model.to_string(),
+        backend: String::new(),
+        adapter: None,
         device: device.name.to_string(),
         transport: String::new(),
         agents,

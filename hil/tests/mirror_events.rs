@@ -13,7 +13,7 @@ use swarm_hil::soft::{SoftDevice, serve};
 use swarm_hil::transport::memory_pair;
 use swarm_sim::output::{self, Frame, read_csv, write_csv};
 use swarm_sim::run::{RunOptions, run};
-use swarm_sim::scenario::{self, Action, Event, ScalarType, Scenario};
+use swarm_sim::scenario::{self, Action, Backend, Event, ScalarType, Scenario};
 
 /// Steps mirrored: every event below falls inside them.
 const STEPS: u32 = 10;
@@ -103,6 +103,7 @@ fn mirrored(sc: &Scenario) -> (MirrorReport, Frame) {
     let r = mirror_with_events(sc, &mut *engine, &mut client, &opts, &mut |_| Ok(())).unwrap();
     soft.stop().unwrap();
     assert_eq!(engine.next_step(), STEPS);
+    engine.sync().unwrap();
     (r, engine.frame())
 }
 
@@ -136,6 +137,7 @@ fn without_events(sc: &Scenario) -> Frame {
     for _ in 0..STEPS {
         engine.tick().unwrap();
     }
+    engine.sync().unwrap();
     engine.frame()
 }
 
@@ -154,18 +156,38 @@ fn differing(a: &Frame, b: &Frame) -> usize {
 #[test]
 fn a_mirrored_scenario_applies_its_events_and_ends_where_its_run_ends() {
     let cases = [
-        ("disturbance", disturbance(), ScalarType::F32),
-        ("disturbance-fixed", disturbance(), ScalarType::Fixed),
-        ("rock", rock_on_the_nest(), ScalarType::F32),
+        ("disturbance", disturbance(), ScalarType::F32, Backend::Cpu),
+        (
+            "disturbance-fixed",
+            disturbance(),
+            ScalarType::Fixed,
+            Backend::Cpu,
+        ),
+        ("rock", rock_on_the_nest(), ScalarType::F32, Backend::Cpu),
+        // The device against decisions made on the GPU (issue 14).
+        (
+            "disturbance-fixed-gpu",
+            disturbance(),
+            ScalarType::Fixed,
+            Backend::Gpu,
+        ),
+        (
+            "rock-fixed-gpu",
+            rock_on_the_nest(),
+            ScalarType::Fixed,
+            Backend::Gpu,
+        ),
     ];
-    for (name, sc, scalar) in cases {
-        let sc = with_scalar(&sc, scalar);
+    for (name, sc, scalar, backend) in cases {
+        let mut sc = with_scalar(&sc, scalar);
+        sc.backend = backend;
         let dir = scratch(name);
         let (r, frame) = mirrored(&sc);
         assert_eq!(r.decisions, 25 * 2 * u64::from(STEPS), "{name}");
         assert_eq!(r.mismatches, 0, "{name}: {}", r.human());
         assert!(r.passed(), "{name}: {}", r.human());
         assert_eq!(r.model, "ant", "{name}");
+        assert_eq!(r.backend, backend.name(), "{name}");
         assert_eq!(frame.step, STEPS, "{name}");
         // The events changed where the ants are ...
         let moved = differing(&frame, &without_events(&sc));
