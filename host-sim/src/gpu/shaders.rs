@@ -270,6 +270,18 @@ pub const BEE_LAYOUT: Module = Module {
     over_scalar: true,
 };
 
+/// The bee world as `u32` words, the layout of [`crate::gpu::bee::world`] (binding 1): its
+/// obstacles (`bee_world_obstacle`) and their geometry over the scalar (`bee_world_surface`:
+/// `sphere_surface`, `box_surface_open`, `shaft_surface_open` of `host-sim/src/bees/world.rs`),
+/// the targets (`bee_world_target_center`), their particles sorted by cell, the ranges, the
+/// bounds and the grids' cells of a point over the scalar (`bee_world_cell`).
+pub const BEE_WORLD: Module = Module {
+    name: "bee_world",
+    source: include_str!("../../../shaders/bee_world.wgsl"),
+    uses: &[&GEOM],
+    over_scalar: true,
+};
+
 /// The neighbour grid's kernels: agents sorted by cell (count, multi-level exclusive scan, a
 /// stable radix sort), driven by [`GpuGrid`](super::grid::GpuGrid).
 pub const GRID: Module = Module {
@@ -306,6 +318,7 @@ pub const ALL: &[&Module] = &[
     &BEE_OSCILLATION,
     &BEE_STEP,
     &BEE_LAYOUT,
+    &BEE_WORLD,
     &GRID,
 ];
 

@@ -4,7 +4,7 @@
 //! Rust `step_checked` for [`Fx`](swarm_core::Fx); [`SCALAR_F32`]: measured), the word layout of
 //! its values ([`layout`]), and a kernel that runs `bee_step_checked` once per element of packed
 //! words ([`BeeKernels`]): the harness of the tests, and the controller of the GPU engine to
-//! come.
+//! come. [`world`] is the bee world as words for the sensing kernels.
 //!
 //! [`SCALAR_FX`]: super::shaders::SCALAR_FX
 //! [`SCALAR_F32`]: super::shaders::SCALAR_F32
@@ -12,6 +12,7 @@
 pub mod layout;
 #[cfg(test)]
 mod tests;
+pub mod world;
 
 use swarm_core::Scalar;
 
