@@ -282,6 +282,17 @@ pub const BEE_WORLD: Module = Module {
     over_scalar: true,
 };
 
+/// What a bee senses: `host-sim/src/bees/sense.rs` over the scalar (`bee_sense_frame`, the
+/// frame of `bee_frame`; `bee_sense_neighbours`, `bee_sense_particles`, `bee_sense_obstacle`),
+/// from the sensed bees (struct of arrays), the GPU grid and the world's words; bit for bit over
+/// `Fx`. Driven by [`BeeSense`](crate::gpu::bee::sense::BeeSense).
+pub const BEE_SENSE: Module = Module {
+    name: "bee_sense",
+    source: include_str!("../../../shaders/bee_sense.wgsl"),
+    uses: &[&BEE_WORLD, &BEE_FRAME],
+    over_scalar: true,
+};
+
 /// The neighbour grid's kernels: agents sorted by cell (count, multi-level exclusive scan, a
 /// stable radix sort), driven by [`GpuGrid`](super::grid::GpuGrid).
 pub const GRID: Module = Module {
@@ -319,6 +330,7 @@ pub const ALL: &[&Module] = &[
     &BEE_STEP,
     &BEE_LAYOUT,
     &BEE_WORLD,
+    &BEE_SENSE,
     &GRID,
 ];
 
