@@ -13,6 +13,8 @@
 pub mod layout;
 pub mod sense;
 #[cfg(test)]
+mod sense_tests;
+#[cfg(test)]
 mod tests;
 pub mod world;
 
