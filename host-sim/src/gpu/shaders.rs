@@ -281,6 +281,29 @@ pub const BEE_LAYOUT: Module = Module {
     over_scalar: true,
 };
 
+/// The bee world as `u32` words, the layout of [`crate::gpu::bee::world`] (binding 1): its
+/// obstacles (`bee_world_obstacle`) and their geometry over the scalar (`bee_world_surface`:
+/// `sphere_surface`, `box_surface_open`, `shaft_surface_open` of `host-sim/src/bees/world.rs`),
+/// the targets (`bee_world_target_center`), their particles sorted by cell, the ranges, the
+/// bounds and the grids' cells of a point over the scalar (`bee_world_cell`).
+pub const BEE_WORLD: Module = Module {
+    name: "bee_world",
+    source: include_str!("../../../shaders/bee_world.wgsl"),
+    uses: &[&GEOM],
+    over_scalar: true,
+};
+
+/// What a bee senses: `host-sim/src/bees/sense.rs` over the scalar (`bee_sense_frame`, the
+/// frame of `bee_frame`; `bee_sense_neighbours`, `bee_sense_particles`, `bee_sense_obstacle`),
+/// from the sensed bees (struct of arrays), the GPU grid and the world's words; bit for bit over
+/// `Fx`. Driven by [`BeeSense`](crate::gpu::bee::sense::BeeSense).
+pub const BEE_SENSE: Module = Module {
+    name: "bee_sense",
+    source: include_str!("../../../shaders/bee_sense.wgsl"),
+    uses: &[&BEE_WORLD, &BEE_FRAME],
+    over_scalar: true,
+};
+
 /// The neighbour grid's kernels: agents sorted by cell (count, multi-level exclusive scan, a
 /// stable radix sort), driven by [`GpuGrid`](super::grid::GpuGrid).
 pub const GRID: Module = Module {
@@ -318,6 +341,8 @@ pub const ALL: &[&Module] = &[
     &BEE_OSCILLATION,
     &BEE_STEP,
     &BEE_LAYOUT,
+    &BEE_WORLD,
+    &BEE_SENSE,
     &GRID,
 ];
 

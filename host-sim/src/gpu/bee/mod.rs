@@ -4,14 +4,19 @@
 //! Rust `step_checked` for [`Fx`](swarm_core::Fx); [`SCALAR_F32`]: measured), the word layout of
 //! its values ([`layout`]), and a kernel that runs `bee_step_checked` once per element of packed
 //! words ([`BeeKernels`]): the harness of the tests, and the controller of the GPU engine to
-//! come.
+//! come. [`sense`] builds the bees' sensor frames on the GPU from the world's words
+//! ([`world`]) and the GPU grid, bit for bit over `Fx`.
 //!
 //! [`SCALAR_FX`]: super::shaders::SCALAR_FX
 //! [`SCALAR_F32`]: super::shaders::SCALAR_F32
 
 pub mod layout;
+pub mod sense;
+#[cfg(test)]
+mod sense_tests;
 #[cfg(test)]
 mod tests;
+pub mod world;
 
 use swarm_core::Scalar;
 
