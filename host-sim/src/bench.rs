@@ -62,6 +62,16 @@ pub struct BenchReport {
     pub agent_steps_per_s: f64,
     /// Milliseconds per tick (seconds / steps).
     pub ms_per_tick: f64,
+    /// GPU: the milliseconds of each pass of a tick (timestamp queries, the mean of
+    /// [`PROFILED_TICKS`] ticks after the timed ones), where the adapter has timestamps.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kernel_ms: Option<std::collections::BTreeMap<String, f64>>,
+    /// GPU: the bytes the engine holds on the device, and per agent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub device_bytes: Option<u64>,
+    /// GPU: [`BenchReport::device_bytes`] per agent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub device_bytes_per_agent: Option<f64>,
     /// Peak resident memory of the process (VmHWM), bytes; 0 where unavailable.
     pub peak_rss_bytes: u64,
     /// Scalar type of the controllers.
@@ -97,6 +107,17 @@ pub fn bench(spec: &BenchSpec) -> Result<BenchReport> {
         }
         engine.sync()?;
         let seconds = t0.elapsed().as_secs_f64();
+        let mut kernel_ms: Option<std::collections::BTreeMap<String, f64>> = None;
+        for _ in 0..PROFILED_TICKS {
+            let Some(passes) = engine.profile_tick()? else {
+                break;
+            };
+            let sums = kernel_ms.get_or_insert_default();
+            for (name, ms) in passes {
+                *sums.entry(name.into()).or_default() += ms / f64::from(PROFILED_TICKS);
+            }
+        }
+        let device_bytes = engine.device_bytes();
         Ok(BenchReport {
             model: engine.model().to_owned(),
             backend: engine.backend().into(),
@@ -107,12 +128,18 @@ pub fn bench(spec: &BenchSpec) -> Result<BenchReport> {
             seconds,
             agent_steps_per_s: agents as f64 * f64::from(steps) / seconds.max(1e-9),
             ms_per_tick: seconds * 1e3 / f64::from(steps),
+            kernel_ms,
+            device_bytes,
+            device_bytes_per_agent: device_bytes.map(|b| b as f64 / agents as f64),
             peak_rss_bytes: peak_rss_bytes(),
             scalar: format!("{:?}", spec.scalar.kind()),
             machine: machine(),
         })
     })
 }
+
+/// Ticks profiled after the timed ones (GPU engines on adapters with timestamp queries).
+pub const PROFILED_TICKS: u32 = 3;
 
 /// Peak resident set size (Linux `VmHWM`), 0 where unavailable.
 pub fn peak_rss_bytes() -> u64 {

@@ -77,6 +77,19 @@ pub trait Engine: Send {
     fn sync(&mut self) -> Result<()> {
         Ok(())
     }
+    /// One tick with each of its GPU passes timed (timestamp queries): the passes' names and
+    /// milliseconds; `None` (and no tick) for a CPU engine or an adapter without timestamps.
+    ///
+    /// # Errors
+    ///
+    /// As [`Engine::tick`] and [`Engine::sync`].
+    fn profile_tick(&mut self) -> Result<Option<Vec<(&'static str, f64)>>> {
+        Ok(None)
+    }
+    /// The bytes a GPU engine holds on the device (states, grid, world); `None` on the CPU.
+    fn device_bytes(&self) -> Option<u64> {
+        None
+    }
     /// For each of `agents` (ids), the request phase `phase` ran on and the engine's reply
     /// (call between [`Engine::decide`] and [`Engine::publish`] of that phase).
     ///

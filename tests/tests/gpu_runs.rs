@@ -158,7 +158,10 @@ fn f32_agreement(name: &str) -> F32Agreement {
     for (fa, fb) in a.iter().zip(&b) {
         let mut worst = 0.0f32;
         for (x, y) in fa.agents.iter().zip(&fb.agents) {
-            let d = (0..3).map(|k| (x.pos[k] - y.pos[k]).powi(2)).sum::<f32>().sqrt();
+            let d = (0..3)
+                .map(|k| (x.pos[k] - y.pos[k]).powi(2))
+                .sum::<f32>()
+                .sqrt();
             worst = worst.max(d);
             same += u64::from(x.label == y.label && x.motion == y.motion);
             samples += 1;
@@ -202,7 +205,9 @@ fn f32_on_the_gpu_behaves_as_on_the_cpu() {
         "ants-fig14-waypoints",
     ];
     let mut bad = Vec::new();
-    println!("| scenario | first step differing | max error at tick 100 | at tick 1000 | same label and motion | deliveries CPU / GPU |");
+    println!(
+        "| scenario | first step differing | max error at tick 100 | at tick 1000 | same label and motion | deliveries CPU / GPU |"
+    );
     for name in names {
         let a = f32_agreement(name);
         println!(
@@ -219,5 +224,9 @@ fn f32_on_the_gpu_behaves_as_on_the_cpu() {
             bad.push(format!("{name}: {a:?}"));
         }
     }
-    assert!(bad.is_empty(), "f32 on the GPU behaves otherwise:\n{}", bad.join("\n"));
+    assert!(
+        bad.is_empty(),
+        "f32 on the GPU behaves otherwise:\n{}",
+        bad.join("\n")
+    );
 }

@@ -26,7 +26,7 @@
 //! atomic scatter and per-cell sort would take about 95.
 
 use super::Gpu;
-use super::kernel::Kernel;
+use super::kernel::{Kernel, zeroed};
 use super::shaders::{GRID, WORKGROUP};
 use crate::error::{Result, SimError};
 
@@ -129,15 +129,15 @@ impl GpuGrid {
 
         let n_passes = passes(n_cells);
         let agents = u64::from(max_agents);
-        let starts = storage(gpu, "grid starts", u64::from(n_cells) + 1)?;
-        let order = storage(gpu, "grid order", agents)?;
-        let vals = storage(gpu, "grid values", if n_passes >= 2 { agents } else { 1 })?;
+        let starts = zeroed(gpu, "grid starts", u64::from(n_cells) + 1)?;
+        let order = zeroed(gpu, "grid order", agents)?;
+        let vals = zeroed(gpu, "grid values", if n_passes >= 2 { agents } else { 1 })?;
         let keys = [
-            storage(gpu, "grid keys", if n_passes >= 2 { agents } else { 1 })?,
-            storage(gpu, "grid keys", if n_passes >= 3 { agents } else { 1 })?,
+            zeroed(gpu, "grid keys", if n_passes >= 2 { agents } else { 1 })?,
+            zeroed(gpu, "grid keys", if n_passes >= 3 { agents } else { 1 })?,
         ];
         let max_hist = RADIX * max_agents.div_ceil(RADIX_BLOCK);
-        let hist = storage(gpu, "grid histograms", u64::from(max_hist))?;
+        let hist = zeroed(gpu, "grid histograms", u64::from(max_hist))?;
         let scans = Scans {
             blocks: scan_blocks,
             add: scan_add,
@@ -197,6 +197,15 @@ impl GpuGrid {
         })
     }
 
+    /// The bytes of its buffers on the device (the caller's `cells` not included).
+    pub fn bytes(&self) -> u64 {
+        [&self.starts, &self.order, &self.vals, &self.hist]
+            .into_iter()
+            .chain(&self.keys)
+            .map(wgpu::Buffer::size)
+            .sum()
+    }
+
     /// The agents it can sort.
     pub fn max_agents(&self) -> u32 {
         self.max_agents
@@ -244,6 +253,23 @@ impl GpuGrid {
         cells: &wgpu::Buffer,
         n: u32,
     ) -> Result<()> {
+        self.record_timed(gpu, encoder, cells, n, None)
+    }
+
+    /// [`GpuGrid::record`] in one compute pass whose start and end `timestamps` writes (a
+    /// profiled tick).
+    ///
+    /// # Errors
+    ///
+    /// As [`GpuGrid::record`].
+    pub fn record_timed(
+        &mut self,
+        gpu: &Gpu,
+        encoder: &mut wgpu::CommandEncoder,
+        cells: &wgpu::Buffer,
+        n: u32,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<()> {
         if n > self.max_agents {
             return Err(SimError::GpuGridCapacity {
                 agents: u64::from(n),
@@ -266,7 +292,7 @@ impl GpuGrid {
         encoder.clear_buffer(&self.starts, 0, None);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("grid"),
-            timestamp_writes: None,
+            timestamp_writes: timestamps,
         });
         self.record_starts(bound, &mut pass, n);
         self.record_order(bound, &mut pass, n);
@@ -317,7 +343,7 @@ impl GpuGrid {
             })?;
         let upload = match self.upload.take() {
             Some(b) => b,
-            None => storage(gpu, "grid cells", u64::from(self.max_agents))?,
+            None => zeroed(gpu, "grid cells", u64::from(self.max_agents))?,
         };
         if n > 0 {
             gpu.queue
@@ -453,7 +479,7 @@ impl Scan {
         let mut len = max_len;
         loop {
             let blocks = len.div_ceil(SCAN_BLOCK).max(1);
-            let sums = storage(gpu, "grid scan totals", u64::from(blocks))?;
+            let sums = zeroed(gpu, "grid scan totals", u64::from(blocks))?;
             let params = uniform(gpu, "grid scan params");
             levels.push(Level {
                 group: kernels.blocks.bind(gpu, &[&params, &data, &sums]),
@@ -497,28 +523,6 @@ impl Scan {
             kernels.add.dispatch(pass, &level.add_group, l);
         }
     }
-}
-
-/// A storage buffer of `words` `u32` (at least one: wgpu refuses empty bindings), zeroed.
-fn storage(gpu: &Gpu, label: &'static str, words: u64) -> Result<wgpu::Buffer> {
-    let bytes = 4 * words.max(1);
-    // At most 4 GiB, as in Vulkan: the kernels' 32-bit indices and lengths never overflow.
-    let limit = gpu.max_binding().min(u64::from(u32::MAX));
-    if bytes > limit {
-        return Err(SimError::GpuTooLarge {
-            buffer: label,
-            bytes,
-            limit,
-        });
-    }
-    Ok(gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some(label),
-        size: bytes,
-        usage: wgpu::BufferUsages::STORAGE
-            | wgpu::BufferUsages::COPY_SRC
-            | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    }))
 }
 
 /// A uniform buffer for one dispatch's [`Params`].

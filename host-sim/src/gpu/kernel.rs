@@ -137,6 +137,33 @@ pub fn storage<T: bytemuck::Pod>(gpu: &Gpu, label: &'static str, data: &[T]) -> 
         })
 }
 
+/// A storage buffer of `words` zeroed `u32` (at least one: wgpu refuses empty bindings),
+/// readable, writable and copyable both ways, allocated on the device only.
+///
+/// # Errors
+///
+/// [`SimError::GpuTooLarge`] beyond the adapter's largest storage binding (at most 4 GiB).
+pub fn zeroed(gpu: &Gpu, label: &'static str, words: u64) -> Result<wgpu::Buffer> {
+    let bytes = 4 * words.max(1);
+    // At most 4 GiB, as in Vulkan: the kernels' 32-bit indices and lengths never overflow.
+    let limit = gpu.max_binding().min(u64::from(u32::MAX));
+    if bytes > limit {
+        return Err(SimError::GpuTooLarge {
+            buffer: label,
+            bytes,
+            limit,
+        });
+    }
+    Ok(gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: bytes,
+        usage: wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_SRC
+            | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    }))
+}
+
 /// Copies the first `len` elements of `buffer` to the host (waits for the GPU).
 ///
 /// # Errors

@@ -22,14 +22,14 @@ use wgpu::util::DeviceExt;
 
 use super::layout::{self, PLAN_FRAME_WORDS, PLAN_WORDS, RESOLVE_FRAME_WORDS, STATE_WORDS, Word};
 use super::sense::SENSE_KERNEL;
-use super::world::{GridShape, OBJECT_WORDS, sensed_words, world_words};
+use super::world::{GridShape, OBJECT_WORDS, SENSED_WORDS, sensed_words, world_words};
 use crate::ants::{AntGroup, AntObjectKind, AntSim, ROUTE_ADVANCE};
 use crate::by_scalar;
 use crate::engine::{Device, Engine, Exchange, exchanges_by_slot, group_of};
 use crate::error::{Result, SimError};
 use crate::gpu::Gpu;
 use crate::gpu::grid::GpuGrid;
-use crate::gpu::kernel::{Kernel, read_back, storage};
+use crate::gpu::kernel::{Kernel, read_back, storage, zeroed};
 use crate::gpu::shaders::{ANT_TICK, DISPATCH, Module, SCALAR_F32, SCALAR_FX};
 use crate::output::{Frame, Summary};
 use crate::scalar::{AgentGroup, SimScalar};
@@ -89,6 +89,24 @@ fn route_threshold(p: f32) -> u32 {
     lo as u32
 }
 
+/// The passes of a tick, as a profiled tick times them ([`Engine::profile_tick`]).
+const PASSES: [&str; 5] = ["cells", "grid", "plan", "resolve", "commit"];
+
+/// The timestamp queries of a profiled tick: the start and end of each of [`PASSES`].
+struct Profile {
+    set: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+}
+
+/// The timestamp writes of pass `k` of a profiled tick (none otherwise).
+fn writes(profile: Option<&Profile>, k: u32) -> Option<wgpu::ComputePassTimestampWrites<'_>> {
+    profile.map(|p| wgpu::ComputePassTimestampWrites {
+        query_set: &p.set,
+        beginning_of_pass_write_index: Some(2 * k),
+        end_of_pass_write_index: Some(2 * k + 1),
+    })
+}
+
 /// The GPU's buffers of one simulation.
 struct Buffers {
     sense_params: wgpu::Buffer,
@@ -140,6 +158,8 @@ pub struct GpuAntSim {
     unchecked: u32,
     /// A failure to report at the next fallible call (from [`Engine::apply`], which cannot).
     failed: Option<SimError>,
+    /// The timestamp queries of a profiled tick, while it runs.
+    profile: Option<Profile>,
 }
 
 impl GpuAntSim {
@@ -192,21 +212,23 @@ impl GpuAntSim {
             route_threshold(ROUTE_ADVANCE),
             places as u32,
         ];
+        // `per_ant` words for every ant.
+        let words = |per_ant: usize| (n * per_ant) as u64;
         let b = Buffers {
             sense_params: uniform("ant sense params", &[n as u32, 0, 0, 0]),
             tick: uniform("ant tick params", &tick),
             world: storage(&gpu, "ant world", &world),
-            sensed: storage(&gpu, "ant sensed", &vec![0u32; n * 8]),
-            predicted: storage(&gpu, "ant predicted", &vec![0u32; 2 * n]),
-            cells: storage(&gpu, "ant cells", &vec![0u32; n]),
-            states: storage(&gpu, "ant states", &vec![0u32; n * STATE_WORDS]),
-            plans: storage(&gpu, "ant plans", &vec![0u32; n * PLAN_WORDS]),
-            next: storage(&gpu, "ant next states", &vec![0u32; n * STATE_WORDS]),
-            status: storage(&gpu, "ant status", &vec![0u32; 2 * n]),
+            sensed: zeroed(&gpu, "ant sensed", words(SENSED_WORDS))?,
+            predicted: zeroed(&gpu, "ant predicted", words(2))?,
+            cells: zeroed(&gpu, "ant cells", words(1))?,
+            states: zeroed(&gpu, "ant states", words(STATE_WORDS))?,
+            plans: zeroed(&gpu, "ant plans", words(PLAN_WORDS))?,
+            next: zeroed(&gpu, "ant next states", words(STATE_WORDS))?,
+            status: zeroed(&gpu, "ant status", words(2))?,
             params: storage(&gpu, "ant params", &params),
             group: storage(&gpu, "ant groups", &group),
-            shared: storage(&gpu, "ant tick atomics", &[0u32; SHARED_WORDS]),
-            counts: storage(&gpu, "ant counts", &vec![0u32; 2 * places]),
+            shared: zeroed(&gpu, "ant tick atomics", SHARED_WORDS as u64)?,
+            counts: zeroed(&gpu, "ant counts", 2 * places as u64)?,
         };
         let grid = GpuGrid::new(&gpu, n as u32, shape.cells())?;
         let k = Kernels::new(&gpu, scalar, &b, &grid)?;
@@ -222,6 +244,7 @@ impl GpuAntSim {
             grid,
             unchecked: 0,
             failed: None,
+            profile: None,
         };
         out.push_states();
         Ok(out)
@@ -361,6 +384,39 @@ impl GpuAntSim {
     /// Submits what `enc` recorded (the GPU runs it while the host goes on).
     fn submit(&self, enc: wgpu::CommandEncoder) {
         self.gpu.queue.submit([enc.finish()]);
+    }
+
+    /// Pass `k` of [`PASSES`] in `enc`, timed in a profiled tick.
+    fn pass<'e>(&self, enc: &'e mut wgpu::CommandEncoder, k: u32) -> wgpu::ComputePass<'e> {
+        enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(PASSES[k as usize]),
+            timestamp_writes: writes(self.profile.as_ref(), k),
+        })
+    }
+
+    /// The bytes of its buffers on the device.
+    fn bytes(&self) -> u64 {
+        let b = &self.b;
+        [
+            &b.sense_params,
+            &b.tick,
+            &b.world,
+            &b.sensed,
+            &b.predicted,
+            &b.cells,
+            &b.states,
+            &b.plans,
+            &b.next,
+            &b.status,
+            &b.params,
+            &b.group,
+            &b.shared,
+            &b.counts,
+        ]
+        .into_iter()
+        .map(wgpu::Buffer::size)
+        .sum::<u64>()
+            + self.grid.bytes()
     }
 }
 
@@ -515,18 +571,20 @@ impl Engine for GpuAntSim {
                 .write_buffer(&self.b.tick, 4, bytemuck::cast_slice(&[self.sim.step]));
             enc.clear_buffer(&self.b.shared, 0, Some(SHARED_PER_TICK));
             {
-                let mut pass = enc.begin_compute_pass(&Default::default());
+                let mut pass = self.pass(&mut enc, 0);
                 let (k, g) = &self.k.cells;
                 k.dispatch(&mut pass, g, n);
             }
-            self.grid.record(&self.gpu, &mut enc, &self.b.cells, n)?;
-            let mut pass = enc.begin_compute_pass(&Default::default());
+            let timed = writes(self.profile.as_ref(), 1);
+            self.grid
+                .record_timed(&self.gpu, &mut enc, &self.b.cells, n, timed)?;
+            let mut pass = self.pass(&mut enc, 2);
             let (k, g) = &self.k.plan;
             k.dispatch(&mut pass, g, n);
         } else {
             // The tick's largest shift widens the resolve frames' query (AntSenseParams.shift).
             enc.copy_buffer_to_buffer(&self.b.shared, 0, &self.b.sense_params, 4, 4);
-            let mut pass = enc.begin_compute_pass(&Default::default());
+            let mut pass = self.pass(&mut enc, 3);
             let (k, g) = &self.k.resolve;
             k.dispatch(&mut pass, g, n);
         }
@@ -539,7 +597,7 @@ impl Engine for GpuAntSim {
         }
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
         {
-            let mut pass = enc.begin_compute_pass(&Default::default());
+            let mut pass = self.pass(&mut enc, 4);
             let (k, g) = &self.k.commit;
             k.dispatch(&mut pass, g, self.n as u32);
             let (k, g) = &self.k.end;
@@ -559,6 +617,55 @@ impl Engine for GpuAntSim {
     }
     fn sync(&mut self) -> Result<()> {
         self.pull()
+    }
+    fn profile_tick(&mut self) -> Result<Option<Vec<(&'static str, f64)>>> {
+        if !self.gpu.has_timestamps() {
+            return Ok(None);
+        }
+        let queries = 2 * PASSES.len() as u32;
+        let d = &self.gpu.device;
+        let set = d.create_query_set(&wgpu::QuerySetDescriptor {
+            label: Some("ant tick timestamps"),
+            ty: wgpu::QueryType::Timestamp,
+            count: queries,
+        });
+        let resolve = d.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("ant tick timestamps"),
+            size: 8 * u64::from(queries),
+            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        self.profile = Some(Profile { set, resolve });
+        let ticked = self.tick();
+        let Some(p) = self.profile.take() else {
+            unreachable!("set above");
+        };
+        ticked?;
+        let mut enc = self.gpu.device.create_command_encoder(&Default::default());
+        enc.resolve_query_set(&p.set, 0..queries, &p.resolve, 0);
+        self.submit(enc);
+        let t: Vec<u64> = read_back(
+            &self.gpu,
+            "ant tick timestamps",
+            &p.resolve,
+            2 * PASSES.len(),
+        )?;
+        let ns = f64::from(self.gpu.queue.get_timestamp_period());
+        Ok(Some(
+            PASSES
+                .iter()
+                .enumerate()
+                .map(|(k, &name)| {
+                    (
+                        name,
+                        t[2 * k + 1].saturating_sub(t[2 * k]) as f64 * ns / 1e6,
+                    )
+                })
+                .collect(),
+        ))
+    }
+    fn device_bytes(&self) -> Option<u64> {
+        Some(self.bytes())
     }
     fn exchanges(&self, phase: usize, agents: &[u32]) -> Result<Vec<Exchange>> {
         let frames = self.frames(phase)?;
