@@ -33,12 +33,21 @@ struct AntSenseParams {
 }
 
 @group(0) @binding(0) var<uniform> ant_sense_params: AntSenseParams;
-@group(0) @binding(2) var<storage, read> ant_sensed: array<u32>;
+// The sensed ants, one array per field (world.rs, `SENSED_*`): ranges of one buffer, each bound
+// on its own, so no binding holds more than two words an ant (10 million ants fit the 128 MiB
+// bindings of lavapipe).
+@group(0) @binding(2) var<storage, read> ant_sensed_pos_words: array<u32>;
+@group(0) @binding(24) var<storage, read> ant_sensed_arrival_words: array<u32>;
+@group(0) @binding(25) var<storage, read> ant_sensed_ids: array<u32>;
+@group(0) @binding(26) var<storage, read> ant_sensed_labels: array<u32>;
+@group(0) @binding(27) var<storage, read> ant_sensed_nests: array<u32>;
+@group(0) @binding(28) var<storage, read> ant_sensed_origins: array<u32>;
 @group(0) @binding(3) var<storage, read> ant_predicted: array<u32>;
 @group(0) @binding(4) var<storage, read> ant_grid_starts: array<u32>;
 @group(0) @binding(5) var<storage, read> ant_grid_order: array<u32>;
 
-// Where the sensed ants' arrays start, in multiples of the ant count (world.rs, SENSED_*).
+// The sensed ants' arrays: where each starts in the buffer, in multiples of the stride (the ant
+// count rounded up to 64; world.rs, SENSED_*), and the field of ant_sensed_field.
 const ANT_SENSED_POS: u32 = 0u;
 const ANT_SENSED_ARRIVAL: u32 = 2u;
 const ANT_SENSED_ID: u32 = 4u;
@@ -51,20 +60,36 @@ const ANT_SENSE_PIECES: u32 = 24u;
 
 // ---- the sensed ants ----
 
-fn ant_sensed_v2(at: u32) -> vec2<S> {
-    return vec2<S>(s_from_word(ant_sensed[at]), s_from_word(ant_sensed[at + 1u]));
-}
-
 fn ant_sensed_pos(j: u32) -> vec2<S> {
-    return ant_sensed_v2(ANT_SENSED_POS * ant_sense_params.n + 2u * j);
+    return vec2<S>(
+        s_from_word(ant_sensed_pos_words[2u * j]),
+        s_from_word(ant_sensed_pos_words[2u * j + 1u]),
+    );
 }
 
 fn ant_sensed_arrival(j: u32) -> vec2<S> {
-    return ant_sensed_v2(ANT_SENSED_ARRIVAL * ant_sense_params.n + 2u * j);
+    return vec2<S>(
+        s_from_word(ant_sensed_arrival_words[2u * j]),
+        s_from_word(ant_sensed_arrival_words[2u * j + 1u]),
+    );
 }
 
+// The field `field` (ANT_SENSED_ID, _LABEL, _NEST or _ORIGIN) of ant `j`.
 fn ant_sensed_field(field: u32, j: u32) -> u32 {
-    return ant_sensed[field * ant_sense_params.n + j];
+    switch field {
+        case ANT_SENSED_ID: {
+            return ant_sensed_ids[j];
+        }
+        case ANT_SENSED_LABEL: {
+            return ant_sensed_labels[j];
+        }
+        case ANT_SENSED_NEST: {
+            return ant_sensed_nests[j];
+        }
+        default: {
+            return ant_sensed_origins[j];
+        }
+    }
 }
 
 fn ant_predicted_pos(j: u32) -> vec2<S> {

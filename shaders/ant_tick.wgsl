@@ -17,11 +17,17 @@
 // 5. `ant_tick_end_main`: food taken (the collections of the tick, in any order: a saturating
 //    subtraction of their count), and the first refusal kept for the host.
 //
-// Bindings (group 0), besides those of ant_sense.wgsl (0-5) and the frames' output (6): 7 the
-// tick's parameters, 8 the states, 9 the plans, 10 the predictions (written; binding 3 reads
-// them), 11 the next states, 12 the status words (plan, then resolve), 13 the groups'
-// parameters, 14 each ant's group, 15 the tick's atomics, 16 the counts per place, 17 the sensed
-// ants (written; binding 2 reads them), 18 the world (written; binding 1 reads it).
+// Bindings (group 0), besides those of ant_sense.wgsl (0-5, 24-28) and the frames' output (6):
+// 7 the tick's parameters, 8 the states, 9 the plans, 10 the predictions (written; binding 3
+// reads them), 11 the next states, 12 the status words (two an ant: plan, resolve), 13 the
+// groups' parameters, 14 each ant's group, 15 the tick's atomics, 16 the counts per place, 17
+// and 29-33 the sensed ants' arrays (written; 2 and 24-28 read them), 18 the world (written;
+// binding 1 reads it), 35 the chunk.
+//
+// The states, plans and next states (20 or 22 words an ant) are bound a chunk of ants at a time
+// (AntChunk: a dispatch per chunk), so that no binding exceeds the adapter's largest (128 MiB
+// on lavapipe: 1.5 million ants); thread `l` of a chunk serves ant `first + l`, its own words
+// at `l` in those three, every other array by the ant's slot.
 
 struct AntTickParams {
     seed: u32,
@@ -33,7 +39,16 @@ struct AntTickParams {
     places: u32,
 }
 
+// The ants `first..first + len` a dispatch serves.
+struct AntChunk {
+    first: u32,
+    len: u32,
+    pad0: u32,
+    pad1: u32,
+}
+
 @group(0) @binding(7) var<uniform> ant_tick: AntTickParams;
+@group(0) @binding(35) var<uniform> ant_chunk: AntChunk;
 @group(0) @binding(8) var<storage, read_write> ant_tick_states: array<u32>;
 @group(0) @binding(9) var<storage, read_write> ant_tick_plans: array<u32>;
 @group(0) @binding(10) var<storage, read_write> ant_tick_predicted: array<u32>;
@@ -43,7 +58,12 @@ struct AntTickParams {
 @group(0) @binding(14) var<storage, read> ant_tick_group: array<u32>;
 @group(0) @binding(15) var<storage, read_write> ant_tick_shared: array<atomic<u32>>;
 @group(0) @binding(16) var<storage, read_write> ant_tick_counts: array<atomic<u32>>;
-@group(0) @binding(17) var<storage, read_write> ant_tick_sensed: array<u32>;
+@group(0) @binding(17) var<storage, read_write> ant_tick_sensed_pos: array<u32>;
+@group(0) @binding(29) var<storage, read_write> ant_tick_sensed_arrival: array<u32>;
+@group(0) @binding(30) var<storage, read_write> ant_tick_sensed_ids: array<u32>;
+@group(0) @binding(31) var<storage, read_write> ant_tick_sensed_labels: array<u32>;
+@group(0) @binding(32) var<storage, read_write> ant_tick_sensed_nests: array<u32>;
+@group(0) @binding(33) var<storage, read_write> ant_tick_sensed_origins: array<u32>;
 @group(0) @binding(18) var<storage, read_write> ant_tick_world: array<u32>;
 
 // The words of `ant_tick_shared` (host-sim/src/gpu/ant/engine.rs, SHARED_*): the tick's
@@ -59,10 +79,11 @@ const ANT_TICK_KEPT_PHASE: u32 = 5u;
 const ANT_TICK_KEPT_SLOT: u32 = 6u;
 const ANT_TICK_KEPT_STATUS: u32 = 7u;
 
-fn ant_tick_state(i: u32) -> AntState {
+// The state of the chunk's ant `l`.
+fn ant_tick_state(l: u32) -> AntState {
     var w: array<u32, ANT_STATE_WORDS>;
     for (var k = 0u; k < ANT_STATE_WORDS; k = k + 1u) {
-        w[k] = ant_tick_states[i * ANT_STATE_WORDS + k];
+        w[k] = ant_tick_states[l * ANT_STATE_WORDS + k];
     }
     return ant_state_from_words(w);
 }
@@ -84,11 +105,12 @@ fn ant_tick_refused(word: u32, i: u32) {
 @compute @workgroup_size(WORKGROUP)
 fn ant_tick_plan_main(@builtin(global_invocation_id) id: vec3<u32>,
                       @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = thread_index(id, groups);
-    if (i >= ant_sense_params.n) {
+    let l = thread_index(id, groups);
+    if (l >= ant_chunk.len) {
         return;
     }
-    let state = ant_tick_state(i);
+    let i = ant_chunk.first + l;
+    let state = ant_tick_state(l);
     // An ant that stays stopped this tick reads nothing of its frame (xiang2018 §4.1).
     var frame: AntPlanFrame;
     if (state.has_stop && state.stop.remaining > 1u) {
@@ -98,13 +120,13 @@ fn ant_tick_plan_main(@builtin(global_invocation_id) id: vec3<u32>,
     }
     let ctx = StepCtx(ant_tick.seed, ant_sensed_field(ANT_SENSED_ID, i), ant_tick.step);
     let r = ant_plan_checked(state, &frame, ant_tick_params_of(i), ctx);
-    ant_tick_status[i] = r.status;
+    ant_tick_status[2u * i] = r.status;
     if (r.status != ANT_OK) {
         ant_tick_refused(ANT_TICK_PLAN_REFUSED, i);
     }
     let w = ant_plan_to_words(r.plan);
     for (var k = 0u; k < ANT_PLAN_WORDS; k = k + 1u) {
-        ant_tick_plans[i * ANT_PLAN_WORDS + k] = w[k];
+        ant_tick_plans[l * ANT_PLAN_WORDS + k] = w[k];
     }
     ant_tick_predicted[2u * i] = w[ANT_STATE_WORDS];
     ant_tick_predicted[2u * i + 1u] = w[ANT_STATE_WORDS + 1u];
@@ -119,14 +141,14 @@ fn ant_tick_plan_main(@builtin(global_invocation_id) id: vec3<u32>,
 @compute @workgroup_size(WORKGROUP)
 fn ant_tick_resolve_main(@builtin(global_invocation_id) id: vec3<u32>,
                          @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = thread_index(id, groups);
-    let n = ant_sense_params.n;
-    if (i >= n) {
+    let l = thread_index(id, groups);
+    if (l >= ant_chunk.len) {
         return;
     }
+    let i = ant_chunk.first + l;
     var pw: array<u32, ANT_PLAN_WORDS>;
     for (var k = 0u; k < ANT_PLAN_WORDS; k = k + 1u) {
-        pw[k] = ant_tick_plans[i * ANT_PLAN_WORDS + k];
+        pw[k] = ant_tick_plans[l * ANT_PLAN_WORDS + k];
     }
     let plan = ant_plan_from_words(pw);
     // A stopped ant does not move: its resolve frame is never read.
@@ -137,13 +159,13 @@ fn ant_tick_resolve_main(@builtin(global_invocation_id) id: vec3<u32>,
         frame = ant_resolve_frame(i);
     }
     let r = ant_resolve_checked(plan, &frame, ant_tick_params_of(i));
-    ant_tick_status[n + i] = r.status;
+    ant_tick_status[2u * i + 1u] = r.status;
     if (r.status != ANT_OK) {
         ant_tick_refused(ANT_TICK_RESOLVE_REFUSED, i);
     }
     let w = ant_state_to_words(r.state);
     for (var k = 0u; k < ANT_STATE_WORDS; k = k + 1u) {
-        ant_tick_next[i * ANT_STATE_WORDS + k] = w[k];
+        ant_tick_next[l * ANT_STATE_WORDS + k] = w[k];
     }
 }
 
@@ -168,18 +190,18 @@ fn ant_tick_count(which: u32, place: u32) {
 @compute @workgroup_size(WORKGROUP)
 fn ant_tick_commit_main(@builtin(global_invocation_id) id: vec3<u32>,
                         @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = thread_index(id, groups);
-    let n = ant_sense_params.n;
-    if (i >= n) {
+    let l = thread_index(id, groups);
+    if (l >= ant_chunk.len) {
         return;
     }
-    let old = ant_tick_state(i);
+    let i = ant_chunk.first + l;
+    let old = ant_tick_state(l);
     var w: array<u32, ANT_STATE_WORDS>;
     for (var k = 0u; k < ANT_STATE_WORDS; k = k + 1u) {
-        w[k] = ant_tick_next[i * ANT_STATE_WORDS + k];
+        w[k] = ant_tick_next[l * ANT_STATE_WORDS + k];
     }
     var s = ant_state_from_words(w);
-    let agent = ant_tick_sensed[ANT_SENSED_ID * n + i];
+    let agent = ant_tick_sensed_ids[i];
     // sim.rs `event`: the end of a collecting or dropping stop that changed the label.
     if (old.has_stop && !s.has_stop) {
         let place = old.stop.place;
@@ -200,16 +222,16 @@ fn ant_tick_commit_main(@builtin(global_invocation_id) id: vec3<u32>,
     }
     w = ant_state_to_words(s);
     for (var k = 0u; k < ANT_STATE_WORDS; k = k + 1u) {
-        ant_tick_states[i * ANT_STATE_WORDS + k] = w[k];
+        ant_tick_states[l * ANT_STATE_WORDS + k] = w[k];
     }
     // The sensed ant (world.rs, SensedAnts::write).
-    ant_tick_sensed[ANT_SENSED_POS * n + 2u * i] = w[0];
-    ant_tick_sensed[ANT_SENSED_POS * n + 2u * i + 1u] = w[1];
-    ant_tick_sensed[ANT_SENSED_ARRIVAL * n + 2u * i] = w[7];
-    ant_tick_sensed[ANT_SENSED_ARRIVAL * n + 2u * i + 1u] = w[8];
-    ant_tick_sensed[ANT_SENSED_LABEL * n + i] = s.label;
-    ant_tick_sensed[ANT_SENSED_NEST * n + i] = s.nest;
-    ant_tick_sensed[ANT_SENSED_ORIGIN * n + i] = s.origin;
+    ant_tick_sensed_pos[2u * i] = w[0];
+    ant_tick_sensed_pos[2u * i + 1u] = w[1];
+    ant_tick_sensed_arrival[2u * i] = w[7];
+    ant_tick_sensed_arrival[2u * i + 1u] = w[8];
+    ant_tick_sensed_labels[i] = s.label;
+    ant_tick_sensed_nests[i] = s.nest;
+    ant_tick_sensed_origins[i] = s.origin;
 }
 
 // The random stream of the route decisions (sim.rs, ROUTE_STREAM).
@@ -257,6 +279,6 @@ fn ant_tick_end_main(@builtin(global_invocation_id) id: vec3<u32>,
         atomicStore(&ant_tick_shared[ANT_TICK_KEPT_STEP], ant_tick.step);
         atomicStore(&ant_tick_shared[ANT_TICK_KEPT_PHASE], phase);
         atomicStore(&ant_tick_shared[ANT_TICK_KEPT_SLOT], slot);
-        atomicStore(&ant_tick_shared[ANT_TICK_KEPT_STATUS], ant_tick_status[phase * n + slot]);
+        atomicStore(&ant_tick_shared[ANT_TICK_KEPT_STATUS], ant_tick_status[2u * slot + phase]);
     }
 }

@@ -13,6 +13,39 @@ use crate::error::{Result, SimError};
 pub struct Kernel {
     name: &'static str,
     pipeline: wgpu::ComputePipeline,
+    /// The bindings of group 0 the entry point uses (its layout's; naga's analysis).
+    bindings: Vec<u32>,
+}
+
+/// The bindings of group 0 that entry point `entry` of `source` uses, directly or through the
+/// functions it calls.
+fn bindings_used(name: &'static str, source: &str, entry: &str) -> Result<Vec<u32>> {
+    let shader = |message: String| SimError::GpuShader {
+        kernel: name,
+        message,
+    };
+    let module =
+        naga::front::wgsl::parse_str(source).map_err(|e| shader(e.emit_to_string(source)))?;
+    let info = naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::all(),
+    )
+    .validate(&module)
+    .map_err(|e| shader(e.emit_to_string(source)))?;
+    let index = module
+        .entry_points
+        .iter()
+        .position(|e| e.name == entry)
+        .ok_or_else(|| shader(format!("no entry point `{entry}`")))?;
+    let uses = info.get_entry_point(index);
+    Ok(module
+        .global_variables
+        .iter()
+        .filter(|&(h, _)| !uses[h].is_empty())
+        .filter_map(|(_, v)| v.binding.as_ref())
+        .filter(|b| b.group == 0)
+        .map(|b| b.binding)
+        .collect())
 }
 
 impl Kernel {
@@ -30,6 +63,7 @@ impl Kernel {
         entry: &str,
     ) -> Result<Kernel> {
         let source = shaders::compose(uses, kernel);
+        let bindings = bindings_used(name, &source, entry)?;
         let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let module = gpu
             .device
@@ -53,7 +87,11 @@ impl Kernel {
                 message: e.to_string(),
             });
         }
-        Ok(Kernel { name, pipeline })
+        Ok(Kernel {
+            name,
+            pipeline,
+            bindings,
+        })
     }
 
     /// The kernel's name.
@@ -78,15 +116,31 @@ impl Kernel {
         })
     }
 
-    /// A bind group for bind group 0 of the bindings `entries` (binding number, buffer): for
-    /// kernels whose modules fix their binding numbers, an entry point using only some of them
-    /// (its layout holds only the bindings it uses).
+    /// A bind group for bind group 0 of the bindings `entries` (binding number, buffer) that
+    /// the entry point uses: for kernels whose modules fix their binding numbers, the entries
+    /// may name more (those of every kernel of a module); its layout holds only the bindings it
+    /// uses.
     pub fn bind_at(&self, gpu: &Gpu, entries: &[(u32, &wgpu::Buffer)]) -> wgpu::BindGroup {
+        let entries: Vec<(u32, wgpu::BindingResource<'_>)> = entries
+            .iter()
+            .map(|&(binding, b)| (binding, b.as_entire_binding()))
+            .collect();
+        self.bind_resources(gpu, &entries)
+    }
+
+    /// [`Kernel::bind_at`] of any resources (buffer ranges: an array of a larger buffer, a
+    /// chunk of the agents).
+    pub fn bind_resources(
+        &self,
+        gpu: &Gpu,
+        entries: &[(u32, wgpu::BindingResource<'_>)],
+    ) -> wgpu::BindGroup {
         let entries: Vec<wgpu::BindGroupEntry<'_>> = entries
             .iter()
-            .map(|&(binding, b)| wgpu::BindGroupEntry {
-                binding,
-                resource: b.as_entire_binding(),
+            .filter(|(binding, _)| self.bindings.contains(binding))
+            .map(|(binding, r)| wgpu::BindGroupEntry {
+                binding: *binding,
+                resource: r.clone(),
             })
             .collect();
         gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -138,15 +192,30 @@ pub fn storage<T: bytemuck::Pod>(gpu: &Gpu, label: &'static str, data: &[T]) -> 
 }
 
 /// A storage buffer of `words` zeroed `u32` (at least one: wgpu refuses empty bindings),
-/// readable, writable and copyable both ways, allocated on the device only.
+/// readable, writable and copyable both ways, allocated on the device only, bound whole.
 ///
 /// # Errors
 ///
 /// [`SimError::GpuTooLarge`] beyond the adapter's largest storage binding (at most 4 GiB).
 pub fn zeroed(gpu: &Gpu, label: &'static str, words: u64) -> Result<wgpu::Buffer> {
+    zeroed_within(gpu, label, words, gpu.max_binding())
+}
+
+/// [`zeroed`] for a buffer bound in ranges (arrays, chunks of agents), each within the
+/// adapter's largest binding: the buffer itself may be as large as the adapter's largest
+/// buffer.
+///
+/// # Errors
+///
+/// [`SimError::GpuTooLarge`] beyond the adapter's largest buffer (at most 4 GiB).
+pub fn zeroed_ranges(gpu: &Gpu, label: &'static str, words: u64) -> Result<wgpu::Buffer> {
+    zeroed_within(gpu, label, words, gpu.device.limits().max_buffer_size)
+}
+
+fn zeroed_within(gpu: &Gpu, label: &'static str, words: u64, limit: u64) -> Result<wgpu::Buffer> {
     let bytes = 4 * words.max(1);
     // At most 4 GiB, as in Vulkan: the kernels' 32-bit indices and lengths never overflow.
-    let limit = gpu.max_binding().min(u64::from(u32::MAX));
+    let limit = limit.min(u64::from(u32::MAX));
     if bytes > limit {
         return Err(SimError::GpuTooLarge {
             buffer: label,

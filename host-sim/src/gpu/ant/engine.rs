@@ -22,14 +22,17 @@ use wgpu::util::DeviceExt;
 
 use super::layout::{self, PLAN_FRAME_WORDS, PLAN_WORDS, RESOLVE_FRAME_WORDS, STATE_WORDS, Word};
 use super::sense::SENSE_KERNEL;
-use super::world::{GridShape, OBJECT_WORDS, SENSED_WORDS, sensed_words, world_words};
+use super::world::{
+    GridShape, OBJECT_WORDS, SENSED_WORDS, sensed_ranges, sensed_stride, sensed_words, with_sensed,
+    world_words,
+};
 use crate::ants::{AntGroup, AntObjectKind, AntSim, ROUTE_ADVANCE};
 use crate::by_scalar;
 use crate::engine::{Device, Engine, Exchange, exchanges_by_slot, group_of};
 use crate::error::{Result, SimError};
 use crate::gpu::Gpu;
 use crate::gpu::grid::GpuGrid;
-use crate::gpu::kernel::{Kernel, read_back, storage, zeroed};
+use crate::gpu::kernel::{Kernel, read_back, storage, zeroed, zeroed_ranges};
 use crate::gpu::shaders::{ANT_TICK, DISPATCH, Module, SCALAR_F32, SCALAR_FX};
 use crate::output::{Frame, Summary};
 use crate::scalar::{AgentGroup, SimScalar};
@@ -53,7 +56,6 @@ const SHARED_KEPT_STATUS: usize = 7;
 mod binding {
     pub const SENSE_PARAMS: u32 = 0;
     pub const WORLD: u32 = 1;
-    pub const SENSED: u32 = 2;
     pub const PREDICTED: u32 = 3;
     pub const STARTS: u32 = 4;
     pub const ORDER: u32 = 5;
@@ -68,8 +70,9 @@ mod binding {
     pub const GROUP: u32 = 14;
     pub const SHARED: u32 = 15;
     pub const COUNTS: u32 = 16;
-    pub const SENSED_OUT: u32 = 17;
+    pub const SENSED_OUT: [u32; 6] = [17, 29, 30, 31, 32, 33];
     pub const WORLD_OUT: u32 = 18;
+    pub const CHUNK: u32 = 35;
 }
 
 /// The draws of `rand::chance::<f32>(ctx, stream, p)` as an integer rule: the chance is
@@ -109,6 +112,8 @@ fn writes(profile: Option<&Profile>, k: u32) -> Option<wgpu::ComputePassTimestam
 
 /// The GPU's buffers of one simulation.
 struct Buffers {
+    n: usize,
+    chunks: Vec<Chunk>,
     sense_params: wgpu::Buffer,
     tick: wgpu::Buffer,
     world: wgpu::Buffer,
@@ -125,12 +130,13 @@ struct Buffers {
     counts: wgpu::Buffer,
 }
 
-/// The compiled kernels of the tick and their bind groups.
+/// The compiled kernels of the tick and their bind groups (one per chunk for those that bind
+/// the states a chunk at a time).
 struct Kernels {
     cells: (Kernel, wgpu::BindGroup),
-    plan: (Kernel, wgpu::BindGroup),
-    resolve: (Kernel, wgpu::BindGroup),
-    commit: (Kernel, wgpu::BindGroup),
+    plan: (Kernel, Vec<wgpu::BindGroup>),
+    resolve: (Kernel, Vec<wgpu::BindGroup>),
+    commit: (Kernel, Vec<wgpu::BindGroup>),
     end: (Kernel, wgpu::BindGroup),
     plan_frames: Kernel,
     resolve_frames: Kernel,
@@ -170,6 +176,12 @@ impl GpuAntSim {
     /// [`SimError::GpuMixedScalars`] if its groups do not all run one scalar type, and what
     /// compiling the kernels and sizing the grid refuse.
     pub fn new(sim: AntSim, gpu: Gpu) -> Result<GpuAntSim> {
+        let most = chunk_capacity(&gpu);
+        GpuAntSim::chunked(sim, gpu, most)
+    }
+
+    /// [`GpuAntSim::new`] with the states bound `most` ants at a time.
+    pub(super) fn chunked(sim: AntSim, gpu: Gpu, most: usize) -> Result<GpuAntSim> {
         let first = sim.groups.first().ok_or(SimError::NoAgents)?;
         let scalar = by_scalar!(first, g => scalar_of(g));
         if let Some(other) = sim
@@ -215,15 +227,17 @@ impl GpuAntSim {
         // `per_ant` words for every ant.
         let words = |per_ant: usize| (n * per_ant) as u64;
         let b = Buffers {
+            n,
+            chunks: Chunk::split(&gpu, n, most),
             sense_params: uniform("ant sense params", &[n as u32, 0, 0, 0]),
             tick: uniform("ant tick params", &tick),
             world: storage(&gpu, "ant world", &world),
-            sensed: zeroed(&gpu, "ant sensed", words(SENSED_WORDS))?,
+            sensed: zeroed_ranges(&gpu, "ant sensed", (sensed_stride(n) * SENSED_WORDS) as u64)?,
             predicted: zeroed(&gpu, "ant predicted", words(2))?,
             cells: zeroed(&gpu, "ant cells", words(1))?,
-            states: zeroed(&gpu, "ant states", words(STATE_WORDS))?,
-            plans: zeroed(&gpu, "ant plans", words(PLAN_WORDS))?,
-            next: zeroed(&gpu, "ant next states", words(STATE_WORDS))?,
+            states: zeroed_ranges(&gpu, "ant states", words(STATE_WORDS))?,
+            plans: zeroed_ranges(&gpu, "ant plans", words(PLAN_WORDS))?,
+            next: zeroed_ranges(&gpu, "ant next states", words(STATE_WORDS))?,
             status: zeroed(&gpu, "ant status", words(2))?,
             params: storage(&gpu, "ant params", &params),
             group: storage(&gpu, "ant groups", &group),
@@ -360,18 +374,15 @@ impl GpuAntSim {
         };
         use binding::*;
         let out = storage(&self.gpu, "ant frames", &vec![0u32; self.n * words]);
-        let mut entries = vec![
+        let whole = [
             (SENSE_PARAMS, &self.b.sense_params),
             (WORLD, &self.b.world),
-            (SENSED, &self.b.sensed),
             (STARTS, self.grid.starts()),
             (ORDER, self.grid.order()),
+            (PREDICTED, &self.b.predicted),
             (OUT, &out),
         ];
-        if phase > 0 {
-            entries.push((PREDICTED, &self.b.predicted));
-        }
-        let group = kernel.bind_at(&self.gpu, &entries);
+        let group = kernel.bind_resources(&self.gpu, &with_sensed(&self.b.sensed, self.n, &whole));
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
         {
             let mut pass = enc.begin_compute_pass(&Default::default());
@@ -384,6 +395,17 @@ impl GpuAntSim {
     /// Submits what `enc` recorded (the GPU runs it while the host goes on).
     fn submit(&self, enc: wgpu::CommandEncoder) {
         self.gpu.queue.submit([enc.finish()]);
+    }
+
+    /// `kernel` over every chunk of ants.
+    fn dispatch_chunks(
+        &self,
+        pass: &mut wgpu::ComputePass<'_>,
+        kernel: &(Kernel, Vec<wgpu::BindGroup>),
+    ) {
+        for (c, g) in self.b.chunks.iter().zip(&kernel.1) {
+            kernel.0.dispatch(pass, g, c.len);
+        }
     }
 
     /// Pass `k` of [`PASSES`] in `enc`, timed in a profiled tick.
@@ -447,85 +469,106 @@ impl Kernels {
         });
         let kernel = |name, entry| Kernel::new(gpu, name, &m, SENSE_KERNEL, entry);
         use binding::*;
-        let bound = |k: Kernel, entries: &[(u32, &wgpu::Buffer)]| {
-            let g = k.bind_at(gpu, entries);
-            (k, g)
-        };
-        let sense = [
+        // Every buffer at its binding (each kernel binds those it uses), the sensed ants'
+        // arrays read and written, and the chunk's ranges.
+        let whole = [
             (SENSE_PARAMS, &b.sense_params),
             (WORLD, &b.world),
-            (SENSED, &b.sensed),
+            (PREDICTED, &b.predicted),
             (STARTS, grid.starts()),
             (ORDER, grid.order()),
-        ];
-        let cells = bound(
-            kernel("ant_sense_cells", "ant_sense_cells_main")?,
-            &[
-                (SENSE_PARAMS, &b.sense_params),
-                (WORLD, &b.world),
-                (SENSED, &b.sensed),
-                (OUT, &b.cells),
-            ],
-        );
-        let mut entries = sense.to_vec();
-        entries.extend([
+            (OUT, &b.cells),
             (TICK, &b.tick),
-            (STATES, &b.states),
-            (PLANS, &b.plans),
             (PREDICTED_OUT, &b.predicted),
             (STATUS, &b.status),
             (PARAMS, &b.params),
             (GROUP, &b.group),
             (SHARED, &b.shared),
-        ]);
-        let plan = bound(kernel("ant_tick_plan", "ant_tick_plan_main")?, &entries);
-        let mut entries = sense.to_vec();
-        entries.extend([
-            (PREDICTED, &b.predicted),
-            (PLANS, &b.plans),
-            (NEXT, &b.next),
-            (STATUS, &b.status),
-            (PARAMS, &b.params),
-            (GROUP, &b.group),
-            (SHARED, &b.shared),
-        ]);
-        let resolve = bound(
-            kernel("ant_tick_resolve", "ant_tick_resolve_main")?,
-            &entries,
-        );
-        let commit = bound(
-            kernel("ant_tick_commit", "ant_tick_commit_main")?,
-            &[
-                (SENSE_PARAMS, &b.sense_params),
-                (WORLD, &b.world),
-                (TICK, &b.tick),
-                (STATES, &b.states),
-                (NEXT, &b.next),
-                (COUNTS, &b.counts),
-                (SENSED_OUT, &b.sensed),
-            ],
-        );
-        let end = bound(
-            kernel("ant_tick_end", "ant_tick_end_main")?,
-            &[
-                (SENSE_PARAMS, &b.sense_params),
-                (TICK, &b.tick),
-                (STATUS, &b.status),
-                (SHARED, &b.shared),
-                (COUNTS, &b.counts),
-                (WORLD_OUT, &b.world),
-            ],
-        );
+            (COUNTS, &b.counts),
+            (WORLD_OUT, &b.world),
+        ];
+        let mut all = with_sensed(&b.sensed, b.n, &whole);
+        all.extend(sensed_ranges(&b.sensed, b.n, SENSED_OUT));
+        let chunked = |k: Kernel| {
+            let groups = b
+                .chunks
+                .iter()
+                .map(|c| {
+                    let mut entries = all.clone();
+                    entries.extend([
+                        (CHUNK, c.uniform.as_entire_binding()),
+                        (STATES, c.range(&b.states, STATE_WORDS)),
+                        (PLANS, c.range(&b.plans, PLAN_WORDS)),
+                        (NEXT, c.range(&b.next, STATE_WORDS)),
+                    ]);
+                    k.bind_resources(gpu, &entries)
+                })
+                .collect();
+            (k, groups)
+        };
+        let single = |k: Kernel| {
+            let g = k.bind_resources(gpu, &all);
+            (k, g)
+        };
         Ok(Kernels {
-            cells,
-            plan,
-            resolve,
-            commit,
-            end,
+            cells: single(kernel("ant_sense_cells", "ant_sense_cells_main")?),
+            plan: chunked(kernel("ant_tick_plan", "ant_tick_plan_main")?),
+            resolve: chunked(kernel("ant_tick_resolve", "ant_tick_resolve_main")?),
+            commit: chunked(kernel("ant_tick_commit", "ant_tick_commit_main")?),
+            end: single(kernel("ant_tick_end", "ant_tick_end_main")?),
             plan_frames: kernel("ant_plan_frames", "ant_plan_frames_main")?,
             resolve_frames: kernel("ant_resolve_frames", "ant_resolve_frames_main")?,
         })
     }
+}
+
+/// Ants `first..first + len`, a dispatch of the kernels that bind the states a chunk at a time.
+struct Chunk {
+    first: u32,
+    len: u32,
+    /// `AntChunk` (`first`, `len`).
+    uniform: wgpu::Buffer,
+}
+
+impl Chunk {
+    /// The chunks of `n` ants, at most `most` (a multiple of 64) each.
+    fn split(gpu: &Gpu, n: usize, most: usize) -> Vec<Chunk> {
+        (0..n)
+            .step_by(most.max(1))
+            .map(|first| {
+                let len = most.min(n - first);
+                let words = [first as u32, len as u32, 0, 0];
+                Chunk {
+                    first: first as u32,
+                    len: len as u32,
+                    uniform: gpu
+                        .device
+                        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                            label: Some("ant chunk"),
+                            contents: bytemuck::cast_slice(&words),
+                            usage: wgpu::BufferUsages::UNIFORM,
+                        }),
+                }
+            })
+            .collect()
+    }
+
+    /// The chunk's part of `buffer`, of `words` words an ant.
+    fn range<'a>(&self, buffer: &'a wgpu::Buffer, words: usize) -> wgpu::BindingResource<'a> {
+        let bytes = 4 * words as u64;
+        wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+            buffer,
+            offset: u64::from(self.first) * bytes,
+            size: std::num::NonZeroU64::new(u64::from(self.len) * bytes),
+        })
+    }
+}
+
+/// The most ants of a chunk on `gpu`: a multiple of 64 (every chunk's ranges start 256-byte
+/// aligned) whose plans (the largest words an ant) fit one binding.
+fn chunk_capacity(gpu: &Gpu) -> usize {
+    let limit = gpu.max_binding().min(u64::from(u32::MAX));
+    ((limit / (4 * PLAN_WORDS as u64)) as usize / 64 * 64).max(64)
 }
 
 impl Engine for GpuAntSim {
@@ -579,14 +622,12 @@ impl Engine for GpuAntSim {
             self.grid
                 .record_timed(&self.gpu, &mut enc, &self.b.cells, n, timed)?;
             let mut pass = self.pass(&mut enc, 2);
-            let (k, g) = &self.k.plan;
-            k.dispatch(&mut pass, g, n);
+            self.dispatch_chunks(&mut pass, &self.k.plan);
         } else {
             // The tick's largest shift widens the resolve frames' query (AntSenseParams.shift).
             enc.copy_buffer_to_buffer(&self.b.shared, 0, &self.b.sense_params, 4, 4);
             let mut pass = self.pass(&mut enc, 3);
-            let (k, g) = &self.k.resolve;
-            k.dispatch(&mut pass, g, n);
+            self.dispatch_chunks(&mut pass, &self.k.resolve);
         }
         self.submit(enc);
         Ok(())
@@ -598,8 +639,7 @@ impl Engine for GpuAntSim {
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
         {
             let mut pass = self.pass(&mut enc, 4);
-            let (k, g) = &self.k.commit;
-            k.dispatch(&mut pass, g, self.n as u32);
+            self.dispatch_chunks(&mut pass, &self.k.commit);
             let (k, g) = &self.k.end;
             k.dispatch(&mut pass, g, self.sim.world.objects.len().max(1) as u32);
         }

@@ -45,9 +45,20 @@ fn states(sim: &AntSim) -> Vec<(u32, Vec<u32>)> {
 
 /// Runs scenario `name` for `ticks` ticks on both engines and compares them every `every`.
 fn same_as_cpu(name: &str, ticks: u32, every: u32) {
+    same_as_cpu_in_chunks(name, ticks, every, None);
+}
+
+/// [`same_as_cpu`] with the GPU's states bound `chunk` ants at a time (default: as many as a
+/// binding holds).
+fn same_as_cpu_in_chunks(name: &str, ticks: u32, every: u32, chunk: Option<usize>) {
     let sc = fixed(name, ticks);
     let mut cpu = AntSim::from_scenario(&sc, sc.seed).unwrap();
-    let mut gpu = GpuAntSim::new(AntSim::from_scenario(&sc, sc.seed).unwrap(), test_gpu()).unwrap();
+    let host = AntSim::from_scenario(&sc, sc.seed).unwrap();
+    let mut gpu = match chunk {
+        Some(c) => GpuAntSim::chunked(host, test_gpu(), c),
+        None => GpuAntSim::new(host, test_gpu()),
+    }
+    .unwrap();
     for t in 0..ticks {
         apply_due_events(&mut cpu, &sc);
         apply_due_events(&mut gpu, &sc);
@@ -93,6 +104,14 @@ same_as_cpu! {
     fig13_is_the_cpus: "ants-fig13-disturbance",
     fig14_is_the_cpus: "ants-fig14-waypoints",
     fig1c_is_the_cpus: "ants-fig1c-heart",
+}
+
+/// The states bound in chunks of 128 ants (four dispatches a kernel; the largest swarms are
+/// bound so), with a route and events: the same bits.
+#[test]
+fn chunks_of_ants_are_the_cpus() {
+    same_as_cpu_in_chunks("ants-fig14-waypoints", 200, 50, Some(128));
+    same_as_cpu_in_chunks("ants-fig11-dynamic-obstacles", 200, 50, Some(192));
 }
 
 /// Food with an amount is taken on the GPU as on the CPU, and disappears when empty.

@@ -16,7 +16,7 @@ use wgpu::util::DeviceExt;
 
 use super::layout::{PLAN_FRAME_WORDS, RESOLVE_FRAME_WORDS, Word};
 use super::scalar_module;
-use super::world::{GridShape, predicted_words, sensed_words, world_words};
+use super::world::{GridShape, predicted_words, sensed_words, with_sensed, world_words};
 use crate::ants::AntWorld;
 use crate::error::Result;
 use crate::gpu::Gpu;
@@ -78,7 +78,6 @@ pub fn modules(scalar: &'static Module) -> [&'static Module; 4] {
 /// Binding numbers of `ant_sense.wgsl` and `ant_world.wgsl`.
 const PARAMS: u32 = 0;
 const WORLD: u32 = 1;
-const SENSED: u32 = 2;
 const PREDICTED: u32 = 3;
 const STARTS: u32 = 4;
 const ORDER: u32 = 5;
@@ -166,15 +165,12 @@ impl AntSense {
 
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         {
-            let group = self.cells.bind_at(
-                gpu,
-                &[
-                    (PARAMS, &params),
-                    (WORLD, &world),
-                    (SENSED, &sensed),
-                    (OUT, &cells),
-                ],
+            let entries = with_sensed(
+                &sensed,
+                n,
+                &[(PARAMS, &params), (WORLD, &world), (OUT, &cells)],
             );
+            let group = self.cells.bind_resources(gpu, &entries);
             let mut pass = enc.begin_compute_pass(&Default::default());
             self.cells.dispatch(&mut pass, &group, n as u32);
         }
@@ -183,16 +179,22 @@ impl AntSense {
             let common = [
                 (PARAMS, &params),
                 (WORLD, &world),
-                (SENSED, &sensed),
                 (STARTS, grid.starts()),
                 (ORDER, grid.order()),
+                (PREDICTED, &predicted),
             ];
-            let mut entries = common.to_vec();
-            entries.push((OUT, &plan));
-            let plan_group = self.plan.bind_at(gpu, &entries);
-            let mut entries = common.to_vec();
-            entries.extend([(PREDICTED, &predicted), (OUT, &resolve)]);
-            let resolve_group = self.resolve.bind_at(gpu, &entries);
+            let plan_group = self.plan.bind_resources(
+                gpu,
+                &with_sensed(&sensed, n, &[common.as_slice(), &[(OUT, &plan)]].concat()),
+            );
+            let resolve_group = self.resolve.bind_resources(
+                gpu,
+                &with_sensed(
+                    &sensed,
+                    n,
+                    &[common.as_slice(), &[(OUT, &resolve)]].concat(),
+                ),
+            );
             let mut pass = enc.begin_compute_pass(&Default::default());
             self.plan.dispatch(&mut pass, &plan_group, n as u32);
             self.resolve.dispatch(&mut pass, &resolve_group, n as u32);

@@ -99,8 +99,9 @@ pub const AMOUNT_ENDLESS: u32 = u32::MAX;
 
 /// Words per sensed ant ([`sensed_words`]).
 pub const SENSED_WORDS: usize = 8;
-/// Where the sensed ants' arrays start, in multiples of the ant count: positions (two words an
-/// ant), arrivals (two), ids, labels, nests, origins (`ANT_SENSED_*` in `ant_sense.wgsl`).
+/// Where the sensed ants' arrays start, in multiples of the stride ([`sensed_stride`]):
+/// positions (two words an ant), arrivals (two), ids, labels, nests, origins (`ANT_SENSED_*`
+/// in `ant_sense.wgsl`).
 pub const SENSED_POS: usize = 0;
 /// See [`SENSED_POS`].
 pub const SENSED_ARRIVAL: usize = 2;
@@ -276,23 +277,76 @@ pub fn world_words<S: Word>(w: &AntWorld, grid: &GridShape) -> Vec<u32> {
     h
 }
 
-/// The sensed ants of `w` as words over `S`, [`SENSED_WORDS`] per ant: one array per field
-/// (see [`SENSED_POS`]), positions in `S` exactly as the CPU converts them (`v2`).
+/// The stride of the sensed ants' arrays for `n` ants: `n` rounded up to a multiple of 64 (at
+/// least 64), so that every array starts 256-byte aligned and can be bound on its own.
+pub fn sensed_stride(n: usize) -> usize {
+    n.next_multiple_of(64).max(64)
+}
+
+/// The sensed ants of `w` as words over `S`, [`SENSED_WORDS`] arrays of [`sensed_stride`]
+/// words (positions and arrivals two arrays each; see [`SENSED_POS`]), positions in `S`
+/// exactly as the CPU converts them (`v2`); zero words past the last ant.
 pub fn sensed_words<S: Word + SimScalar>(w: &AntWorld) -> Vec<u32> {
     let s = &w.sensed;
-    let n = s.pos.len();
-    let mut out = Vec::with_capacity(n * SENSED_WORDS);
-    let point = |out: &mut Vec<u32>, p: [f64; 2]| {
-        let v: Vec2<S> = v2(p);
-        out.extend([v.x.to_word(), v.y.to_word()]);
+    let stride = sensed_stride(s.pos.len());
+    let mut out = Vec::with_capacity(stride * SENSED_WORDS);
+    let mut array = |words: &mut dyn Iterator<Item = u32>, len: usize| {
+        let at = out.len();
+        out.extend(words);
+        out.resize(at + len, 0);
     };
-    s.pos.iter().for_each(|&p| point(&mut out, p));
-    s.arrival.iter().for_each(|&p| point(&mut out, p));
-    out.extend(&s.id);
-    out.extend(s.label.iter().map(|&l| l as u32));
-    out.extend(s.nest.iter().map(|&x| u32::from(x)));
-    out.extend(s.origin.iter().map(|&x| u32::from(x)));
+    let point = |p: &[f64; 2]| {
+        let v: Vec2<S> = v2(*p);
+        [v.x.to_word(), v.y.to_word()]
+    };
+    array(&mut s.pos.iter().flat_map(point), 2 * stride);
+    array(&mut s.arrival.iter().flat_map(point), 2 * stride);
+    array(&mut s.id.iter().copied(), stride);
+    array(&mut s.label.iter().map(|&l| l as u32), stride);
+    array(&mut s.nest.iter().map(|&x| u32::from(x)), stride);
+    array(&mut s.origin.iter().map(|&x| u32::from(x)), stride);
     out
+}
+
+/// The bindings of the sensed ants' arrays in `ant_sense.wgsl` (positions, arrivals, ids,
+/// labels, nests, origins), ranges of `buffer` (written by [`sensed_words`] for `n` ants).
+pub fn sensed_bindings(buffer: &wgpu::Buffer, n: usize) -> [(u32, wgpu::BindingResource<'_>); 6] {
+    sensed_ranges(buffer, n, [2, 24, 25, 26, 27, 28])
+}
+
+/// [`sensed_bindings`] of `sensed` (for `n` ants) and the whole `buffers` at their bindings.
+pub fn with_sensed<'a>(
+    sensed: &'a wgpu::Buffer,
+    n: usize,
+    buffers: &[(u32, &'a wgpu::Buffer)],
+) -> Vec<(u32, wgpu::BindingResource<'a>)> {
+    let mut entries = sensed_bindings(sensed, n).to_vec();
+    entries.extend(buffers.iter().map(|&(k, b)| (k, b.as_entire_binding())));
+    entries
+}
+
+/// The same ranges at the bindings `at` (positions, arrivals, ids, labels, nests, origins).
+pub fn sensed_ranges(
+    buffer: &wgpu::Buffer,
+    n: usize,
+    at: [u32; 6],
+) -> [(u32, wgpu::BindingResource<'_>); 6] {
+    let stride = 4 * sensed_stride(n) as u64;
+    let range = |first: usize, arrays: u64| {
+        wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+            buffer,
+            offset: first as u64 * stride,
+            size: std::num::NonZeroU64::new(arrays * stride),
+        })
+    };
+    [
+        (at[0], range(SENSED_POS, 2)),
+        (at[1], range(SENSED_ARRIVAL, 2)),
+        (at[2], range(SENSED_ID, 1)),
+        (at[3], range(SENSED_LABEL, 1)),
+        (at[4], range(SENSED_NEST, 1)),
+        (at[5], range(SENSED_ORIGIN, 1)),
+    ]
 }
 
 /// The predictions p*(t+1) of `w` as words over `S`, two an ant.
