@@ -209,6 +209,25 @@ mod tests {
     }
 
     #[test]
+    fn a_model_without_a_gpu_engine_is_refused_by_name_on_the_gpu() {
+        static NO_GPU: ModelEntry = ModelEntry {
+            name: "cpu-only",
+            gpu: None,
+            ..BUILTIN[0]
+        };
+        register(&NO_GPU).unwrap();
+        let e = bench_engine("cpu-only", 10, 1, ScalarType::F32, Backend::Gpu)
+            .err()
+            .unwrap();
+        assert!(
+            matches!(&e, SimError::NoGpuEngine { model } if model == "cpu-only"),
+            "{e}"
+        );
+        assert!(e.to_string().contains("--backend cpu"), "{e}");
+        assert!(bench_engine("cpu-only", 10, 1, ScalarType::F32, Backend::Cpu).is_ok());
+    }
+
+    #[test]
     fn a_name_is_registered_once() {
         static ANT_AGAIN: ModelEntry = BUILTIN[0];
         assert!(matches!(

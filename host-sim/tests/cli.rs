@@ -171,3 +171,54 @@ fn a_failed_write_leaves_the_old_run_and_records_the_error() {
     run_ok(&out, 20, 4);
     assert_eq!(leftovers(dir.path()), Vec::<String>::new());
 }
+
+/// `--backend gpu`: a run on the GPU prints its adapter and writes the run (lavapipe in CI);
+/// with no adapter (no API wgpu may use) it fails naming what to install, and writes nothing;
+/// `swarm bench --backend gpu` reports the
+/// adapter, the passes and the device memory.
+#[test]
+fn the_gpu_backend_names_its_adapter_and_what_to_install_without_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("gpu");
+    let o = ok(&mut run_cmd(
+        SCENARIO,
+        &out,
+        &["--steps", "5", "--backend", "gpu"],
+    ));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("on the GPU: "), "{text}");
+    let log = std::fs::read_to_string(out.join("run.log")).unwrap();
+    assert!(log.contains("backend gpu: "), "{log}");
+
+    let none = dir.path().join("none");
+    let mut cmd = run_cmd(SCENARIO, &none, &["--steps", "5", "--backend", "gpu"]);
+    // An API with no driver on this machine: wgpu finds no adapter.
+    cmd.env(
+        "WGPU_BACKEND",
+        if cfg!(target_os = "linux") {
+            "dx12"
+        } else {
+            "gl"
+        },
+    );
+    let err = fails(&mut cmd);
+    assert!(
+        err.contains("no GPU adapter") && err.contains("mesa-vulkan-drivers"),
+        "{err}"
+    );
+    assert!(!none.exists(), "nothing is written");
+
+    let o = ok(swarm()
+        .args([
+            "bench", "--model", "ant", "--agents", "2000", "--steps", "2",
+        ])
+        .args(["--backend", "gpu", "--scalar", "fixed"]));
+    let report: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(report["backend"], "gpu");
+    assert!(report["adapter"].is_string(), "{report}");
+    assert!(
+        report["device_bytes_per_agent"].as_f64().unwrap() > 100.0,
+        "{report}"
+    );
+    assert_eq!(report["scalar"], "I16F16");
+}
