@@ -67,14 +67,38 @@ pub trait Engine: Send {
         }
         Ok(())
     }
-    /// Brings the host's view of the simulation up to date (a GPU engine reads its states and
-    /// counts back): the run loop calls it before it records a frame and before the closing.
-    /// A CPU engine's view is always current.
+    /// Brings the host's view of the simulation up to date now (a GPU engine waits for its
+    /// states and counts): before the closing, and for a look between ticks. A CPU engine's
+    /// view is always current.
     ///
     /// # Errors
     ///
     /// A backend's failure to read back, or a controller's refusal it noticed since.
     fn sync(&mut self) -> Result<()> {
+        Ok(())
+    }
+    /// How many recorded steps may be on their way back ([`Engine::snapshot`]) before the run
+    /// loop takes the oldest ([`Engine::take_snapshot`]): 0 for a CPU engine (its view is the
+    /// step's), 1 for a GPU engine (two staging buffers in turn: the GPU goes on with the next
+    /// ticks while the host writes a recorded frame).
+    fn frames_in_flight(&self) -> usize {
+        0
+    }
+    /// Starts reading back the simulation as it is now, a recorded step, without waiting.
+    ///
+    /// # Errors
+    ///
+    /// A backend's failure to start the read-back.
+    fn snapshot(&mut self) -> Result<()> {
+        Ok(())
+    }
+    /// Makes the oldest snapshot not yet taken the host's view (what [`Engine::frame`] and
+    /// [`Engine::on_record`] see), waiting for it if needed.
+    ///
+    /// # Errors
+    ///
+    /// As [`Engine::sync`].
+    fn take_snapshot(&mut self) -> Result<()> {
         Ok(())
     }
     /// One tick with each of its GPU passes timed (timestamp queries): the passes' names and

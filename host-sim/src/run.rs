@@ -168,6 +168,7 @@ fn run_loop(
     record(&mut summary, &first, 0);
     rec.push(first)?;
     let bar = progress_bar(opts.progress, sc.steps as u64);
+    let mut pending = std::collections::VecDeque::new();
     let t0 = Instant::now();
     for step in 0..sc.steps {
         for e in crate::engine::apply_due_events(&mut *engine, sc) {
@@ -178,13 +179,21 @@ fn run_loop(
         engine.after_tick(&mut summary);
         let done = step + 1;
         if done % every == 0 || done == sc.steps {
-            engine.sync()?;
-            let f = engine.frame();
-            record(&mut summary, &f, done);
-            engine.on_record(&mut summary, done);
-            rec.push(f)?;
+            // A GPU engine reads the step back while it goes on; the frame is written when
+            // the next one is on its way.
+            engine.snapshot()?;
+            pending.push_back(done);
+            while pending.len() > engine.frames_in_flight() {
+                let Some(at) = pending.pop_front() else {
+                    break;
+                };
+                take_frame(&mut *engine, &mut summary, &mut rec, at)?;
+            }
         }
         bar.inc(1);
+    }
+    while let Some(at) = pending.pop_front() {
+        take_frame(&mut *engine, &mut summary, &mut rec, at)?;
     }
     engine.sync()?;
     bar.finish_and_clear();
@@ -203,6 +212,21 @@ fn run_loop(
         log.line(format_args!("wrote {}", f.display()))?;
     }
     Ok(RunReport { summary, files })
+}
+
+/// Takes the engine's oldest snapshot, of step `at`, and records its frame.
+fn take_frame(
+    engine: &mut dyn Engine,
+    summary: &mut Summary,
+    rec: &mut Recorder,
+    at: u32,
+) -> Result<()> {
+    engine.take_snapshot()?;
+    let f = engine.frame();
+    debug_assert_eq!(f.step, at, "the snapshot of the recorded step");
+    record(summary, &f, at);
+    engine.on_record(summary, at);
+    rec.push(f)
 }
 
 /// The most frames kept in memory for the pictures: longer runs keep every k-th recorded frame

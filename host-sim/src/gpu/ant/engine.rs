@@ -166,6 +166,21 @@ pub struct GpuAntSim {
     failed: Option<SimError>,
     /// The timestamp queries of a profiled tick, while it runs.
     profile: Option<Profile>,
+    /// The next tick (the host view's `step` is that of its last read-back).
+    step: u32,
+    /// Recorded steps being read back, oldest first ([`Engine::snapshot`]).
+    snapshots: std::collections::VecDeque<Staged>,
+    /// Staging buffers free for the next read-back (two in turn while frames are recorded).
+    staging: Vec<wgpu::Buffer>,
+}
+
+/// A read-back on its way: the step it holds, its staging buffer, the submission that fills
+/// it, and the map's answer.
+struct Staged {
+    step: u32,
+    buffer: wgpu::Buffer,
+    index: wgpu::SubmissionIndex,
+    rx: std::sync::mpsc::Receiver<std::result::Result<(), wgpu::BufferAsyncError>>,
 }
 
 impl GpuAntSim {
@@ -246,6 +261,7 @@ impl GpuAntSim {
         };
         let grid = GpuGrid::new(&gpu, n as u32, shape.cells())?;
         let k = Kernels::new(&gpu, scalar, &b, &grid)?;
+        let sim_step = sim.step;
         let mut out = GpuAntSim {
             world_len: world.len(),
             delivered: vec![0; places],
@@ -259,6 +275,9 @@ impl GpuAntSim {
             unchecked: 0,
             failed: None,
             profile: None,
+            step: sim_step,
+            snapshots: std::collections::VecDeque::new(),
+            staging: Vec::new(),
         };
         out.push_states();
         Ok(out)
@@ -305,15 +324,87 @@ impl GpuAntSim {
             .write_buffer(&self.b.world, 0, bytemuck::cast_slice(&world));
     }
 
-    /// Reads the states, the objects and the counts back into the host view.
+    /// Reads the states, the objects, the counts and the kept refusal back into the host view
+    /// now (waits for the GPU).
     fn pull(&mut self) -> Result<()> {
-        self.check()?;
-        let states: Vec<u32> = read_back(
-            &self.gpu,
-            "ant states",
-            &self.b.states,
-            self.n * STATE_WORDS,
-        )?;
+        let staged = self.stage()?;
+        self.land(staged)
+    }
+
+    /// Starts copying what the host view holds (states, world, counts, the tick's atomics) into
+    /// a staging buffer and mapping it, without waiting.
+    fn stage(&mut self) -> Result<Staged> {
+        let parts = [
+            (&self.b.states, self.n * STATE_WORDS),
+            (&self.b.world, self.world_len),
+            (&self.b.counts, 2 * self.places),
+            (&self.b.shared, SHARED_WORDS),
+        ];
+        let bytes: u64 = parts.iter().map(|(_, w)| 4 * *w as u64).sum();
+        let buffer = match self.staging.iter().position(|b| b.size() == bytes) {
+            Some(k) => self.staging.swap_remove(k),
+            None => self.gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("ant staging"),
+                size: bytes,
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+        };
+        let mut enc = self.gpu.device.create_command_encoder(&Default::default());
+        let mut at = 0;
+        for (src, words) in parts {
+            let size = 4 * words as u64;
+            if size > 0 {
+                enc.copy_buffer_to_buffer(src, 0, &buffer, at, size);
+            }
+            at += size;
+        }
+        let index = self.gpu.queue.submit([enc.finish()]);
+        let (tx, rx) = std::sync::mpsc::channel();
+        buffer.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        Ok(Staged {
+            step: self.step,
+            buffer,
+            index,
+            rx,
+        })
+    }
+
+    /// Waits for `staged` and makes it the host view.
+    fn land(&mut self, staged: Staged) -> Result<()> {
+        self.gpu
+            .device
+            .poll(wgpu::PollType::Wait {
+                submission_index: Some(staged.index),
+                timeout: None,
+            })
+            .map_err(|source| SimError::GpuLost { source })?;
+        let failed = |source| SimError::GpuReadback {
+            buffer: "ant staging",
+            source,
+        };
+        staged
+            .rx
+            .recv()
+            .unwrap_or(Err(wgpu::BufferAsyncError))
+            .map_err(failed)?;
+        let words: Vec<u32> = {
+            let view = staged
+                .buffer
+                .slice(..)
+                .get_mapped_range()
+                .map_err(|_| failed(wgpu::BufferAsyncError))?;
+            bytemuck::cast_slice(&view).to_vec()
+        };
+        staged.buffer.unmap();
+        self.staging.push(staged.buffer);
+        let (states, rest) = words.split_at(self.n * STATE_WORDS);
+        let (world, rest) = rest.split_at(self.world_len);
+        let (counts, shared) = rest.split_at(2 * self.places);
+        self.check_words(shared)?;
+        self.sim.step = staged.step;
         let sim = &mut self.sim;
         for g in &mut sim.groups {
             by_scalar!(g, g => {
@@ -324,7 +415,6 @@ impl GpuAntSim {
                 sim.world.sensed.write(g.first, &g.ids, &g.states);
             });
         }
-        let world: Vec<u32> = read_back(&self.gpu, "ant world", &self.b.world, self.world_len)?;
         let at = world[super::world::H_OBJECTS_AT] as usize;
         for (k, o) in self.sim.world.objects.iter_mut().enumerate() {
             let w = &world[at + k * OBJECT_WORDS..];
@@ -333,7 +423,6 @@ impl GpuAntSim {
                 *a = w[3];
             }
         }
-        let counts: Vec<u32> = read_back(&self.gpu, "ant counts", &self.b.counts, 2 * self.places)?;
         self.delivered = counts[self.places..].to_vec();
         self.sim.delivered = self.delivered.iter().map(|&c| u64::from(c)).sum();
         Ok(())
@@ -341,11 +430,16 @@ impl GpuAntSim {
 
     /// The first refusal of a controller since the start, as the CPU engine reports it.
     fn check(&mut self) -> Result<()> {
+        let w: Vec<u32> = read_back(&self.gpu, "ant tick atomics", &self.b.shared, SHARED_WORDS)?;
+        self.check_words(&w)
+    }
+
+    /// [`GpuAntSim::check`] of the tick's atomics `w` read back.
+    fn check_words(&mut self, w: &[u32]) -> Result<()> {
         if let Some(e) = self.failed.take() {
             return Err(e);
         }
         self.unchecked = 0;
-        let w: Vec<u32> = read_back(&self.gpu, "ant tick atomics", &self.b.shared, SHARED_WORDS)?;
         if w[SHARED_KEPT] == 0 {
             return Ok(());
         }
@@ -579,7 +673,7 @@ impl Engine for GpuAntSim {
         self.n
     }
     fn next_step(&self) -> u32 {
-        self.sim.step
+        self.step
     }
     fn apply(&mut self, object: u16, action: &Action) {
         if let Err(e) = self.pull() {
@@ -611,7 +705,7 @@ impl Engine for GpuAntSim {
         if phase == 0 {
             self.gpu
                 .queue
-                .write_buffer(&self.b.tick, 4, bytemuck::cast_slice(&[self.sim.step]));
+                .write_buffer(&self.b.tick, 4, bytemuck::cast_slice(&[self.step]));
             enc.clear_buffer(&self.b.shared, 0, Some(SHARED_PER_TICK));
             {
                 let mut pass = self.pass(&mut enc, 0);
@@ -648,7 +742,7 @@ impl Engine for GpuAntSim {
             enc.clear_buffer(&self.b.counts, 0, Some(4 * self.places as u64));
         }
         self.submit(enc);
-        self.sim.step += 1;
+        self.step += 1;
         self.unchecked += 1;
         if self.unchecked >= CHECK_EVERY {
             self.check()?;
@@ -657,6 +751,20 @@ impl Engine for GpuAntSim {
     }
     fn sync(&mut self) -> Result<()> {
         self.pull()
+    }
+    fn frames_in_flight(&self) -> usize {
+        1
+    }
+    fn snapshot(&mut self) -> Result<()> {
+        let staged = self.stage()?;
+        self.snapshots.push_back(staged);
+        Ok(())
+    }
+    fn take_snapshot(&mut self) -> Result<()> {
+        match self.snapshots.pop_front() {
+            Some(staged) => self.land(staged),
+            None => self.pull(),
+        }
     }
     fn profile_tick(&mut self) -> Result<Option<Vec<(&'static str, f64)>>> {
         if !self.gpu.has_timestamps() {
@@ -721,7 +829,7 @@ impl Engine for GpuAntSim {
             before: &before,
             after: &after,
             seed: sim.seed,
-            step: sim.step,
+            step: self.step,
         };
         exchanges_by_slot(&sim.world.sensed.id, agents, |slot| {
             let (g, _) = group_of(&sim.groups, slot)?;
