@@ -93,13 +93,14 @@ pub trait Engine: Send {
         Ok(())
     }
     /// Makes the oldest snapshot not yet taken the host's view (what [`Engine::frame`] and
-    /// [`Engine::on_record`] see), waiting for it if needed.
+    /// [`Engine::on_record`] see), waiting for it if needed. By default [`Engine::sync`]: an
+    /// engine that takes no snapshots brings its view up to date at the recorded step.
     ///
     /// # Errors
     ///
     /// As [`Engine::sync`].
     fn take_snapshot(&mut self) -> Result<()> {
-        Ok(())
+        self.sync()
     }
     /// One tick with each of its GPU passes timed (timestamp queries): the passes' names and
     /// milliseconds; `None` (and no tick) for a CPU engine or an adapter without timestamps.
