@@ -193,7 +193,7 @@ pub const ANT_SENSE: Module = Module {
 pub const ANT_TICK: Module = Module {
     name: "ant_tick",
     source: include_str!("../../../shaders/ant_tick.wgsl"),
-    uses: &[&ANT_SENSE, &ANT_RESOLVE, &ANT_LAYOUT],
+    uses: &[&DISPATCH, &ANT_SENSE, &ANT_RESOLVE, &ANT_LAYOUT],
     over_scalar: true,
 };
 
