@@ -4,11 +4,13 @@
 //!
 //! `cargo test -p swarm-sim --lib gpu::bee::engine -- --nocapture` prints what each run covered.
 
-use swarm_core::{Fx, Scalar};
+use swarm_core::bee::{BeeParams, BeeState};
+use swarm_core::{Fx, Scalar, Vec3};
 
 use super::engine::{CHECK_EVERY, GpuBeeSim};
 use super::layout;
-use crate::bees::{BeeGroup, BeeSim, Contacts};
+use super::world::{GridShape3, world_words};
+use crate::bees::{BeeGroup, BeeObstacle, BeeSim, BeeTarget, BeeWorld, Contacts, Shape3};
 use crate::engine::{Engine, apply_due_events};
 use crate::error::SimError;
 use crate::gpu::test_gpu;
@@ -65,15 +67,31 @@ struct Covered {
 /// Runs `sc` on both engines and compares them after every `every`-th tick (and the last): every
 /// word of every bee, the correction counts, and the exchanges of every bee in that tick.
 fn same_as_cpu(sc: &Scenario, every: u32) -> Covered {
-    let name = &sc.name;
-    let mut cpu = BeeSim::from_scenario(sc, sc.seed).unwrap();
-    let mut gpu = GpuBeeSim::new(BeeSim::from_scenario(sc, sc.seed).unwrap(), test_gpu()).unwrap();
+    let make = || BeeSim::from_scenario(sc, sc.seed).unwrap();
+    same_run(&sc.name, make, sc.steps, every, Some(sc))
+}
+
+/// Runs the simulation `make` builds for `ticks` ticks on both engines (with the events of
+/// `events`, if any) and compares them after every `every`-th tick (and the last): every word
+/// of every bee, the correction counts, the recorded frame, and the exchanges of every bee in
+/// that tick.
+fn same_run(
+    name: &str,
+    make: impl Fn() -> BeeSim,
+    ticks: u32,
+    every: u32,
+    events: Option<&Scenario>,
+) -> Covered {
+    let mut cpu = make();
+    let mut gpu = GpuBeeSim::new(make(), test_gpu()).unwrap();
     let ids: Vec<u32> = (0..cpu.agents() as u32).collect();
     let mut covered = Covered::default();
-    for t in 0..sc.steps {
-        apply_due_events(&mut cpu, sc);
-        apply_due_events(&mut gpu, sc);
-        let look = (t + 1) % every == 0 || t + 1 == sc.steps;
+    for t in 0..ticks {
+        if let Some(sc) = events {
+            apply_due_events(&mut cpu, sc);
+            apply_due_events(&mut gpu, sc);
+        }
+        let look = (t + 1) % every == 0 || t + 1 == ticks;
         Engine::decide(&mut cpu, 0).unwrap();
         gpu.decide(0).unwrap();
         if look {
@@ -122,7 +140,7 @@ fn same_as_cpu(sc: &Scenario, every: u32) -> Covered {
         }
     }
     covered.contacts = cpu.contacts;
-    println!("{name}: {} ticks: {covered:?}", sc.steps);
+    println!("{name}: {ticks} ticks: {covered:?}");
     covered
 }
 
@@ -216,9 +234,106 @@ fn changing_world(ticks: u32) -> Scenario {
 
 #[test]
 fn a_changing_world_is_the_cpus() {
-    let c = same_as_cpu(&changing_world(160), 10);
+    let sc = changing_world(160);
+    // The added target's particles make the world's words outgrow the GPU's buffer (which the
+    // engine then makes again and binds anew).
+    let mut sim = BeeSim::from_scenario(&sc, sc.seed).unwrap();
+    let len = |sim: &BeeSim| world_words::<Fx>(&sim.world, &GridShape3::of(&sim.world, 100)).len();
+    let before = len(&sim);
+    let flower = sc.object_id("flower").unwrap();
+    sim.apply(flower, &Action::Add("flower".into()));
+    assert!(len(&sim) > before, "{} words, then {}", before, len(&sim));
+    let c = same_as_cpu(&sc, 10);
     assert!(
         c.contacts.obstacle > 0 && c.contacts.bounds > 0,
+        "the world must correct bees for this test to test it: {c:?}"
+    );
+}
+
+/// 600 bees in a small volume crowded with obstacles, many of them inside one or outside the
+/// bounds, flying every way: two overlapping spheres (a bee put back on one's surface lands in
+/// the other: several rounds of corrections), a sphere through the volume's +x face, a box on
+/// the ground (its bottom face on the bounds: closed), a shaft from floor to ceiling (both caps
+/// closed), a box in a corner (three faces closed), an inactive sphere.
+fn crowded() -> BeeSim {
+    let params = BeeParams::<f32>::around_nest();
+    let mut w = BeeWorld::new(
+        [0.0; 3],
+        [20.0, 10.0, 20.0],
+        params.h + 2.0 * params.radius,
+        2.0 * params.d0,
+    );
+    let shapes = [
+        Shape3::Sphere {
+            center: [5.0, 5.0, 5.0],
+            radius: 3.0,
+        },
+        Shape3::Sphere {
+            center: [8.0, 5.0, 5.5],
+            radius: 3.0,
+        },
+        Shape3::Sphere {
+            center: [19.0, 5.0, 10.0],
+            radius: 2.5,
+        },
+        Shape3::Box {
+            min: [10.0, 0.0, 12.0],
+            max: [16.0, 4.0, 18.0],
+        },
+        Shape3::Shaft {
+            center: [4.0, 15.0],
+            radius: 1.5,
+            y_min: 0.0,
+            y_max: 10.0,
+        },
+        Shape3::Box {
+            min: [0.0, 7.0, 0.0],
+            max: [3.0, 10.0, 3.0],
+        },
+        Shape3::Sphere {
+            center: [12.0, 6.0, 6.0],
+            radius: 2.0,
+        },
+    ];
+    for (k, s) in shapes.into_iter().enumerate() {
+        w.obstacles
+            .push(BeeObstacle::new(k as u16, format!("o{k}"), s, k != 6));
+    }
+    w.targets = vec![BeeTarget::new(7, "nest", [10.0, 5.0, 10.0], 1.5, 100)];
+    let r = |i: u32, k: u32| swarm_core::rand::rand(5, i, 0, k) as f32 / 4_294_967_296.0;
+    let states = (0..600u32)
+        .map(|i| {
+            let p = [
+                -1.0 + 22.0 * r(i, 0),
+                -1.0 + 12.0 * r(i, 1),
+                -1.0 + 22.0 * r(i, 2),
+            ];
+            let v = [
+                4.0 * r(i, 3) - 2.0,
+                4.0 * r(i, 4) - 2.0,
+                4.0 * r(i, 5) - 2.0,
+            ];
+            BeeState::new(
+                Vec3::from_f32(p[0], p[1], p[2]),
+                Vec3::from_f32(v[0], v[1], v[2]),
+            )
+        })
+        .collect();
+    let g = BeeGroup::new(
+        "crowd".into(),
+        0,
+        params.cast::<Fx>().checked().unwrap(),
+        Some(7),
+        states,
+    );
+    BeeSim::new(w, vec![g.into()], 5)
+}
+
+#[test]
+fn a_crowded_world_is_the_cpus() {
+    let c = same_run("crowded", crowded, 40, 1, None);
+    assert!(
+        c.contacts.obstacle > 100 && c.contacts.bounds > 100,
         "the world must correct bees for this test to test it: {c:?}"
     );
 }
