@@ -146,7 +146,7 @@ fn bound<S: Word + SimScalar>(x: f64, up: bool) -> Option<S> {
 /// Every obstacle's confinement box in `S` ([`BOX_WORDS`] words each, `bee_tick_may_be_within`):
 /// `BeeObstacle::may_be_within(p, 0.0)`, which the CPU's `confine` computes in `f64` (`p` within
 /// the obstacle's bounding box widened by 1e-3), as bounds in `S` that give the same answer for
-/// every point of `S` ([`bound`]): a flag if no point passes, then per axis the least value at
+/// every point of `S` (`bound`): a flag if no point passes, then per axis the least value at
 /// or above the box's low side less the margin, and the greatest at or below its high side plus
 /// the margin.
 pub fn confine_boxes<S: Word + SimScalar>(world: &crate::bees::BeeWorld) -> Vec<u32> {
