@@ -79,7 +79,20 @@ pub const BUILTIN: &[ModelEntry] = &[
         check: crate::bees::scenario::check,
         engine: |sc, seed| Ok(Box::new(BeeSim::from_scenario(sc, seed)?)),
         bench_world: |n, seed, scalar| Box::new(bench_bee_world(n, seed, scalar)),
-        gpu: None,
+        gpu: Some(GpuEntry {
+            engine: |sc, seed, gpu| {
+                Ok(Box::new(crate::gpu::bee::engine::GpuBeeSim::new(
+                    BeeSim::from_scenario(sc, seed)?,
+                    gpu,
+                )?))
+            },
+            bench_world: |n, seed, scalar, gpu| {
+                Ok(Box::new(crate::gpu::bee::engine::GpuBeeSim::new(
+                    bench_bee_world(n, seed, scalar),
+                    gpu,
+                )?))
+            },
+        }),
     },
 ];
 

@@ -304,6 +304,18 @@ pub const BEE_SENSE: Module = Module {
     over_scalar: true,
 };
 
+/// The bee tick of the GPU engine ([`GpuBeeSim`](crate::gpu::bee::engine::GpuBeeSim)): the
+/// kernels `bee_tick_step_main` (sense and step in one pass: `bee_sense_frame`, then
+/// `bee_step_checked`) and `bee_tick_commit_main` (the world's corrections of
+/// `host-sim/src/bees/world.rs`'s `BeeWorld::confine`, counted; the states made current and
+/// sensed; the first refusal kept), on the states kept on the GPU.
+pub const BEE_TICK: Module = Module {
+    name: "bee_tick",
+    source: include_str!("../../../shaders/bee_tick.wgsl"),
+    uses: &[&DISPATCH, &BEE_SENSE, &BEE_LAYOUT],
+    over_scalar: true,
+};
+
 /// The neighbour grid's kernels: agents sorted by cell (count, multi-level exclusive scan, a
 /// stable radix sort), driven by [`GpuGrid`](super::grid::GpuGrid).
 pub const GRID: Module = Module {
@@ -343,6 +355,7 @@ pub const ALL: &[&Module] = &[
     &BEE_LAYOUT,
     &BEE_WORLD,
     &BEE_SENSE,
+    &BEE_TICK,
     &GRID,
 ];
 

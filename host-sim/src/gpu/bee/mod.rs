@@ -10,6 +10,9 @@
 //! [`SCALAR_FX`]: super::shaders::SCALAR_FX
 //! [`SCALAR_F32`]: super::shaders::SCALAR_F32
 
+pub mod engine;
+#[cfg(test)]
+mod engine_tests;
 pub mod layout;
 pub mod sense;
 #[cfg(test)]
