@@ -63,8 +63,9 @@ else:
     ratio = f"{gpu['agent_steps_per_s'] / cpu['agent_steps_per_s']:.2f}" if cpu else "—"
     passes = ", ".join(f"{k} {v:.1f}" for k, v in (gpu.get("kernel_ms") or {}).items()) or "—"
     per = gpu.get("device_bytes_per_agent")
+    per = f"{per:.0f}" if per else "—"
     print(f"| {model} | {int(n):,} | {scalar} | {rate(cpu)} | {rate(gpu)} | {ratio} | "
-          f"{gpu['ms_per_tick']:.1f} | {passes} | {per:.0f} |" if per else "—")
+          f"{gpu['ms_per_tick']:.1f} | {passes} | {per} |")
 PY
         done
     done
