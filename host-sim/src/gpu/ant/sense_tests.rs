@@ -16,16 +16,16 @@
 //!
 //! `cargo test -p swarm-sim --lib gpu::ant::sense -- --nocapture` prints the figures.
 
-use std::sync::{Mutex, OnceLock};
+use std::sync::Mutex;
 use std::time::Instant;
 
 use rayon::prelude::*;
+use swarm_core::Fx;
 use swarm_core::ant::{AntObject, Label};
-use swarm_core::{Fx, ScalarKind};
 
 use super::layout::{
-    PLAN_FRAME_WORDS, RESOLVE_FRAME_WORDS, Word, read_plan_frame, read_resolve_frame,
-    write_plan_frame, write_resolve_frame,
+    PLAN_FRAME_WORDS, RESOLVE_FRAME_WORDS, read_plan_frame, read_resolve_frame, write_plan_frame,
+    write_resolve_frame,
 };
 use super::scalar_module;
 use super::sense::{AntSense, SENSE_KERNEL, modules};
@@ -34,35 +34,18 @@ use crate::ants::{
     AntObjectDef, AntObjectKind, AntSim, AntWorld, N, Shape2, plan_frame, resolve_frame,
 };
 use crate::engine::apply_due_events;
-use crate::gpu::shaders::{self, ANT_SENSE, ANT_WORLD, SCALARS};
+use crate::gpu::shaders::{ANT_SENSE, ANT_WORLD};
 use crate::gpu::tests::Rng;
+use crate::gpu::tests::harness::{
+    PerScalar, TestScalar, assert_constants, assert_valid_wgsl, share, shortened,
+};
 use crate::gpu::{Gpu, test_gpu};
-use crate::scalar::SimScalar;
-use crate::scenario::{ObjectKind, ScalarType, builtin};
-
-/// A scalar of the simulator, as the tests need it.
-trait TestScalar: Word + SimScalar {
-    /// The scenario's name for it.
-    const TYPE: ScalarType;
-}
-
-impl TestScalar for Fx {
-    const TYPE: ScalarType = ScalarType::Fixed;
-}
-
-impl TestScalar for f32 {
-    const TYPE: ScalarType = ScalarType::F32;
-}
+use crate::scenario::ObjectKind;
 
 /// The test GPU and the sensing kernels over `S`, made once for every test.
 fn sense<S: TestScalar>() -> &'static Mutex<(Gpu, AntSense)> {
-    static FX: OnceLock<Mutex<(Gpu, AntSense)>> = OnceLock::new();
-    static F32: OnceLock<Mutex<(Gpu, AntSense)>> = OnceLock::new();
-    let cell = match S::KIND {
-        ScalarKind::I16F16 => &FX,
-        ScalarKind::F32 => &F32,
-    };
-    cell.get_or_init(|| {
+    static SENSE: PerScalar<Mutex<(Gpu, AntSense)>> = PerScalar::new();
+    SENSE.get::<S>(|| {
         let gpu = test_gpu();
         let k = AntSense::new::<S>(&gpu).expect("the sensing kernels compile");
         Mutex::new((gpu, k))
@@ -113,10 +96,9 @@ impl Agreement {
     }
 
     fn share(&self) -> (f64, f64) {
-        let s = |a: usize, b: usize| if b == 0 { 1.0 } else { a as f64 / b as f64 };
         (
-            s(self.plans_same, self.plans),
-            s(self.resolves_same, self.resolves),
+            share(self.plans_same, self.plans),
+            share(self.resolves_same, self.resolves),
         )
     }
 
@@ -240,13 +222,7 @@ const EVERY: u32 = 10;
 /// disturbance of fig. 13 is moved from the middle of the trail to 17 units from the nest, so
 /// that ants meet it in the shortened run.
 fn worlds<S: TestScalar>(name: &str) -> Vec<(String, AntWorld)> {
-    let mut sc = builtin(name).unwrap_or_else(|| panic!("no built-in scenario {name}"));
-    for g in &mut sc.groups {
-        g.scalar = S::TYPE;
-    }
-    for e in &mut sc.events {
-        e.step = (u64::from(e.step) * u64::from(RUN) / u64::from(sc.steps)) as u32;
-    }
+    let mut sc = shortened::<S>(name, RUN);
     sc.steps = RUN + 1;
     for o in &mut sc.objects {
         if let ObjectKind::Disturbance { center, .. } = &mut o.kind {
@@ -650,12 +626,7 @@ fn f32_edge_cases_are_measured() {
 /// The sensing kernels compile (naga, as wgpu would) over both scalars.
 #[test]
 fn the_sensing_kernels_are_valid_wgsl() {
-    for scalar in SCALARS {
-        shaders::tests::validate(
-            &format!("sensing over {}", scalar.name),
-            &shaders::compose(&modules(scalar), SENSE_KERNEL),
-        );
-    }
+    assert_valid_wgsl("sensing", modules, SENSE_KERNEL);
     assert_eq!(scalar_module::<Fx>().name, "scalar_fx");
 }
 
@@ -663,12 +634,5 @@ fn the_sensing_kernels_are_valid_wgsl() {
 #[test]
 fn the_world_constants_are_the_shaders() {
     let wgsl = format!("{}{}", ANT_WORLD.source, ANT_SENSE.source);
-    for &(name, value) in WGSL_CONSTANTS {
-        let decl = format!("const {name}: u32 = {value}u;");
-        let hex = format!("const {name}: u32 = {value:#x}u;");
-        assert!(
-            wgsl.contains(&decl) || wgsl.contains(&hex),
-            "{decl} is not in the shaders"
-        );
-    }
+    assert_constants(&wgsl, WGSL_CONSTANTS, true);
 }

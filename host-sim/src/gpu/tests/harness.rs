@@ -1,0 +1,240 @@
+//! What the ant and bee tests of the GPU share: the scalars as the tests need them
+//! ([`TestScalar`]), kernels made once per scalar ([`PerScalar`]), the built-in scenarios
+//! shortened and their exchanges decoded, and the comparison of a kernel's output words with
+//! Rust's ([`Compared`]).
+
+use std::fmt::{Debug, Display, LowerHex};
+use std::sync::OnceLock;
+
+use serde::de::DeserializeOwned;
+use swarm_core::wire::decode_payload;
+use swarm_core::{Fx, ScalarKind};
+
+use crate::engine::Exchange;
+use crate::gpu::shaders::{self, Module, SCALARS};
+use crate::gpu::words::Word;
+use crate::scalar::{ByScalar, SimScalar};
+use crate::scenario::{ScalarType, Scenario, builtin};
+
+/// A type over a scalar (an agent group of a model): `Of<S>` is it over `S`.
+pub(crate) trait Family {
+    type Of<S>;
+}
+
+/// A scalar of the simulator, as the tests need it.
+pub(crate) trait TestScalar: Word + SimScalar {
+    /// The scenario's name for it.
+    const TYPE: ScalarType;
+    /// `g` if it computes in this scalar.
+    fn pick<G: Family>(g: &ByScalar<G::Of<f32>, G::Of<Fx>>) -> Option<&G::Of<Self>>;
+}
+
+impl TestScalar for Fx {
+    const TYPE: ScalarType = ScalarType::Fixed;
+    fn pick<G: Family>(g: &ByScalar<G::Of<f32>, G::Of<Fx>>) -> Option<&G::Of<Fx>> {
+        match g {
+            ByScalar::Fixed(g) => Some(g),
+            ByScalar::F32(_) => None,
+        }
+    }
+}
+
+impl TestScalar for f32 {
+    const TYPE: ScalarType = ScalarType::F32;
+    fn pick<G: Family>(g: &ByScalar<G::Of<f32>, G::Of<Fx>>) -> Option<&G::Of<f32>> {
+        match g {
+            ByScalar::F32(g) => Some(g),
+            ByScalar::Fixed(_) => None,
+        }
+    }
+}
+
+/// A value per scalar, made once (the test GPU and a model's kernels, for every test).
+pub(crate) struct PerScalar<T> {
+    fx: OnceLock<T>,
+    f32: OnceLock<T>,
+}
+
+impl<T> PerScalar<T> {
+    pub(crate) const fn new() -> Self {
+        PerScalar {
+            fx: OnceLock::new(),
+            f32: OnceLock::new(),
+        }
+    }
+
+    /// The value for `S`, made by `init` the first time.
+    pub(crate) fn get<S: SimScalar>(&self, init: impl FnOnce() -> T) -> &T {
+        let cell = match S::KIND {
+            ScalarKind::I16F16 => &self.fx,
+            ScalarKind::F32 => &self.f32,
+        };
+        cell.get_or_init(init)
+    }
+}
+
+/// The built-in scenario `name` over `S`, shortened to `steps` steps (its events at the same
+/// fraction of the shortened run).
+pub(crate) fn shortened<S: TestScalar>(name: &str, steps: u32) -> Scenario {
+    let mut sc = builtin(name).unwrap_or_else(|| panic!("no built-in scenario {name}"));
+    for g in &mut sc.groups {
+        g.scalar = S::TYPE;
+    }
+    for e in &mut sc.events {
+        e.step = (u64::from(e.step) * u64::from(steps) / u64::from(sc.steps)) as u32;
+    }
+    sc.steps = steps;
+    sc
+}
+
+/// The value of each agent id `0..agents`, from groups of ids and their value (every id in one).
+pub(crate) fn by_id<'a, T: Copy + 'a>(
+    agents: usize,
+    groups: impl IntoIterator<Item = (&'a [u32], T)>,
+) -> Vec<T> {
+    let mut by_id = vec![None; agents];
+    for (ids, v) in groups {
+        for &id in ids {
+            by_id[id as usize] = Some(v);
+        }
+    }
+    by_id.into_iter().map(Option::unwrap).collect()
+}
+
+/// The request and the reply of an exchange, decoded from postcard.
+pub(crate) fn decode_exchange<Q: DeserializeOwned, R: DeserializeOwned>(ex: &Exchange) -> (Q, R) {
+    (
+        decode_payload(&ex.request.bytes).unwrap(),
+        decode_payload(&ex.reply.bytes).unwrap(),
+    )
+}
+
+/// `n` of `total` (1 of none).
+pub(crate) fn share(n: usize, total: usize) -> f64 {
+    if total == 0 {
+        1.0
+    } else {
+        n as f64 / total as f64
+    }
+}
+
+/// What a comparison measures besides the counts (`()` for nothing), summed over comparisons.
+pub(crate) trait Measure: Default + Debug {
+    /// `o` added to `self`.
+    fn add(&mut self, o: Self);
+}
+
+impl Measure for () {
+    fn add(&mut self, (): ()) {}
+}
+
+/// How the GPU's answers compare with Rust's.
+#[derive(Debug, Default)]
+pub(crate) struct Compared<M = ()> {
+    /// Decisions compared.
+    pub(crate) total: usize,
+    /// Those with every output word equal.
+    pub(crate) identical: usize,
+    /// Those with the same status and, if Ok, the same discrete fields.
+    pub(crate) discrete: usize,
+    /// Those refused (by Rust).
+    pub(crate) refused: usize,
+    /// The first that differs: index, Rust's words, the GPU's words.
+    pub(crate) first: Option<(usize, Vec<u32>, Vec<u32>)>,
+    /// What else is measured.
+    pub(crate) measured: M,
+}
+
+impl<M: Measure> Compared<M> {
+    /// `got` (the GPU's output) against `want` (Rust's), `words` per decision, a status first;
+    /// of two that differ, `discrete(got, want)` says whether their discrete fields are the same
+    /// (their statuses being) and `measure` measures them.
+    pub(crate) fn of(
+        got: &[u32],
+        want: &[u32],
+        words: usize,
+        discrete: impl Fn(&[u32], &[u32]) -> bool,
+        mut measure: impl FnMut(&mut M, &[u32], &[u32]),
+    ) -> Self {
+        assert_eq!(got.len(), want.len(), "output length");
+        let mut c = Compared::<M>::default();
+        for (i, (g, w)) in got.chunks(words).zip(want.chunks(words)).enumerate() {
+            c.total += 1;
+            c.refused += usize::from(w[0] != 0);
+            if g == w {
+                c.identical += 1;
+                c.discrete += 1;
+                continue;
+            }
+            if g[0] == w[0] && discrete(g, w) {
+                c.discrete += 1;
+            }
+            measure(&mut c.measured, g, w);
+            c.first.get_or_insert((i, w.to_vec(), g.to_vec()));
+        }
+        c
+    }
+
+    pub(crate) fn add(&mut self, o: Self) {
+        self.total += o.total;
+        self.identical += o.identical;
+        self.discrete += o.discrete;
+        self.refused += o.refused;
+        self.measured.add(o.measured);
+        if self.first.is_none() {
+            self.first = o.first;
+        }
+    }
+
+    /// Panics unless every decision was bit for bit Rust's, with the first that was not (its
+    /// input among `cases`, and both answers as `show` describes them).
+    pub(crate) fn assert_identical<C: Debug>(
+        &self,
+        what: &str,
+        cases: &[C],
+        show: impl Fn(&[u32]) -> String,
+    ) {
+        if let Some((i, want, got)) = &self.first {
+            panic!(
+                "{what}: {} of {} decisions differ; the first, #{i}:\n  input {:?}\n  Rust {}\n  GPU  {}",
+                self.total - self.identical,
+                self.total,
+                cases.get(*i),
+                show(want),
+                show(got),
+            );
+        }
+    }
+}
+
+/// Panics unless `kernel`, composed with `modules(scalar)`, is valid WGSL (naga, as wgpu would
+/// check it) over every scalar module, `what` naming it.
+pub(crate) fn assert_valid_wgsl<const M: usize>(
+    what: &str,
+    modules: fn(&'static Module) -> [&'static Module; M],
+    kernel: &str,
+) {
+    for scalar in SCALARS {
+        shaders::tests::validate(
+            &format!("{what} over {}", scalar.name),
+            &shaders::compose(&modules(scalar), kernel),
+        );
+    }
+}
+
+/// Panics unless `wgsl` declares every constant of `constants` with its value (`const NAME: u32
+/// = 12u;`, or also `= 0xcu;` where `hex`).
+pub(crate) fn assert_constants<V: Display + LowerHex>(
+    wgsl: &str,
+    constants: &[(&str, V)],
+    hex: bool,
+) {
+    for (name, value) in constants {
+        let decl = format!("const {name}: u32 = {value}u;");
+        let in_hex = format!("const {name}: u32 = {value:#x}u;");
+        assert!(
+            wgsl.contains(&decl) || (hex && wgsl.contains(&in_hex)),
+            "{decl} is not in the shaders"
+        );
+    }
+}
