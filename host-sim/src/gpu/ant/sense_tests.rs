@@ -37,7 +37,8 @@ use crate::engine::apply_due_events;
 use crate::gpu::shaders::{ANT_SENSE, ANT_WORLD};
 use crate::gpu::tests::Rng;
 use crate::gpu::tests::harness::{
-    PerScalar, TestScalar, assert_constants, assert_valid_wgsl, share, shortened,
+    PerScalar, Tally, TestScalar, assert_constants, assert_valid_wgsl, first_difference,
+    keep_first, shortened,
 };
 use crate::gpu::{Gpu, test_gpu};
 use crate::scenario::ObjectKind;
@@ -56,11 +57,9 @@ fn sense<S: TestScalar>() -> &'static Mutex<(Gpu, AntSense)> {
 #[derive(Debug, Default)]
 struct Agreement {
     /// Plan frames compared, and those with every word equal.
-    plans: usize,
-    plans_same: usize,
+    plans: Tally,
     /// Resolve frames compared, and those with every word equal.
-    resolves: usize,
-    resolves_same: usize,
+    resolves: Tally,
     /// The first difference, described.
     first: Option<String>,
     /// Plan frames with a full neighbour list, with an obstacle (a polygon's, a disc's), a
@@ -78,13 +77,9 @@ struct Agreement {
 
 impl Agreement {
     fn add(&mut self, o: Agreement) {
-        self.plans += o.plans;
-        self.plans_same += o.plans_same;
-        self.resolves += o.resolves;
-        self.resolves_same += o.resolves_same;
-        if self.first.is_none() {
-            self.first = o.first;
-        }
+        self.plans.add(o.plans);
+        self.resolves.add(o.resolves);
+        keep_first(&mut self.first, o.first);
         self.full += o.full;
         self.obstacles += o.obstacles;
         self.disturbances += o.disturbances;
@@ -96,10 +91,7 @@ impl Agreement {
     }
 
     fn share(&self) -> (f64, f64) {
-        (
-            share(self.plans_same, self.plans),
-            share(self.resolves_same, self.resolves),
-        )
+        (self.plans.share(), self.resolves.share())
     }
 
     fn coverage(&self) -> String {
@@ -123,10 +115,10 @@ impl Agreement {
             panic!(
                 "{what}: {} of {} plan frames and {} of {} resolve frames differ; the first: \
                  {first}",
-                self.plans - self.plans_same,
-                self.plans,
-                self.resolves - self.resolves_same,
-                self.resolves,
+                self.plans.differ(),
+                self.plans.total,
+                self.resolves.differ(),
+                self.resolves.total,
             );
         }
     }
@@ -151,10 +143,8 @@ fn compare<S: TestScalar>(what: &str, w: &AntWorld) -> Agreement {
             let mut want = Vec::with_capacity(PLAN_FRAME_WORDS);
             write_plan_frame(&mut want, &plan);
             let g = &got.plan[i * PLAN_FRAME_WORDS..(i + 1) * PLAN_FRAME_WORDS];
-            a.plans = 1;
-            if g == want {
-                a.plans_same = 1;
-            } else {
+            a.plans = Tally::one(g == want);
+            if g != want {
                 a.first = Some(format!(
                     "{what}: the plan frame of slot {i} (at {:?})\n  CPU {plan:?}\n  GPU {:?}",
                     w.sensed.pos[i],
@@ -172,10 +162,8 @@ fn compare<S: TestScalar>(what: &str, w: &AntWorld) -> Agreement {
             let mut want = Vec::with_capacity(RESOLVE_FRAME_WORDS);
             write_resolve_frame(&mut want, &resolve);
             let g = &got.resolve[i * RESOLVE_FRAME_WORDS..(i + 1) * RESOLVE_FRAME_WORDS];
-            a.resolves = 1;
-            if g == want {
-                a.resolves_same = 1;
-            } else if a.first.is_none() {
+            a.resolves = Tally::one(g == want);
+            if g != want && a.first.is_none() {
                 a.first = Some(format!(
                     "{what}: the resolve frame of slot {i} (at {:?}, predicted {:?})\n  CPU \
                      {resolve:?}\n  GPU {:?}",
@@ -273,14 +261,14 @@ fn fx_frames_of_builtin_scenarios_are_bit_for_bit() {
         "fixed point, {} scenarios for {RUN} ticks, sensed every {EVERY}: {} plan and {} \
          resolve frames identical on the GPU ({:.1} s)\n  {}",
         SCENARIOS.len(),
-        total.plans_same,
-        total.resolves_same,
+        total.plans.same,
+        total.resolves.same,
         t0.elapsed().as_secs_f64(),
         total.coverage(),
     );
-    assert_eq!(total.plans, total.plans_same);
-    assert_eq!(total.resolves, total.resolves_same);
-    assert!(total.plans >= 50_000, "{}", total.plans);
+    assert_eq!(total.plans.total, total.plans.same);
+    assert_eq!(total.resolves.total, total.resolves.same);
+    assert!(total.plans.total >= 50_000, "{}", total.plans.total);
     // What the frames covered.
     assert!(total.full > 500 && total.obstacles > 100 && total.disturbances > 10);
     assert!(total.surfaces > 100 && total.resolve_neighbours > 1000);
@@ -306,16 +294,13 @@ fn f32_frames_of_builtin_scenarios_are_measured() {
             .name,
         SCENARIOS.len(),
         100.0 * plans,
-        total.plans_same,
-        total.plans,
+        total.plans.same,
+        total.plans.total,
         100.0 * resolves,
-        total.resolves_same,
-        total.resolves,
+        total.resolves.same,
+        total.resolves.total,
         t0.elapsed().as_secs_f64(),
-        total
-            .first
-            .as_ref()
-            .map_or(String::new(), |f| format!("\n  the first difference: {f}")),
+        first_difference(total.first.as_ref()),
     );
     assert!(plans >= F32_FLOOR && resolves >= F32_FLOOR, "{total:?}");
 }
@@ -580,8 +565,8 @@ fn fx_edge_cases_are_bit_for_bit() {
     total.assert_identical("fixed point");
     println!(
         "fixed point, edge worlds: {} plan and {} resolve frames identical\n  {}",
-        total.plans_same,
-        total.resolves_same,
+        total.plans.same,
+        total.resolves.same,
         total.coverage()
     );
     assert!(total.full > 50 && total.full_surfaces > 0 && total.disturbances > 0);
@@ -613,10 +598,7 @@ fn f32_edge_cases_are_measured() {
         "f32, edge worlds: plan frames {:.2} % bit-identical, resolve frames {:.2} %{}",
         100.0 * plans,
         100.0 * resolves,
-        total
-            .first
-            .as_ref()
-            .map_or(String::new(), |f| format!("\n  the first difference: {f}")),
+        first_difference(total.first.as_ref()),
     );
     assert!(plans >= F32_FLOOR && resolves >= F32_FLOOR, "{total:?}");
 }

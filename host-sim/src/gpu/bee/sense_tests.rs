@@ -32,7 +32,8 @@ use crate::gpu::ant::scalar_module;
 use crate::gpu::shaders::{BEE_SENSE, BEE_WORLD};
 use crate::gpu::tests::Rng;
 use crate::gpu::tests::harness::{
-    Family, PerScalar, TestScalar, assert_constants, assert_valid_wgsl, share, shortened,
+    Family, PerScalar, Tally, TestScalar, assert_constants, assert_valid_wgsl, first_difference,
+    keep_first, shortened,
 };
 use crate::gpu::{Gpu, test_gpu};
 use crate::scalar::{a3, v3};
@@ -67,8 +68,7 @@ fn gpu_frames<S: TestScalar>(w: &BeeWorld, inputs: &[FrameInput<S>]) -> FrameWor
 #[derive(Debug, Default)]
 struct Agreement {
     /// Frames compared, and those with every word equal.
-    frames: usize,
-    same: usize,
+    frames: Tally,
     /// The first difference, described.
     first: Option<String>,
     /// Frames with neighbours, with a full list of them (more candidates than it holds: the
@@ -86,11 +86,8 @@ struct Agreement {
 
 impl Agreement {
     fn add(&mut self, o: Agreement) {
-        self.frames += o.frames;
-        self.same += o.same;
-        if self.first.is_none() {
-            self.first = o.first;
-        }
+        self.frames.add(o.frames);
+        keep_first(&mut self.first, o.first);
         self.neighbours += o.neighbours;
         self.full += o.full;
         self.targets += o.targets;
@@ -101,7 +98,7 @@ impl Agreement {
     }
 
     fn share(&self) -> f64 {
-        share(self.same, self.frames)
+        self.frames.share()
     }
 
     fn coverage(&self) -> String {
@@ -123,8 +120,8 @@ impl Agreement {
         if let Some(first) = &self.first {
             panic!(
                 "{what}: {} of {} frames differ; the first: {first}",
-                self.frames - self.same,
-                self.frames,
+                self.frames.differ(),
+                self.frames.total,
             );
         }
     }
@@ -146,10 +143,8 @@ fn compare<S: TestScalar>(what: &str, w: &BeeWorld, inputs: &[FrameInput<S>]) ->
             let mut want = Vec::with_capacity(FRAME_WORDS);
             write_frame(&mut want, &frame);
             let g = &got.frames[i * FRAME_WORDS..(i + 1) * FRAME_WORDS];
-            a.frames = 1;
-            if g == want {
-                a.same = 1;
-            } else {
+            a.frames = Tally::one(g == want);
+            if g != want {
                 a.first = Some(format!(
                     "{what}: the frame of slot {i} (at {:?}, id {})\n  CPU {frame:?}\n  GPU {:?}",
                     w.sensed.pos[i],
@@ -257,12 +252,12 @@ fn fx_frames_of_builtin_scenarios_are_bit_for_bit() {
     println!(
         "fixed point, {} bee scenarios: {} frames identical on the GPU ({:.1} s)\n  {}",
         SCENARIOS.len(),
-        total.same,
+        total.frames.same,
         t0.elapsed().as_secs_f64(),
         total.coverage(),
     );
-    assert_eq!(total.frames, total.same);
-    assert!(total.frames >= 40_000, "{}", total.frames);
+    assert_eq!(total.frames.total, total.frames.same);
+    assert!(total.frames.total >= 40_000, "{}", total.frames.total);
     // What the frames covered.
     assert!(total.full > 200 && total.full_targets > 200 && total.obstacles > 4000);
     assert!(total.goals > 40_000 && total.targets > 500);
@@ -286,12 +281,9 @@ fn f32_frames_of_builtin_scenarios_are_measured() {
             .name,
         SCENARIOS.len(),
         100.0 * total.share(),
-        total.frames,
+        total.frames.total,
         t0.elapsed().as_secs_f64(),
-        total
-            .first
-            .as_ref()
-            .map_or(String::new(), |f| format!("\n  the first difference: {f}")),
+        first_difference(total.first.as_ref()),
     );
     assert!(total.share() >= F32_FLOOR, "{total:?}");
 }
@@ -639,7 +631,7 @@ fn fx_edge_cases_are_bit_for_bit() {
     total.assert_identical("fixed point");
     println!(
         "fixed point, edge worlds: {} frames identical\n  {}",
-        total.same,
+        total.frames.same,
         total.coverage()
     );
     assert!(total.full > 50 && total.full_targets > 10 && total.inside > 50);
@@ -673,11 +665,8 @@ fn f32_edge_cases_are_measured() {
     println!(
         "f32, edge worlds: {:.2} % of {} frames bit-identical{}",
         100.0 * total.share(),
-        total.frames,
-        total
-            .first
-            .as_ref()
-            .map_or(String::new(), |f| format!("\n  the first difference: {f}")),
+        total.frames.total,
+        first_difference(total.first.as_ref()),
     );
     assert!(total.share() >= F32_FLOOR, "{total:?}");
 }

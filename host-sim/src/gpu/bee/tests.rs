@@ -34,8 +34,8 @@ use crate::gpu::shaders::{self, BEE_FRAME, SCALAR_FX};
 use crate::gpu::test_gpu;
 use crate::gpu::tests::Rng;
 use crate::gpu::tests::harness::{
-    self, Family, Measure, PerScalar, TestScalar, assert_constants, assert_valid_wgsl, by_id,
-    decode_exchange, share, shortened,
+    self, Family, Measure, PerScalar, TestScalar, assert_constants, assert_valid_wgsl,
+    decode_exchange, params_by_id, share, shortened,
 };
 use crate::scenario::builtin_names;
 
@@ -176,13 +176,8 @@ fn real<S: TestScalar>(name: &str, ticks: u32, every: u32) -> Real<S> {
     let sc = shortened::<S>(name, ticks);
     let mut sim = BeeSim::from_scenario(&sc, sc.seed).expect("the scenario builds");
     let ids: Vec<u32> = (0..sim.agents() as u32).collect();
-    let params: Vec<Checked<BeeParams<S>>> = by_id(
-        ids.len(),
-        sim.groups.iter().map(|g| {
-            let g = S::pick::<Groups>(g).expect("every group in the scalar asked for");
-            (&g.ids[..], g.params)
-        }),
-    );
+    let params: Vec<Checked<BeeParams<S>>> =
+        params_by_id::<S, Groups, _>(ids.len(), &sim.groups, |g| (&g.ids, g.params));
     let mut out = Real {
         cases: Vec::new(),
         replies: Vec::new(),

@@ -21,17 +21,20 @@ pub(crate) trait Family {
     type Of<S>;
 }
 
+/// A value of `G` over either scalar (an `AnyAntGroup`, an `AnyBeeGroup`).
+pub(crate) type Any<G> = ByScalar<<G as Family>::Of<f32>, <G as Family>::Of<Fx>>;
+
 /// A scalar of the simulator, as the tests need it.
 pub(crate) trait TestScalar: Word + SimScalar {
     /// The scenario's name for it.
     const TYPE: ScalarType;
     /// `g` if it computes in this scalar.
-    fn pick<G: Family>(g: &ByScalar<G::Of<f32>, G::Of<Fx>>) -> Option<&G::Of<Self>>;
+    fn pick<G: Family>(g: &Any<G>) -> Option<&G::Of<Self>>;
 }
 
 impl TestScalar for Fx {
     const TYPE: ScalarType = ScalarType::Fixed;
-    fn pick<G: Family>(g: &ByScalar<G::Of<f32>, G::Of<Fx>>) -> Option<&G::Of<Fx>> {
+    fn pick<G: Family>(g: &Any<G>) -> Option<&G::Of<Fx>> {
         match g {
             ByScalar::Fixed(g) => Some(g),
             ByScalar::F32(_) => None,
@@ -41,7 +44,7 @@ impl TestScalar for Fx {
 
 impl TestScalar for f32 {
     const TYPE: ScalarType = ScalarType::F32;
-    fn pick<G: Family>(g: &ByScalar<G::Of<f32>, G::Of<Fx>>) -> Option<&G::Of<f32>> {
+    fn pick<G: Family>(g: &Any<G>) -> Option<&G::Of<f32>> {
         match g {
             ByScalar::F32(g) => Some(g),
             ByScalar::Fixed(_) => None,
@@ -87,15 +90,19 @@ pub(crate) fn shortened<S: TestScalar>(name: &str, steps: u32) -> Scenario {
     sc
 }
 
-/// The value of each agent id `0..agents`, from groups of ids and their value (every id in one).
-pub(crate) fn by_id<'a, T: Copy + 'a>(
+/// Each agent's parameters, by id `0..agents`: those of its group in `groups` (all over `S`),
+/// `of` giving a group's ids and parameters.
+pub(crate) fn params_by_id<S: TestScalar, G: Family, P: Copy>(
     agents: usize,
-    groups: impl IntoIterator<Item = (&'a [u32], T)>,
-) -> Vec<T> {
+    groups: &[Any<G>],
+    of: impl Fn(&G::Of<S>) -> (&[u32], P),
+) -> Vec<P> {
     let mut by_id = vec![None; agents];
-    for (ids, v) in groups {
+    for g in groups {
+        let g = S::pick::<G>(g).expect("every group in the scalar asked for");
+        let (ids, params) = of(g);
         for &id in ids {
-            by_id[id as usize] = Some(v);
+            by_id[id as usize] = Some(params);
         }
     }
     by_id.into_iter().map(Option::unwrap).collect()
@@ -115,6 +122,50 @@ pub(crate) fn share(n: usize, total: usize) -> f64 {
         1.0
     } else {
         n as f64 / total as f64
+    }
+}
+
+/// The first of two (differences, say): `first`, or `o` where there is none.
+pub(crate) fn keep_first<T>(first: &mut Option<T>, o: Option<T>) {
+    if first.is_none() {
+        *first = o;
+    }
+}
+
+/// A first difference, described on a line of its own (nothing if none).
+pub(crate) fn first_difference(first: Option<&String>) -> String {
+    first.map_or(String::new(), |f| format!("\n  the first difference: {f}"))
+}
+
+/// Values compared (frames), and those with every word equal.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Tally {
+    pub(crate) total: usize,
+    pub(crate) same: usize,
+}
+
+impl Tally {
+    /// One value, the same or not.
+    pub(crate) fn one(same: bool) -> Tally {
+        Tally {
+            total: 1,
+            same: usize::from(same),
+        }
+    }
+
+    pub(crate) fn add(&mut self, o: Tally) {
+        self.total += o.total;
+        self.same += o.same;
+    }
+
+    /// Those that differ.
+    pub(crate) fn differ(&self) -> usize {
+        self.total - self.same
+    }
+
+    /// The share of those with every word equal (1 of none).
+    pub(crate) fn share(&self) -> f64 {
+        share(self.same, self.total)
     }
 }
 
@@ -181,9 +232,7 @@ impl<M: Measure> Compared<M> {
         self.discrete += o.discrete;
         self.refused += o.refused;
         self.measured.add(o.measured);
-        if self.first.is_none() {
-            self.first = o.first;
-        }
+        keep_first(&mut self.first, o.first);
     }
 
     /// Panics unless every decision was bit for bit Rust's, with the first that was not (its
