@@ -36,8 +36,8 @@ use crate::gpu::shaders::{self, ANT_FRAME};
 use crate::gpu::test_gpu;
 use crate::gpu::tests::Rng;
 use crate::gpu::tests::harness::{
-    Compared, Family, PerScalar, TestScalar, assert_constants, assert_valid_wgsl, decode_exchange,
-    params_by_id, share, shortened,
+    Compared, Family, PerScalar, StatusWords, TestScalar, assert_constants, assert_valid_wgsl,
+    decode_exchange, params_by_id, share, shortened,
 };
 
 /// The ant groups, over each scalar.
@@ -1116,25 +1116,17 @@ fn the_layout_constants_are_the_shaders() {
 /// to the error they encode.
 #[test]
 fn status_words_are_the_shaders() {
-    let wgsl = shaders::ANT_STATE.source;
-    for (code, field) in FIELDS.iter().enumerate().skip(1) {
-        let name = field.replace('.', "_").to_uppercase();
-        let decl = format!("const ANT_FIELD_{name}: u32 = {code}u; // \"{field}\"");
-        assert!(wgsl.contains(&decl), "{decl} is not in ant_state.wgsl");
-        for index in [None, Some(0), Some(7)] {
-            for e in [
-                Error::NonFinite { field, index },
-                Error::OutOfRange { field, index },
-                Error::Inconsistent { field, index },
-            ] {
-                assert_eq!(status_error(status_of(&e)).unwrap(), Err(e));
-            }
-        }
+    StatusWords {
+        wgsl: shaders::ANT_STATE.source,
+        file: "ant_state.wgsl",
+        prefix: "ANT",
+        fields: &FIELDS,
+        kinds: 3,
+        indices: [None, Some(0), Some(7)],
+        status_of,
+        status_error,
     }
-    assert_eq!(status_error(0).unwrap(), Ok(()));
-    assert!(status_error(0x0000_ff01).is_err());
-    assert!(status_error(0x0000_0104).is_err());
-    assert_eq!(status_of(&Error::Payload), u32::MAX);
+    .check();
 }
 
 /// Every constant the generic modules convert (`s_from_f32(0.25f)`, `s_from_f32(ANT_W_MAX)`):

@@ -34,7 +34,7 @@ use crate::gpu::shaders::{self, BEE_FRAME, SCALAR_FX};
 use crate::gpu::test_gpu;
 use crate::gpu::tests::Rng;
 use crate::gpu::tests::harness::{
-    self, Family, Measure, PerScalar, TestScalar, assert_constants, assert_valid_wgsl,
+    self, Family, Measure, PerScalar, StatusWords, TestScalar, assert_constants, assert_valid_wgsl,
     decode_exchange, params_by_id, share, shortened,
 };
 use crate::scenario::builtin_names;
@@ -1026,24 +1026,17 @@ fn the_layout_constants_are_the_shaders() {
 /// to the error they encode.
 #[test]
 fn status_words_are_the_shaders() {
-    let wgsl = BEE_FRAME.source;
-    for (code, field) in FIELDS.iter().enumerate().skip(1) {
-        let name = field.replace('.', "_").to_uppercase();
-        let decl = format!("const BEE_FIELD_{name}: u32 = {code}u; // \"{field}\"");
-        assert!(wgsl.contains(&decl), "{decl} is not in bee_frame.wgsl");
-        for index in [None, Some(0), Some(15)] {
-            for e in [
-                Error::NonFinite { field, index },
-                Error::OutOfRange { field, index },
-            ] {
-                assert_eq!(status_error(status_of(&e)).unwrap(), Err(e));
-            }
-        }
+    StatusWords {
+        wgsl: BEE_FRAME.source,
+        file: "bee_frame.wgsl",
+        prefix: "BEE",
+        fields: &FIELDS,
+        kinds: 2,
+        indices: [None, Some(0), Some(15)],
+        status_of,
+        status_error,
     }
-    assert_eq!(status_error(0).unwrap(), Ok(()));
-    assert!(status_error(0x0000_ff01).is_err());
-    assert!(status_error(0x0000_0103).is_err());
-    assert_eq!(status_of(&Error::Payload), u32::MAX);
+    .check();
     assert_eq!(
         status_of(&Error::Inconsistent {
             field: "state.pos",

@@ -287,3 +287,54 @@ pub(crate) fn assert_constants<V: Display + LowerHex>(
         );
     }
 }
+
+/// A model's status words (`status_of`, `status_error`), as a test checks them.
+pub(crate) struct StatusWords {
+    /// The WGSL that names the fields, and its file's name.
+    pub(crate) wgsl: &'static str,
+    pub(crate) file: &'static str,
+    /// The prefix of the fields' constants (`ANT`: `ANT_FIELD_STATE_POS`).
+    pub(crate) prefix: &'static str,
+    /// The fields by code (0 is no field).
+    pub(crate) fields: &'static [&'static str],
+    /// The kinds of error the kernels write (the first of `NonFinite`, `OutOfRange`,
+    /// `Inconsistent`).
+    pub(crate) kinds: usize,
+    /// The indices tried.
+    pub(crate) indices: [Option<u16>; 3],
+    pub(crate) status_of: fn(&swarm_core::Error) -> u32,
+    pub(crate) status_error: fn(u32) -> crate::Result<Result<(), swarm_core::Error>>,
+}
+
+impl StatusWords {
+    /// Panics unless the WGSL names every field with its code (`const ANT_FIELD_STATE_POS: u32 =
+    /// 1u; // "state.pos"`), every error of each kind, field and index decodes to itself, 0 to
+    /// Ok, a field code past the table and the kind after the last are refused, and an error no
+    /// controller returns has no status word (`u32::MAX`).
+    pub(crate) fn check(&self) {
+        use swarm_core::Error;
+        let (status_of, status_error) = (self.status_of, self.status_error);
+        for (code, &field) in self.fields.iter().enumerate().skip(1) {
+            let name = field.replace('.', "_").to_uppercase();
+            let decl = format!(
+                "const {}_FIELD_{name}: u32 = {code}u; // \"{field}\"",
+                self.prefix
+            );
+            assert!(self.wgsl.contains(&decl), "{decl} is not in {}", self.file);
+            for index in self.indices {
+                let errors = [
+                    Error::NonFinite { field, index },
+                    Error::OutOfRange { field, index },
+                    Error::Inconsistent { field, index },
+                ];
+                for e in errors.into_iter().take(self.kinds) {
+                    assert_eq!(status_error(status_of(&e)).unwrap(), Err(e));
+                }
+            }
+        }
+        assert_eq!(status_error(0).unwrap(), Ok(()));
+        assert!(status_error(0x0000_ff01).is_err());
+        assert!(status_error(0x0000_0101 + self.kinds as u32).is_err());
+        assert_eq!(status_of(&Error::Payload), u32::MAX);
+    }
+}
