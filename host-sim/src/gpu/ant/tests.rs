@@ -29,23 +29,16 @@ use swarm_core::{Checked, Error, Fx, Rect, Scalar, StepCtx, Vec2};
 
 use super::layout::*;
 use super::*;
-use crate::ants::{AntGroup, AntPlanFrame, AntResolveFrame, AntSim, N, O};
+use crate::ants::{AntPlanFrame, AntResolveFrame, AntSim, N, O};
 use crate::engine::{Engine, apply_due_events};
 use crate::gpu::kernel::map_words;
 use crate::gpu::shaders::{self, ANT_FRAME};
 use crate::gpu::test_gpu;
 use crate::gpu::tests::Rng;
 use crate::gpu::tests::harness::{
-    Compared, Family, PerScalar, StatusWords, TestScalar, assert_constants, assert_valid_wgsl,
+    AntGroups, Compared, PerScalar, StatusWords, TestScalar, assert_constants, assert_valid_wgsl,
     decode_exchange, params_by_id, share, shortened,
 };
-
-/// The ant groups, over each scalar.
-struct Groups;
-
-impl Family for Groups {
-    type Of<S> = AntGroup<S>;
-}
 
 /// The inputs of one `plan_checked`.
 #[derive(Clone, Debug)]
@@ -171,7 +164,7 @@ fn real<S: TestScalar>(name: &str, ticks: u32, every: u32) -> Real<S> {
     let mut sim = AntSim::from_scenario(&sc, sc.seed).expect("the scenario builds");
     let ids: Vec<u32> = (0..sim.agents() as u32).collect();
     let params: Vec<Checked<AntParams<S>>> =
-        params_by_id::<S, Groups, _>(ids.len(), &sim.groups, |g| (&g.ids, g.params));
+        params_by_id::<S, AntGroups, _>(ids.len(), &sim.groups, |g| (&g.ids, g.params));
     let mut out = Real {
         plans: Vec::new(),
         plan_replies: Vec::new(),

@@ -25,26 +25,19 @@ use super::layout::{FRAME_WORDS, read_frame, write_frame};
 use super::sense::{BeeSense, FrameWords, SENSE_KERNEL, modules};
 use super::world::*;
 use crate::bees::{
-    BeeGroup, BeeObstacle, BeeSim, BeeTarget, BeeWorld, N, P, Shape3, bee_frame, bee_frame_time,
+    BeeObstacle, BeeSim, BeeTarget, BeeWorld, N, P, Shape3, bee_frame, bee_frame_time,
 };
 use crate::engine::{Engine, apply_due_events};
 use crate::gpu::ant::scalar_module;
 use crate::gpu::shaders::{BEE_SENSE, BEE_WORLD};
 use crate::gpu::tests::Rng;
 use crate::gpu::tests::harness::{
-    Family, PerScalar, Tally, TestScalar, assert_constants, assert_valid_wgsl, first_difference,
+    BeeGroups, PerScalar, Tally, TestScalar, assert_constants, assert_valid_wgsl, first_difference,
     keep_first, shortened,
 };
 use crate::gpu::{Gpu, test_gpu};
 use crate::scalar::{a3, v3};
 use crate::scenario::builtin_names;
-
-/// The bee groups, over each scalar.
-struct Groups;
-
-impl Family for Groups {
-    type Of<S> = BeeGroup<S>;
-}
 
 /// The test GPU and the sensing kernels over `S`, made once for every test.
 fn sense<S: TestScalar>() -> &'static Mutex<(Gpu, BeeSense)> {
@@ -188,7 +181,7 @@ fn inputs_of<S: TestScalar>(sim: &BeeSim) -> Vec<FrameInput<S>> {
         sim.agents()
     ];
     for g in &sim.groups {
-        let g = S::pick::<Groups>(g).expect("every group in the scalar asked for");
+        let g = S::pick::<BeeGroups>(g).expect("every group in the scalar asked for");
         let dt = g.params.dt.to_f64();
         for (k, &id) in g.ids.iter().enumerate() {
             inputs[g.first + k] = FrameInput {

@@ -27,24 +27,17 @@ use swarm_core::{Checked, Error, Fx, Scalar, Vec3};
 
 use super::layout::*;
 use super::*;
-use crate::bees::{BeeGroup, BeeSim, BeeSimFrame, N, P};
+use crate::bees::{BeeSim, BeeSimFrame, N, P};
 use crate::engine::{Engine, apply_due_events};
 use crate::gpu::kernel::map_words;
 use crate::gpu::shaders::{self, BEE_FRAME, SCALAR_FX};
 use crate::gpu::test_gpu;
 use crate::gpu::tests::Rng;
 use crate::gpu::tests::harness::{
-    self, Family, Measure, PerScalar, StatusWords, TestScalar, assert_constants, assert_valid_wgsl,
-    decode_exchange, params_by_id, share, shortened,
+    self, BeeGroups, Measure, PerScalar, StatusWords, TestScalar, assert_constants,
+    assert_valid_wgsl, decode_exchange, params_by_id, share, shortened,
 };
 use crate::scenario::builtin_names;
-
-/// The bee groups, over each scalar.
-struct Groups;
-
-impl Family for Groups {
-    type Of<S> = BeeGroup<S>;
-}
 
 /// The inputs of one `step_checked`.
 #[derive(Clone, Debug)]
@@ -177,7 +170,7 @@ fn real<S: TestScalar>(name: &str, ticks: u32, every: u32) -> Real<S> {
     let mut sim = BeeSim::from_scenario(&sc, sc.seed).expect("the scenario builds");
     let ids: Vec<u32> = (0..sim.agents() as u32).collect();
     let params: Vec<Checked<BeeParams<S>>> =
-        params_by_id::<S, Groups, _>(ids.len(), &sim.groups, |g| (&g.ids, g.params));
+        params_by_id::<S, BeeGroups, _>(ids.len(), &sim.groups, |g| (&g.ids, g.params));
     let mut out = Real {
         cases: Vec::new(),
         replies: Vec::new(),

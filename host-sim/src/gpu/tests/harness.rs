@@ -10,6 +10,8 @@ use serde::de::DeserializeOwned;
 use swarm_core::wire::decode_payload;
 use swarm_core::{Fx, ScalarKind};
 
+use crate::ants::AntGroup;
+use crate::bees::BeeGroup;
 use crate::engine::Exchange;
 use crate::gpu::shaders::{self, Module, SCALARS};
 use crate::gpu::words::Word;
@@ -19,6 +21,20 @@ use crate::scenario::{ScalarType, Scenario, builtin};
 /// A type over a scalar (an agent group of a model): `Of<S>` is it over `S`.
 pub(crate) trait Family {
     type Of<S>;
+}
+
+/// The ant groups over each scalar.
+pub(crate) struct AntGroups;
+
+impl Family for AntGroups {
+    type Of<S> = AntGroup<S>;
+}
+
+/// The bee groups over each scalar.
+pub(crate) struct BeeGroups;
+
+impl Family for BeeGroups {
+    type Of<S> = BeeGroup<S>;
 }
 
 /// A value of `G` over either scalar (an `AnyAntGroup`, an `AnyBeeGroup`).
