@@ -314,17 +314,61 @@ pub fn map_words(
     let mut all = vec![&shaders::DISPATCH];
     all.extend_from_slice(uses);
     let k = Kernel::new(gpu, "map_words", &all, kernel, entry)?;
+    run_elements(gpu, &k, ["input", "output"], input, in_words, out_words)
+}
+
+/// Runs `kernel` once per element of `input`, in one dispatch: thread `i` reads element `i`
+/// (`in_words` words) of its binding 0 and writes element `i` (`out_words` words) of its
+/// binding 1, as the kernels of [`map_words`]; the output words. `labels` name the input and
+/// output buffers.
+///
+/// # Errors
+///
+/// As [`read_back`].
+pub fn run_elements(
+    gpu: &Gpu,
+    kernel: &Kernel,
+    labels: [&'static str; 2],
+    input: &[u32],
+    in_words: usize,
+    out_words: usize,
+) -> Result<Vec<u32>> {
     let n = input.len() / in_words.max(1);
-    let inp = storage(gpu, "input", input);
-    let out = storage(gpu, "output", &vec![0u32; (n * out_words).max(1)]);
-    let group = k.bind(gpu, &[&inp, &out]);
+    let inp = storage(gpu, labels[0], input);
+    let out = storage(gpu, labels[1], &vec![0u32; (n * out_words).max(1)]);
+    let group = kernel.bind(gpu, &[&inp, &out]);
     let mut enc = gpu.device.create_command_encoder(&Default::default());
     {
         let mut pass = enc.begin_compute_pass(&Default::default());
-        k.dispatch(&mut pass, &group, n as u32);
+        kernel.dispatch(&mut pass, &group, n as u32);
     }
     gpu.queue.submit([enc.finish()]);
-    read_back(gpu, "output", &out, n * out_words)
+    read_back(gpu, labels[1], &out, n * out_words)
+}
+
+/// As [`run_elements`], in dispatches of at most 64 MiB of input or output (and of the
+/// adapter's largest binding).
+///
+/// # Errors
+///
+/// As [`read_back`].
+pub fn run_chunked(
+    gpu: &Gpu,
+    kernel: &Kernel,
+    labels: [&'static str; 2],
+    input: &[u32],
+    in_words: usize,
+    out_words: usize,
+) -> Result<Vec<u32>> {
+    let limit = gpu.max_binding().min(64 << 20) as usize;
+    let per_dispatch = (limit / (4 * in_words.max(out_words))).max(1);
+    let mut out = Vec::with_capacity(input.len() / in_words * out_words);
+    for chunk in input.chunks(per_dispatch * in_words) {
+        out.extend(run_elements(
+            gpu, kernel, labels, chunk, in_words, out_words,
+        )?);
+    }
+    Ok(out)
 }
 
 #[cfg(test)]

@@ -22,8 +22,10 @@ mod context;
 pub mod grid;
 pub mod kernel;
 pub mod shaders;
+pub mod status;
 #[cfg(test)]
 mod tests;
+pub mod words;
 
 pub use context::{AdapterSummary, Gpu};
 

@@ -2,8 +2,8 @@
 //! words, packed and unpacked here and read and written by `shaders/ant_layout.wgsl` in the same
 //! layout (the word counts are constants on both sides, checked against each other by a test).
 //!
-//! An `S` is one word ([`Word`]: the bits of an [`Fx`], or of an `f32`), an enum its
-//! discriminant, a `u16`, `u8` or `bool` one word; an absent `Option` is a 0 flag followed by
+//! An `S` is one word ([`Word`]: the bits of an [`Fx`](swarm_core::Fx), or of an `f32`), an
+//! enum its discriminant, a `u16`, `u8` or `bool` one word; an absent `Option` is a 0 flag followed by
 //! zero words, and the entries of a frame past its length are zero words, so two equal values
 //! always have equal words. Frames have the simulator's capacities ([`N`], [`O`], [`SURFACES`]).
 //!
@@ -21,37 +21,13 @@ use swarm_core::ant::{
     AntNeighbor, AntObject, AntParams, AntPlan, AntState, Follow, Label, MotionState, SURFACES,
     StopReason, StopTimer, Surface, Turn,
 };
-use swarm_core::{Error, Fx, Rect, Scalar, StepCtx, Vec2};
+use swarm_core::{Error, Rect, StepCtx, Vec2};
 
 use crate::ants::{AntPlanFrame, AntResolveFrame, N, O};
 use crate::error::{Result, SimError};
-
-/// A scalar as one storage word: the bits of an [`Fx`] or of an `f32` (`s_to_word` and
-/// `s_from_word` of the scalar modules).
-pub trait Word: Scalar {
-    /// The bits.
-    fn to_word(self) -> u32;
-    /// From the bits.
-    fn from_word(w: u32) -> Self;
-}
-
-impl Word for Fx {
-    fn to_word(self) -> u32 {
-        self.to_bits() as u32
-    }
-    fn from_word(w: u32) -> Self {
-        Fx::from_bits(w as i32)
-    }
-}
-
-impl Word for f32 {
-    fn to_word(self) -> u32 {
-        self.to_bits()
-    }
-    fn from_word(w: u32) -> Self {
-        f32::from_bits(w)
-    }
-}
+use crate::gpu::status;
+pub use crate::gpu::words::Word;
+use crate::gpu::words::Words;
 
 /// Words of an [`AntState`] (`ANT_STATE_WORDS`).
 pub const STATE_WORDS: usize = 20;
@@ -278,113 +254,79 @@ pub fn write_resolve_result<S: Word>(
 
 // ---- unpacking ----
 
-/// Reads words in order.
-struct Words<'a>(&'a [u32]);
-
-impl Words<'_> {
-    fn next(&mut self) -> u32 {
-        let (&w, rest) = self.0.split_first().unwrap_or((&0, &[]));
-        self.0 = rest;
-        w
-    }
-    fn s<S: Word>(&mut self) -> S {
-        S::from_word(self.next())
-    }
-    fn v2<S: Word>(&mut self) -> Vec2<S> {
-        let x = self.s();
-        Vec2::new(x, self.s())
-    }
-    fn rect<S: Word>(&mut self) -> Rect<S> {
-        let min = self.v2();
-        Rect::new(min, self.v2())
-    }
-    fn u16(&mut self, what: &'static str) -> Result<u16> {
-        let w = self.next();
-        u16::try_from(w).map_err(|_| SimError::GpuWords { what, word: w })
-    }
-    fn flag(&mut self) -> Result<bool> {
-        match self.next() {
-            0 => Ok(false),
-            1 => Ok(true),
-            word => Err(SimError::GpuWords { what: "flag", word }),
+/// The [`AntState`] next in `r`.
+fn state<S: Word>(r: &mut Words<'_>) -> Result<AntState<S>> {
+    let pos = r.v2();
+    let heading = r.v2();
+    let label = label(r.next())?;
+    let nest = r.u16("nest id")?;
+    let origin = r.u16("origin id")?;
+    let arrival = r.v2();
+    let goal = if r.flag()? {
+        Some(r.v2())
+    } else {
+        r.skip(2);
+        None
+    };
+    let follow = if r.flag()? {
+        let turn = match r.next() {
+            0 => Turn::Ccw,
+            1 => Turn::Cw,
+            word => return Err(SimError::GpuWords { what: "Turn", word }),
+        };
+        Some(Follow {
+            turn,
+            winding: r.s(),
+        })
+    } else {
+        r.skip(2);
+        None
+    };
+    let motion = match r.next() {
+        0 => MotionState::Stop,
+        1 => MotionState::BasicMovement,
+        2 => MotionState::InteractNeighbors,
+        3 => MotionState::InteractEnvironment,
+        word => {
+            return Err(SimError::GpuWords {
+                what: "MotionState",
+                word,
+            });
         }
-    }
-    fn skip(&mut self, n: usize) {
-        self.0 = self.0.get(n..).unwrap_or(&[]);
-    }
-    fn state<S: Word>(&mut self) -> Result<AntState<S>> {
-        let pos = self.v2();
-        let heading = self.v2();
-        let label = label(self.next())?;
-        let nest = self.u16("nest id")?;
-        let origin = self.u16("origin id")?;
-        let arrival = self.v2();
-        let goal = if self.flag()? {
-            Some(self.v2())
-        } else {
-            self.skip(2);
-            None
-        };
-        let follow = if self.flag()? {
-            let turn = match self.next() {
-                0 => Turn::Ccw,
-                1 => Turn::Cw,
-                word => return Err(SimError::GpuWords { what: "Turn", word }),
-            };
-            Some(Follow {
-                turn,
-                winding: self.s(),
-            })
-        } else {
-            self.skip(2);
-            None
-        };
-        let motion = match self.next() {
-            0 => MotionState::Stop,
-            1 => MotionState::BasicMovement,
-            2 => MotionState::InteractNeighbors,
-            3 => MotionState::InteractEnvironment,
+    };
+    let stop = if r.flag()? {
+        let reason = match r.next() {
+            0 => StopReason::Casual,
+            1 => StopReason::CollectingFood,
+            2 => StopReason::DroppingFood,
             word => {
                 return Err(SimError::GpuWords {
-                    what: "MotionState",
+                    what: "StopReason",
                     word,
                 });
             }
         };
-        let stop = if self.flag()? {
-            let reason = match self.next() {
-                0 => StopReason::Casual,
-                1 => StopReason::CollectingFood,
-                2 => StopReason::DroppingFood,
-                word => {
-                    return Err(SimError::GpuWords {
-                        what: "StopReason",
-                        word,
-                    });
-                }
-            };
-            Some(StopTimer {
-                reason,
-                remaining: self.u16("stop.remaining")?,
-                place: self.u16("stop.place")?,
-            })
-        } else {
-            self.skip(3);
-            None
-        };
-        Ok(AntState {
-            pos,
-            heading,
-            label,
-            nest,
-            origin,
-            arrival,
-            goal,
-            follow,
-            motion,
-            stop,
+        Some(StopTimer {
+            reason,
+            remaining: r.u16("stop.remaining")?,
+            place: r.u16("stop.place")?,
         })
-    }
+    } else {
+        r.skip(3);
+        None
+    };
+    Ok(AntState {
+        pos,
+        heading,
+        label,
+        nest,
+        origin,
+        arrival,
+        goal,
+        follow,
+        motion,
+        stop,
+    })
 }
 
 fn label(word: u32) -> Result<Label> {
@@ -399,24 +341,13 @@ fn label(word: u32) -> Result<Label> {
     }
 }
 
-/// A list length of at most `cap`.
-fn len(word: u32, cap: usize) -> Result<usize> {
-    match usize::try_from(word) {
-        Ok(n) if n <= cap => Ok(n),
-        _ => Err(SimError::GpuWords {
-            what: "list length",
-            word,
-        }),
-    }
-}
-
 /// The [`AntState`] of the first [`STATE_WORDS`] of `w` (missing words read as zero).
 ///
 /// # Errors
 ///
 /// [`SimError::GpuWords`] for a word no state has (an enum discriminant, a flag, a `u16`).
 pub fn read_state<S: Word>(w: &[u32]) -> Result<AntState<S>> {
-    Words(w).state()
+    state(&mut Words(w))
 }
 
 /// The [`AntPlan`] of the first [`PLAN_WORDS`] of `w`.
@@ -426,7 +357,7 @@ pub fn read_state<S: Word>(w: &[u32]) -> Result<AntState<S>> {
 /// As [`read_state`].
 pub fn read_plan<S: Word>(w: &[u32]) -> Result<AntPlan<S>> {
     let mut r = Words(w);
-    let state = r.state()?;
+    let state = state(&mut r)?;
     Ok(AntPlan {
         state,
         predicted: r.v2(),
@@ -478,7 +409,7 @@ pub fn read_ctx(w: &[u32]) -> StepCtx {
 pub fn read_plan_frame<S: Word>(w: &[u32]) -> Result<AntPlanFrame<S>> {
     let mut r = Words(w);
     let mut f = AntPlanFrame::new(r.rect());
-    let n = len(r.next(), N)?;
+    let n = r.len(N)?;
     for _ in 0..n {
         let id = r.next();
         let pos = r.v2();
@@ -496,7 +427,7 @@ pub fn read_plan_frame<S: Word>(w: &[u32]) -> Result<AntPlanFrame<S>> {
         });
     }
     r.skip((N - n) * NEIGHBOUR_WORDS);
-    let n = len(r.next(), O)?;
+    let n = r.len(O)?;
     for _ in 0..n {
         let kind = r.next();
         let id = r.u16("object id")?;
@@ -539,12 +470,12 @@ pub fn read_plan_frame<S: Word>(w: &[u32]) -> Result<AntPlanFrame<S>> {
 pub fn read_resolve_frame<S: Word>(w: &[u32]) -> Result<AntResolveFrame<S>> {
     let mut r = Words(w);
     let mut f = AntResolveFrame::new(r.rect());
-    let n = len(r.next(), N)?;
+    let n = r.len(N)?;
     for _ in 0..n {
         let _ = f.neighbours.push(r.v2());
     }
     r.skip((N - n) * 2);
-    let n = len(r.next(), SURFACES)?;
+    let n = r.len(SURFACES)?;
     for _ in 0..n {
         let closest = r.v2();
         let _ = f.obstacles.push(Surface {
@@ -586,21 +517,15 @@ pub const FIELDS: [&str; 24] = [
     "plan.predicted",
 ];
 
+/// The kinds of error the ant kernels write: [`Error::NonFinite`], [`Error::OutOfRange`] and
+/// [`Error::Inconsistent`].
+const KINDS: u32 = 3;
+
 /// The status word of a controller error, as the ant kernels write it: `kind | field << 8 |
 /// (index + 1) << 16`, the kind 1 for [`Error::NonFinite`], 2 for [`Error::OutOfRange`], 3 for
 /// [`Error::Inconsistent`]; `u32::MAX` for an error the ant controller never returns.
 pub fn status_of(e: &Error) -> u32 {
-    let (kind, field, index) = match *e {
-        Error::NonFinite { field, index } => (1, field, index),
-        Error::OutOfRange { field, index } => (2, field, index),
-        Error::Inconsistent { field, index } => (3, field, index),
-        _ => return u32::MAX,
-    };
-    let Some(code) = FIELDS.iter().skip(1).position(|&f| f == field) else {
-        return u32::MAX;
-    };
-    let index = index.map_or(0, |i| u32::from(i.min(0xfffe)) + 1);
-    kind | ((code as u32 + 1) << 8) | (index << 16)
+    status::status_of(&FIELDS, KINDS, e)
 }
 
 /// The controller's answer of a status word: `Ok(())` for 0, else the [`Error`] it stands for.
@@ -609,25 +534,5 @@ pub fn status_of(e: &Error) -> u32 {
 ///
 /// [`SimError::GpuWords`] for a word no ant kernel writes.
 pub fn status_error(word: u32) -> Result<std::result::Result<(), Error>> {
-    if word == 0 {
-        return Ok(Ok(()));
-    }
-    let bad = SimError::GpuWords {
-        what: "ant status word",
-        word,
-    };
-    let field = match FIELDS.get(((word >> 8) & 0xff) as usize) {
-        Some(&f) if !f.is_empty() => f,
-        _ => return Err(bad),
-    };
-    let index = match word >> 16 {
-        0 => None,
-        i => Some((i - 1) as u16),
-    };
-    Ok(Err(match word & 0xff {
-        1 => Error::NonFinite { field, index },
-        2 => Error::OutOfRange { field, index },
-        3 => Error::Inconsistent { field, index },
-        _ => return Err(bad),
-    }))
+    status::status_error(&FIELDS, KINDS, "ant status word", word)
 }

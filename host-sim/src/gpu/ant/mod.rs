@@ -24,7 +24,7 @@ use self::layout::{
     PLAN_INPUT_WORDS, PLAN_OUTPUT_WORDS, RESOLVE_INPUT_WORDS, RESOLVE_OUTPUT_WORDS,
 };
 use super::Gpu;
-use super::kernel::{Kernel, read_back, storage};
+use super::kernel::{Kernel, run_chunked};
 use super::shaders::{ANT_LAYOUT, ANT_PLAN, ANT_RESOLVE, DISPATCH, Module, SCALAR_F32, SCALAR_FX};
 use crate::error::Result;
 
@@ -133,6 +133,9 @@ pub fn modules(scalar: &'static Module) -> [&'static Module; 5] {
     [&DISPATCH, scalar, &ANT_PLAN, &ANT_RESOLVE, &ANT_LAYOUT]
 }
 
+/// The labels of the kernels' input and output buffers.
+const LABELS: [&str; 2] = ["ant input", "ant output"];
+
 /// The plan and resolve kernels over one scalar, compiled once: each runs its controller once
 /// per element of packed words ([`AntKernels::plan`], [`AntKernels::resolve`]).
 pub struct AntKernels {
@@ -167,9 +170,16 @@ impl AntKernels {
     ///
     /// # Errors
     ///
-    /// As [`read_back`].
+    /// As [`run_chunked`].
     pub fn plan(&self, gpu: &Gpu, input: &[u32]) -> Result<Vec<u32>> {
-        run(gpu, &self.plan, input, PLAN_INPUT_WORDS, PLAN_OUTPUT_WORDS)
+        run_chunked(
+            gpu,
+            &self.plan,
+            LABELS,
+            input,
+            PLAN_INPUT_WORDS,
+            PLAN_OUTPUT_WORDS,
+        )
     }
 
     /// Runs `ant_resolve_checked` once per element of `input` (elements of
@@ -178,42 +188,15 @@ impl AntKernels {
     ///
     /// # Errors
     ///
-    /// As [`read_back`].
+    /// As [`run_chunked`].
     pub fn resolve(&self, gpu: &Gpu, input: &[u32]) -> Result<Vec<u32>> {
-        run(
+        run_chunked(
             gpu,
             &self.resolve,
+            LABELS,
             input,
             RESOLVE_INPUT_WORDS,
             RESOLVE_OUTPUT_WORDS,
         )
     }
-}
-
-/// Runs `kernel` over the elements of `input`, in dispatches of at most 64 MiB of input (and
-/// of the adapter's largest binding).
-fn run(
-    gpu: &Gpu,
-    kernel: &Kernel,
-    input: &[u32],
-    in_words: usize,
-    out_words: usize,
-) -> Result<Vec<u32>> {
-    let limit = gpu.max_binding().min(64 << 20) as usize;
-    let per_dispatch = (limit / (4 * in_words.max(out_words))).max(1);
-    let mut out = Vec::with_capacity(input.len() / in_words * out_words);
-    for chunk in input.chunks(per_dispatch * in_words) {
-        let n = chunk.len() / in_words;
-        let inp = storage(gpu, "ant input", chunk);
-        let outp = storage(gpu, "ant output", &vec![0u32; (n * out_words).max(1)]);
-        let group = kernel.bind(gpu, &[&inp, &outp]);
-        let mut enc = gpu.device.create_command_encoder(&Default::default());
-        {
-            let mut pass = enc.begin_compute_pass(&Default::default());
-            kernel.dispatch(&mut pass, &group, n as u32);
-        }
-        gpu.queue.submit([enc.finish()]);
-        out.extend(read_back::<u32>(gpu, "ant output", &outp, n * out_words)?);
-    }
-    Ok(out)
 }

@@ -16,16 +16,16 @@
 //!
 //! `cargo test -p swarm-sim --lib gpu::ant::sense -- --nocapture` prints the figures.
 
-use std::sync::{Mutex, OnceLock};
+use std::sync::Mutex;
 use std::time::Instant;
 
 use rayon::prelude::*;
+use swarm_core::Fx;
 use swarm_core::ant::{AntObject, Label};
-use swarm_core::{Fx, ScalarKind};
 
 use super::layout::{
-    PLAN_FRAME_WORDS, RESOLVE_FRAME_WORDS, Word, read_plan_frame, read_resolve_frame,
-    write_plan_frame, write_resolve_frame,
+    PLAN_FRAME_WORDS, RESOLVE_FRAME_WORDS, read_plan_frame, read_resolve_frame, write_plan_frame,
+    write_resolve_frame,
 };
 use super::scalar_module;
 use super::sense::{AntSense, SENSE_KERNEL, modules};
@@ -34,35 +34,19 @@ use crate::ants::{
     AntObjectDef, AntObjectKind, AntSim, AntWorld, N, Shape2, plan_frame, resolve_frame,
 };
 use crate::engine::apply_due_events;
-use crate::gpu::shaders::{self, ANT_SENSE, ANT_WORLD, SCALARS};
+use crate::gpu::shaders::{ANT_SENSE, ANT_WORLD};
 use crate::gpu::tests::Rng;
+use crate::gpu::tests::harness::{
+    PerScalar, Tally, TestScalar, assert_constants, assert_valid_wgsl, first_difference,
+    keep_first, shortened,
+};
 use crate::gpu::{Gpu, test_gpu};
-use crate::scalar::SimScalar;
-use crate::scenario::{ObjectKind, ScalarType, builtin};
-
-/// A scalar of the simulator, as the tests need it.
-trait TestScalar: Word + SimScalar {
-    /// The scenario's name for it.
-    const TYPE: ScalarType;
-}
-
-impl TestScalar for Fx {
-    const TYPE: ScalarType = ScalarType::Fixed;
-}
-
-impl TestScalar for f32 {
-    const TYPE: ScalarType = ScalarType::F32;
-}
+use crate::scenario::ObjectKind;
 
 /// The test GPU and the sensing kernels over `S`, made once for every test.
 fn sense<S: TestScalar>() -> &'static Mutex<(Gpu, AntSense)> {
-    static FX: OnceLock<Mutex<(Gpu, AntSense)>> = OnceLock::new();
-    static F32: OnceLock<Mutex<(Gpu, AntSense)>> = OnceLock::new();
-    let cell = match S::KIND {
-        ScalarKind::I16F16 => &FX,
-        ScalarKind::F32 => &F32,
-    };
-    cell.get_or_init(|| {
+    static SENSE: PerScalar<Mutex<(Gpu, AntSense)>> = PerScalar::new();
+    SENSE.get::<S>(|| {
         let gpu = test_gpu();
         let k = AntSense::new::<S>(&gpu).expect("the sensing kernels compile");
         Mutex::new((gpu, k))
@@ -73,11 +57,9 @@ fn sense<S: TestScalar>() -> &'static Mutex<(Gpu, AntSense)> {
 #[derive(Debug, Default)]
 struct Agreement {
     /// Plan frames compared, and those with every word equal.
-    plans: usize,
-    plans_same: usize,
+    plans: Tally,
     /// Resolve frames compared, and those with every word equal.
-    resolves: usize,
-    resolves_same: usize,
+    resolves: Tally,
     /// The first difference, described.
     first: Option<String>,
     /// Plan frames with a full neighbour list, with an obstacle (a polygon's, a disc's), a
@@ -95,13 +77,9 @@ struct Agreement {
 
 impl Agreement {
     fn add(&mut self, o: Agreement) {
-        self.plans += o.plans;
-        self.plans_same += o.plans_same;
-        self.resolves += o.resolves;
-        self.resolves_same += o.resolves_same;
-        if self.first.is_none() {
-            self.first = o.first;
-        }
+        self.plans.add(o.plans);
+        self.resolves.add(o.resolves);
+        keep_first(&mut self.first, o.first);
         self.full += o.full;
         self.obstacles += o.obstacles;
         self.disturbances += o.disturbances;
@@ -113,11 +91,7 @@ impl Agreement {
     }
 
     fn share(&self) -> (f64, f64) {
-        let s = |a: usize, b: usize| if b == 0 { 1.0 } else { a as f64 / b as f64 };
-        (
-            s(self.plans_same, self.plans),
-            s(self.resolves_same, self.resolves),
-        )
+        (self.plans.share(), self.resolves.share())
     }
 
     fn coverage(&self) -> String {
@@ -141,10 +115,10 @@ impl Agreement {
             panic!(
                 "{what}: {} of {} plan frames and {} of {} resolve frames differ; the first: \
                  {first}",
-                self.plans - self.plans_same,
-                self.plans,
-                self.resolves - self.resolves_same,
-                self.resolves,
+                self.plans.differ(),
+                self.plans.total,
+                self.resolves.differ(),
+                self.resolves.total,
             );
         }
     }
@@ -169,10 +143,8 @@ fn compare<S: TestScalar>(what: &str, w: &AntWorld) -> Agreement {
             let mut want = Vec::with_capacity(PLAN_FRAME_WORDS);
             write_plan_frame(&mut want, &plan);
             let g = &got.plan[i * PLAN_FRAME_WORDS..(i + 1) * PLAN_FRAME_WORDS];
-            a.plans = 1;
-            if g == want {
-                a.plans_same = 1;
-            } else {
+            a.plans = Tally::one(g == want);
+            if g != want {
                 a.first = Some(format!(
                     "{what}: the plan frame of slot {i} (at {:?})\n  CPU {plan:?}\n  GPU {:?}",
                     w.sensed.pos[i],
@@ -190,10 +162,8 @@ fn compare<S: TestScalar>(what: &str, w: &AntWorld) -> Agreement {
             let mut want = Vec::with_capacity(RESOLVE_FRAME_WORDS);
             write_resolve_frame(&mut want, &resolve);
             let g = &got.resolve[i * RESOLVE_FRAME_WORDS..(i + 1) * RESOLVE_FRAME_WORDS];
-            a.resolves = 1;
-            if g == want {
-                a.resolves_same = 1;
-            } else if a.first.is_none() {
+            a.resolves = Tally::one(g == want);
+            if g != want && a.first.is_none() {
                 a.first = Some(format!(
                     "{what}: the resolve frame of slot {i} (at {:?}, predicted {:?})\n  CPU \
                      {resolve:?}\n  GPU {:?}",
@@ -240,13 +210,7 @@ const EVERY: u32 = 10;
 /// disturbance of fig. 13 is moved from the middle of the trail to 17 units from the nest, so
 /// that ants meet it in the shortened run.
 fn worlds<S: TestScalar>(name: &str) -> Vec<(String, AntWorld)> {
-    let mut sc = builtin(name).unwrap_or_else(|| panic!("no built-in scenario {name}"));
-    for g in &mut sc.groups {
-        g.scalar = S::TYPE;
-    }
-    for e in &mut sc.events {
-        e.step = (u64::from(e.step) * u64::from(RUN) / u64::from(sc.steps)) as u32;
-    }
+    let mut sc = shortened::<S>(name, RUN);
     sc.steps = RUN + 1;
     for o in &mut sc.objects {
         if let ObjectKind::Disturbance { center, .. } = &mut o.kind {
@@ -297,14 +261,14 @@ fn fx_frames_of_builtin_scenarios_are_bit_for_bit() {
         "fixed point, {} scenarios for {RUN} ticks, sensed every {EVERY}: {} plan and {} \
          resolve frames identical on the GPU ({:.1} s)\n  {}",
         SCENARIOS.len(),
-        total.plans_same,
-        total.resolves_same,
+        total.plans.same,
+        total.resolves.same,
         t0.elapsed().as_secs_f64(),
         total.coverage(),
     );
-    assert_eq!(total.plans, total.plans_same);
-    assert_eq!(total.resolves, total.resolves_same);
-    assert!(total.plans >= 50_000, "{}", total.plans);
+    assert_eq!(total.plans.total, total.plans.same);
+    assert_eq!(total.resolves.total, total.resolves.same);
+    assert!(total.plans.total >= 50_000, "{}", total.plans.total);
     // What the frames covered.
     assert!(total.full > 500 && total.obstacles > 100 && total.disturbances > 10);
     assert!(total.surfaces > 100 && total.resolve_neighbours > 1000);
@@ -330,16 +294,13 @@ fn f32_frames_of_builtin_scenarios_are_measured() {
             .name,
         SCENARIOS.len(),
         100.0 * plans,
-        total.plans_same,
-        total.plans,
+        total.plans.same,
+        total.plans.total,
         100.0 * resolves,
-        total.resolves_same,
-        total.resolves,
+        total.resolves.same,
+        total.resolves.total,
         t0.elapsed().as_secs_f64(),
-        total
-            .first
-            .as_ref()
-            .map_or(String::new(), |f| format!("\n  the first difference: {f}")),
+        first_difference(total.first.as_ref()),
     );
     assert!(plans >= F32_FLOOR && resolves >= F32_FLOOR, "{total:?}");
 }
@@ -604,8 +565,8 @@ fn fx_edge_cases_are_bit_for_bit() {
     total.assert_identical("fixed point");
     println!(
         "fixed point, edge worlds: {} plan and {} resolve frames identical\n  {}",
-        total.plans_same,
-        total.resolves_same,
+        total.plans.same,
+        total.resolves.same,
         total.coverage()
     );
     assert!(total.full > 50 && total.full_surfaces > 0 && total.disturbances > 0);
@@ -637,10 +598,7 @@ fn f32_edge_cases_are_measured() {
         "f32, edge worlds: plan frames {:.2} % bit-identical, resolve frames {:.2} %{}",
         100.0 * plans,
         100.0 * resolves,
-        total
-            .first
-            .as_ref()
-            .map_or(String::new(), |f| format!("\n  the first difference: {f}")),
+        first_difference(total.first.as_ref()),
     );
     assert!(plans >= F32_FLOOR && resolves >= F32_FLOOR, "{total:?}");
 }
@@ -650,12 +608,7 @@ fn f32_edge_cases_are_measured() {
 /// The sensing kernels compile (naga, as wgpu would) over both scalars.
 #[test]
 fn the_sensing_kernels_are_valid_wgsl() {
-    for scalar in SCALARS {
-        shaders::tests::validate(
-            &format!("sensing over {}", scalar.name),
-            &shaders::compose(&modules(scalar), SENSE_KERNEL),
-        );
-    }
+    assert_valid_wgsl("sensing", modules, SENSE_KERNEL);
     assert_eq!(scalar_module::<Fx>().name, "scalar_fx");
 }
 
@@ -663,12 +616,5 @@ fn the_sensing_kernels_are_valid_wgsl() {
 #[test]
 fn the_world_constants_are_the_shaders() {
     let wgsl = format!("{}{}", ANT_WORLD.source, ANT_SENSE.source);
-    for &(name, value) in WGSL_CONSTANTS {
-        let decl = format!("const {name}: u32 = {value}u;");
-        let hex = format!("const {name}: u32 = {value:#x}u;");
-        assert!(
-            wgsl.contains(&decl) || wgsl.contains(&hex),
-            "{decl} is not in the shaders"
-        );
-    }
+    assert_constants(&wgsl, WGSL_CONSTANTS, true);
 }

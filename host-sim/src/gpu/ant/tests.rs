@@ -17,7 +17,6 @@
 
 use std::fmt::Debug;
 use std::result::Result;
-use std::sync::OnceLock;
 use std::time::Instant;
 
 use rayon::prelude::*;
@@ -26,47 +25,20 @@ use swarm_core::ant::{
     AntResolveReply, AntResolveRequest, AntState, Follow, Label, MotionState, SURFACES, StopReason,
     StopTimer, Surface, Turn,
 };
-use swarm_core::wire::decode_payload;
-use swarm_core::{Checked, Error, Fx, Rect, Scalar, ScalarKind, StepCtx, Vec2};
+use swarm_core::{Checked, Error, Fx, Rect, Scalar, StepCtx, Vec2};
 
 use super::layout::*;
 use super::*;
-use crate::ants::{AntGroup, AntPlanFrame, AntResolveFrame, AntSim, AnyAntGroup, N, O};
+use crate::ants::{AntPlanFrame, AntResolveFrame, AntSim, N, O};
 use crate::engine::{Engine, apply_due_events};
 use crate::gpu::kernel::map_words;
-use crate::gpu::shaders::{self, ANT_FRAME, SCALARS};
+use crate::gpu::shaders::{self, ANT_FRAME};
 use crate::gpu::test_gpu;
 use crate::gpu::tests::Rng;
-use crate::scalar::{ByScalar, SimScalar};
-use crate::scenario::{ScalarType, builtin};
-
-/// A scalar of the simulator, as the tests need it.
-trait TestScalar: Word + SimScalar {
-    /// The scenario's name for it.
-    const TYPE: ScalarType;
-    /// `g` if it computes in this scalar.
-    fn group(g: &AnyAntGroup) -> Option<&AntGroup<Self>>;
-}
-
-impl TestScalar for Fx {
-    const TYPE: ScalarType = ScalarType::Fixed;
-    fn group(g: &AnyAntGroup) -> Option<&AntGroup<Fx>> {
-        match g {
-            ByScalar::Fixed(g) => Some(g),
-            ByScalar::F32(_) => None,
-        }
-    }
-}
-
-impl TestScalar for f32 {
-    const TYPE: ScalarType = ScalarType::F32;
-    fn group(g: &AnyAntGroup) -> Option<&AntGroup<f32>> {
-        match g {
-            ByScalar::F32(g) => Some(g),
-            ByScalar::Fixed(_) => None,
-        }
-    }
-}
+use crate::gpu::tests::harness::{
+    AntGroups, Compared, PerScalar, StatusWords, TestScalar, assert_constants, assert_valid_wgsl,
+    decode_exchange, params_by_id, share, shortened,
+};
 
 /// The inputs of one `plan_checked`.
 #[derive(Clone, Debug)]
@@ -103,60 +75,16 @@ impl<S: Word> ResolveCase<S> {
 /// the follow's flags, the turn, motion, the stop (flag, reason, remaining, place).
 const DISCRETE: [usize; 11] = [4, 5, 6, 9, 12, 13, 15, 16, 17, 18, 19];
 
-/// How the GPU's answers compare with Rust's.
-#[derive(Debug, Default)]
-struct Compared {
-    /// Decisions compared.
-    total: usize,
-    /// Those with every output word equal.
-    identical: usize,
-    /// Those with the same status and, if Ok, the same discrete fields.
-    discrete: usize,
-    /// Those refused (by Rust).
-    refused: usize,
-    /// The first that differs: index, Rust's words, the GPU's words.
-    first: Option<(usize, Vec<u32>, Vec<u32>)>,
-}
-
-impl Compared {
-    /// `got` (the GPU's output) against `want` (Rust's), `words` per decision: a status, then
-    /// a state (or a plan, whose state comes first).
-    fn of(got: &[u32], want: &[u32], words: usize) -> Compared {
-        assert_eq!(got.len(), want.len(), "output length");
-        let mut c = Compared::default();
-        for (i, (g, w)) in got.chunks(words).zip(want.chunks(words)).enumerate() {
-            c.total += 1;
-            c.refused += usize::from(w[0] != 0);
-            if g == w {
-                c.identical += 1;
-                c.discrete += 1;
-                continue;
-            }
-            if g[0] == w[0] && DISCRETE.iter().all(|&k| g[1 + k] == w[1 + k]) {
-                c.discrete += 1;
-            }
-            c.first.get_or_insert((i, w.to_vec(), g.to_vec()));
-        }
-        c
-    }
-
-    fn add(&mut self, o: Compared) {
-        self.total += o.total;
-        self.identical += o.identical;
-        self.discrete += o.discrete;
-        self.refused += o.refused;
-        if self.first.is_none() {
-            self.first = o.first;
-        }
-    }
-
-    fn share(n: usize, total: usize) -> f64 {
-        if total == 0 {
-            1.0
-        } else {
-            n as f64 / total as f64
-        }
-    }
+/// The plan or resolve kernel's output words (`got`) against Rust's (`want`), `words` per
+/// decision: a status, then a state (or a plan, whose state comes first).
+fn compared(got: &[u32], want: &[u32], words: usize) -> Compared {
+    Compared::of(
+        got,
+        want,
+        words,
+        |g, w| DISCRETE.iter().all(|&k| g[1 + k] == w[1 + k]),
+        |(), _, _| {},
+    )
 }
 
 /// Rust's answers to plan cases.
@@ -178,7 +106,7 @@ fn compare_plans<S: TestScalar>(
         write_plan_result(&mut want, r);
     }
     let got = k.plan(gpu, &input).expect("plan kernel");
-    (Compared::of(&got, &want, PLAN_OUTPUT_WORDS), rust)
+    (compared(&got, &want, PLAN_OUTPUT_WORDS), rust)
 }
 
 /// The resolve kernel on `cases` against `resolve_checked`; and Rust's answers.
@@ -195,7 +123,7 @@ fn compare_resolves<S: TestScalar>(
         write_resolve_result(&mut want, r);
     }
     let got = k.resolve(gpu, &input).expect("resolve kernel");
-    (Compared::of(&got, &want, RESOLVE_OUTPUT_WORDS), rust)
+    (compared(&got, &want, RESOLVE_OUTPUT_WORDS), rust)
 }
 
 /// A status and the value after it, decoded, for a failure's report.
@@ -214,16 +142,7 @@ fn assert_identical<C: Debug, V: Debug>(
     cases: &[C],
     read: fn(&[u32]) -> crate::Result<V>,
 ) {
-    if let Some((i, want, got)) = &c.first {
-        panic!(
-            "{what}: {} of {} decisions differ; the first, #{i}:\n  input {:?}\n  Rust {}\n  GPU  {}",
-            c.total - c.identical,
-            c.total,
-            cases.get(*i),
-            decoded(want, read),
-            decoded(got, read),
-        );
-    }
+    c.assert_identical(what, cases, |w| decoded(w, read));
 }
 
 // ---- real exchanges ----
@@ -241,24 +160,11 @@ struct Real<S> {
 /// fraction of the shortened run), every ant's plan and resolve exchange (`Engine::exchanges`,
 /// decoded from postcard) recorded every `every` ticks.
 fn real<S: TestScalar>(name: &str, ticks: u32, every: u32) -> Real<S> {
-    let mut sc = builtin(name).unwrap_or_else(|| panic!("no built-in scenario {name}"));
-    for g in &mut sc.groups {
-        g.scalar = S::TYPE;
-    }
-    for e in &mut sc.events {
-        e.step = (u64::from(e.step) * u64::from(ticks) / u64::from(sc.steps)) as u32;
-    }
-    sc.steps = ticks;
+    let sc = shortened::<S>(name, ticks);
     let mut sim = AntSim::from_scenario(&sc, sc.seed).expect("the scenario builds");
     let ids: Vec<u32> = (0..sim.agents() as u32).collect();
-    let mut params = vec![None; ids.len()];
-    for g in &sim.groups {
-        let g = S::group(g).expect("every group in the scalar asked for");
-        for &id in &g.ids {
-            params[id as usize] = Some(g.params);
-        }
-    }
-    let params: Vec<Checked<AntParams<S>>> = params.into_iter().map(Option::unwrap).collect();
+    let params: Vec<Checked<AntParams<S>>> =
+        params_by_id::<S, AntGroups, _>(ids.len(), &sim.groups, |g| (&g.ids, g.params));
     let mut out = Real {
         plans: Vec::new(),
         plan_replies: Vec::new(),
@@ -271,8 +177,7 @@ fn real<S: TestScalar>(name: &str, ticks: u32, every: u32) -> Real<S> {
         sim.decide(0).expect("plan");
         if record {
             for ex in sim.exchanges(0, &ids).expect("plan exchanges") {
-                let req: AntPlanRequest<S> = decode_payload(&ex.request.bytes).unwrap();
-                let reply: AntPlanReply<S> = decode_payload(&ex.reply.bytes).unwrap();
+                let (req, reply): (AntPlanRequest<S>, AntPlanReply<S>) = decode_exchange(&ex);
                 out.plans.push(PlanCase {
                     state: req.state,
                     frame: req.frame,
@@ -286,8 +191,7 @@ fn real<S: TestScalar>(name: &str, ticks: u32, every: u32) -> Real<S> {
         sim.decide(1).expect("resolve");
         if record {
             for ex in sim.exchanges(1, &ids).expect("resolve exchanges") {
-                let req: AntResolveRequest<S> = decode_payload(&ex.request.bytes).unwrap();
-                let reply: AntResolveReply<S> = decode_payload(&ex.reply.bytes).unwrap();
+                let (req, reply): (AntResolveRequest<S>, AntResolveReply<S>) = decode_exchange(&ex);
                 out.resolves.push(ResolveCase {
                     plan: req.plan,
                     frame: req.frame,
@@ -369,13 +273,8 @@ fn coverage<S: Word>(
 
 /// The test GPU and the ant kernels over `S`, made once for every test.
 fn kernels<S: TestScalar>() -> &'static (Gpu, AntKernels) {
-    static FX: OnceLock<(Gpu, AntKernels)> = OnceLock::new();
-    static F32: OnceLock<(Gpu, AntKernels)> = OnceLock::new();
-    let cell = match S::KIND {
-        ScalarKind::I16F16 => &FX,
-        ScalarKind::F32 => &F32,
-    };
-    cell.get_or_init(|| {
+    static KERNELS: PerScalar<(Gpu, AntKernels)> = PerScalar::new();
+    KERNELS.get::<S>(|| {
         let gpu = test_gpu();
         let k = AntKernels::new::<S>(&gpu).expect("the ant kernels compile");
         (gpu, k)
@@ -455,7 +354,7 @@ fn fx_real_exchanges_are_bit_for_bit() {
 fn f32_real_exchanges_are_measured() {
     let t0 = Instant::now();
     let (plans, resolves, _) = real_runs::<f32>(|_, _, _, _| {});
-    let pct = |n, c: &Compared| 100.0 * Compared::share(n, c.total);
+    let pct = |n, c: &Compared| 100.0 * share(n, c.total);
     println!(
         "f32 on {}: plan {} decisions, {:.2} % bit-identical, {:.3} % identical discrete fields \
          (status, label, ids, goal/follow flags, turn, motion, stop); resolve {} decisions, \
@@ -491,16 +390,16 @@ fn f32_real_exchanges_are_measured() {
     // The floor: a few discrete decisions in a thousand may flip where a distance or a
     // product lands on the other side of a threshold.
     assert!(
-        Compared::share(plans.discrete, plans.total) >= F32_DISCRETE_FLOOR,
+        share(plans.discrete, plans.total) >= F32_DISCRETE_FLOOR,
         "plan: {plans:?}"
     );
     assert!(
-        Compared::share(resolves.discrete, resolves.total) >= F32_DISCRETE_FLOOR,
+        share(resolves.discrete, resolves.total) >= F32_DISCRETE_FLOOR,
         "resolve: {resolves:?}"
     );
     for (what, c) in [("random plan", &rp), ("random resolve", &rr)] {
         assert!(
-            Compared::share(c.discrete, c.total) >= F32_DISCRETE_FLOOR,
+            share(c.discrete, c.total) >= F32_DISCRETE_FLOOR,
             "{what}: {c:?}"
         );
     }
@@ -1195,50 +1094,32 @@ fn fx_random_and_edge_inputs_are_bit_for_bit() {
 /// The kernels compile (naga, as wgpu would) over both scalars.
 #[test]
 fn the_kernels_are_valid_wgsl() {
-    for scalar in SCALARS {
-        let uses = modules(scalar);
-        for (name, kernel) in [("plan", PLAN_KERNEL), ("resolve", RESOLVE_KERNEL)] {
-            shaders::tests::validate(
-                &format!("{name} over {}", scalar.name),
-                &shaders::compose(&uses, kernel),
-            );
-        }
-    }
+    assert_valid_wgsl("plan", modules, PLAN_KERNEL);
+    assert_valid_wgsl("resolve", modules, RESOLVE_KERNEL);
 }
 
 /// Both sides of the layout have the same word counts and capacities.
 #[test]
 fn the_layout_constants_are_the_shaders() {
     let wgsl = format!("{}{}", ANT_LAYOUT.source, ANT_FRAME.source);
-    for &(name, value) in WGSL_CONSTANTS {
-        let decl = format!("const {name}: u32 = {value}u;");
-        assert!(wgsl.contains(&decl), "{decl} is not in the shaders");
-    }
+    assert_constants(&wgsl, WGSL_CONSTANTS, false);
 }
 
 /// The status words name every field of `FIELDS` as `shaders/ant_state.wgsl` does, and decode
 /// to the error they encode.
 #[test]
 fn status_words_are_the_shaders() {
-    let wgsl = shaders::ANT_STATE.source;
-    for (code, field) in FIELDS.iter().enumerate().skip(1) {
-        let name = field.replace('.', "_").to_uppercase();
-        let decl = format!("const ANT_FIELD_{name}: u32 = {code}u; // \"{field}\"");
-        assert!(wgsl.contains(&decl), "{decl} is not in ant_state.wgsl");
-        for index in [None, Some(0), Some(7)] {
-            for e in [
-                Error::NonFinite { field, index },
-                Error::OutOfRange { field, index },
-                Error::Inconsistent { field, index },
-            ] {
-                assert_eq!(status_error(status_of(&e)).unwrap(), Err(e));
-            }
-        }
+    StatusWords {
+        wgsl: shaders::ANT_STATE.source,
+        file: "ant_state.wgsl",
+        prefix: "ANT",
+        fields: &FIELDS,
+        kinds: 3,
+        indices: [None, Some(0), Some(7)],
+        status_of,
+        status_error,
     }
-    assert_eq!(status_error(0).unwrap(), Ok(()));
-    assert!(status_error(0x0000_ff01).is_err());
-    assert!(status_error(0x0000_0104).is_err());
-    assert_eq!(status_of(&Error::Payload), u32::MAX);
+    .check();
 }
 
 /// Every constant the generic modules convert (`s_from_f32(0.25f)`, `s_from_f32(ANT_W_MAX)`):

@@ -18,10 +18,12 @@
 use swarm_core::bee::{BeeDecision, BeeNeighbor, BeeParams, BeeState, ObstacleSense};
 use swarm_core::{Error, Vec3};
 
-pub use crate::gpu::ant::layout::Word;
+pub use crate::gpu::words::Word;
 
 use crate::bees::{BeeSimFrame, N, P};
-use crate::error::{Result, SimError};
+use crate::error::Result;
+use crate::gpu::status;
+use crate::gpu::words::Words;
 
 /// Words of a [`BeeState`] (`BEE_STATE_WORDS`).
 pub const STATE_WORDS: usize = 16;
@@ -184,50 +186,11 @@ pub fn write_step_result<S: Word>(out: &mut Vec<u32>, r: &StepResult<S>) {
 
 // ---- unpacking ----
 
-/// Reads words in order.
-struct Words<'a>(&'a [u32]);
-
-impl Words<'_> {
-    fn next(&mut self) -> u32 {
-        let (&w, rest) = self.0.split_first().unwrap_or((&0, &[]));
-        self.0 = rest;
-        w
-    }
-    fn s<S: Word>(&mut self) -> S {
-        S::from_word(self.next())
-    }
-    fn v3<S: Word>(&mut self) -> Vec3<S> {
-        let x = self.s();
-        let y = self.s();
-        Vec3::new(x, y, self.s())
-    }
-    fn flag(&mut self) -> Result<bool> {
-        match self.next() {
-            0 => Ok(false),
-            1 => Ok(true),
-            word => Err(SimError::GpuWords { what: "flag", word }),
-        }
-    }
-    fn skip(&mut self, n: usize) {
-        self.0 = self.0.get(n..).unwrap_or(&[]);
-    }
-    fn len(&mut self, cap: usize) -> Result<usize> {
-        let word = self.next();
-        match usize::try_from(word) {
-            Ok(n) if n <= cap => Ok(n),
-            _ => Err(SimError::GpuWords {
-                what: "list length",
-                word,
-            }),
-        }
-    }
-}
-
 /// The [`BeeState`] of the first [`STATE_WORDS`] of `w` (missing words read as zero).
 ///
 /// # Errors
 ///
-/// [`SimError::GpuWords`] for a flag that is neither 0 nor 1.
+/// [`SimError::GpuWords`](crate::error::SimError::GpuWords) for a flag that is neither 0 nor 1.
 pub fn read_state<S: Word>(w: &[u32]) -> Result<BeeState<S>> {
     let mut r = Words(w);
     let pos = r.v3();
@@ -309,7 +272,8 @@ pub fn read_params<S: Word>(w: &[u32]) -> BeeParams<S> {
 ///
 /// # Errors
 ///
-/// [`SimError::GpuWords`] for a list longer than its capacity or a bad flag.
+/// [`SimError::GpuWords`](crate::error::SimError::GpuWords) for a list longer than its capacity
+/// or a bad flag.
 pub fn read_frame<S: Word>(w: &[u32]) -> Result<BeeSimFrame<S>> {
     let mut r = Words(w);
     let mut f = BeeSimFrame::new(r.s());
@@ -371,48 +335,23 @@ pub const FIELDS: [&str; 20] = [
     "decision.density",
 ];
 
+/// The kinds of error the bee kernels write: [`Error::NonFinite`] and [`Error::OutOfRange`].
+const KINDS: u32 = 2;
+
 /// The status word of a controller error, as the bee kernels write it: `kind | field << 8 |
 /// (index + 1) << 16`, the kind 1 for [`Error::NonFinite`], 2 for [`Error::OutOfRange`];
 /// `u32::MAX` for an error the bee step never returns.
 pub fn status_of(e: &Error) -> u32 {
-    let (kind, field, index) = match *e {
-        Error::NonFinite { field, index } => (1, field, index),
-        Error::OutOfRange { field, index } => (2, field, index),
-        _ => return u32::MAX,
-    };
-    let Some(code) = FIELDS.iter().skip(1).position(|&f| f == field) else {
-        return u32::MAX;
-    };
-    let index = index.map_or(0, |i| u32::from(i.min(0xfffe)) + 1);
-    kind | ((code as u32 + 1) << 8) | (index << 16)
+    status::status_of(&FIELDS, KINDS, e)
 }
 
 /// The controller's answer of a status word: `Ok(())` for 0, else the [`Error`] it stands for.
 ///
 /// # Errors
 ///
-/// [`SimError::GpuWords`] for a word no bee kernel writes.
+/// [`SimError::GpuWords`](crate::error::SimError::GpuWords) for a word no bee kernel writes.
 pub fn status_error(word: u32) -> Result<std::result::Result<(), Error>> {
-    if word == 0 {
-        return Ok(Ok(()));
-    }
-    let bad = SimError::GpuWords {
-        what: "bee status word",
-        word,
-    };
-    let field = match FIELDS.get(((word >> 8) & 0xff) as usize) {
-        Some(&f) if !f.is_empty() => f,
-        _ => return Err(bad),
-    };
-    let index = match word >> 16 {
-        0 => None,
-        i => Some((i - 1) as u16),
-    };
-    Ok(Err(match word & 0xff {
-        1 => Error::NonFinite { field, index },
-        2 => Error::OutOfRange { field, index },
-        _ => return Err(bad),
-    }))
+    status::status_error(&FIELDS, KINDS, "bee status word", word)
 }
 
 /// The result of one step from the kernel's output words ([`STEP_OUTPUT_WORDS`]): the error
@@ -420,7 +359,7 @@ pub fn status_error(word: u32) -> Result<std::result::Result<(), Error>> {
 ///
 /// # Errors
 ///
-/// [`SimError::GpuWords`] for words no bee kernel writes.
+/// [`SimError::GpuWords`](crate::error::SimError::GpuWords) for words no bee kernel writes.
 pub fn read_step_result<S: Word>(w: &[u32]) -> Result<StepResult<S>> {
     let status = w.first().copied().unwrap_or(0);
     Ok(match status_error(status)? {

@@ -26,7 +26,7 @@ use swarm_core::Scalar;
 use self::layout::{STEP_INPUT_WORDS, STEP_OUTPUT_WORDS};
 use super::Gpu;
 use super::ant::scalar_module;
-use super::kernel::{Kernel, read_back, storage};
+use super::kernel::{Kernel, run_chunked};
 use super::shaders::{BEE_LAYOUT, BEE_STEP, DISPATCH, Module};
 use crate::error::Result;
 
@@ -105,33 +105,15 @@ impl BeeKernels {
     ///
     /// # Errors
     ///
-    /// As [`read_back`].
+    /// As [`run_chunked`].
     pub fn step(&self, gpu: &Gpu, input: &[u32]) -> Result<Vec<u32>> {
-        let limit = gpu.max_binding().min(64 << 20) as usize;
-        let per_dispatch = (limit / (4 * STEP_INPUT_WORDS)).max(1);
-        let mut out = Vec::with_capacity(input.len() / STEP_INPUT_WORDS * STEP_OUTPUT_WORDS);
-        for chunk in input.chunks(per_dispatch * STEP_INPUT_WORDS) {
-            let n = chunk.len() / STEP_INPUT_WORDS;
-            let inp = storage(gpu, "bee input", chunk);
-            let outp = storage(
-                gpu,
-                "bee output",
-                &vec![0u32; (n * STEP_OUTPUT_WORDS).max(1)],
-            );
-            let group = self.step.bind(gpu, &[&inp, &outp]);
-            let mut enc = gpu.device.create_command_encoder(&Default::default());
-            {
-                let mut pass = enc.begin_compute_pass(&Default::default());
-                self.step.dispatch(&mut pass, &group, n as u32);
-            }
-            gpu.queue.submit([enc.finish()]);
-            out.extend(read_back::<u32>(
-                gpu,
-                "bee output",
-                &outp,
-                n * STEP_OUTPUT_WORDS,
-            )?);
-        }
-        Ok(out)
+        run_chunked(
+            gpu,
+            &self.step,
+            ["bee input", "bee output"],
+            input,
+            STEP_INPUT_WORDS,
+            STEP_OUTPUT_WORDS,
+        )
     }
 }

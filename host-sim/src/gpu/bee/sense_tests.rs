@@ -15,64 +15,34 @@
 //!
 //! `cargo test -p swarm-sim --lib gpu::bee::sense -- --nocapture` prints the figures.
 
-use std::sync::{Mutex, OnceLock};
+use std::sync::Mutex;
 use std::time::Instant;
 
 use rayon::prelude::*;
-use swarm_core::{Fx, ScalarKind};
+use swarm_core::Fx;
 
-use super::layout::{FRAME_WORDS, Word, read_frame, write_frame};
+use super::layout::{FRAME_WORDS, read_frame, write_frame};
 use super::sense::{BeeSense, FrameWords, SENSE_KERNEL, modules};
 use super::world::*;
 use crate::bees::{
-    AnyBeeGroup, BeeGroup, BeeObstacle, BeeSim, BeeTarget, BeeWorld, N, P, Shape3, bee_frame,
-    bee_frame_time,
+    BeeObstacle, BeeSim, BeeTarget, BeeWorld, N, P, Shape3, bee_frame, bee_frame_time,
 };
 use crate::engine::{Engine, apply_due_events};
 use crate::gpu::ant::scalar_module;
-use crate::gpu::shaders::{self, BEE_SENSE, BEE_WORLD, SCALARS};
+use crate::gpu::shaders::{BEE_SENSE, BEE_WORLD};
 use crate::gpu::tests::Rng;
+use crate::gpu::tests::harness::{
+    BeeGroups, PerScalar, Tally, TestScalar, assert_constants, assert_valid_wgsl, first_difference,
+    keep_first, shortened,
+};
 use crate::gpu::{Gpu, test_gpu};
-use crate::scalar::{ByScalar, SimScalar, a3, v3};
-use crate::scenario::{ScalarType, builtin, builtin_names};
-
-/// A scalar of the simulator, as the tests need it.
-trait TestScalar: Word + SimScalar {
-    /// The scenario's name for it.
-    const TYPE: ScalarType;
-    /// `g` if it computes in this scalar.
-    fn group(g: &AnyBeeGroup) -> Option<&BeeGroup<Self>>;
-}
-
-impl TestScalar for Fx {
-    const TYPE: ScalarType = ScalarType::Fixed;
-    fn group(g: &AnyBeeGroup) -> Option<&BeeGroup<Fx>> {
-        match g {
-            ByScalar::Fixed(g) => Some(g),
-            ByScalar::F32(_) => None,
-        }
-    }
-}
-
-impl TestScalar for f32 {
-    const TYPE: ScalarType = ScalarType::F32;
-    fn group(g: &AnyBeeGroup) -> Option<&BeeGroup<f32>> {
-        match g {
-            ByScalar::F32(g) => Some(g),
-            ByScalar::Fixed(_) => None,
-        }
-    }
-}
+use crate::scalar::{a3, v3};
+use crate::scenario::builtin_names;
 
 /// The test GPU and the sensing kernels over `S`, made once for every test.
 fn sense<S: TestScalar>() -> &'static Mutex<(Gpu, BeeSense)> {
-    static FX: OnceLock<Mutex<(Gpu, BeeSense)>> = OnceLock::new();
-    static F32: OnceLock<Mutex<(Gpu, BeeSense)>> = OnceLock::new();
-    let cell = match S::KIND {
-        ScalarKind::I16F16 => &FX,
-        ScalarKind::F32 => &F32,
-    };
-    cell.get_or_init(|| {
+    static SENSE: PerScalar<Mutex<(Gpu, BeeSense)>> = PerScalar::new();
+    SENSE.get::<S>(|| {
         let gpu = test_gpu();
         let k = BeeSense::new::<S>(&gpu).expect("the sensing kernels compile");
         Mutex::new((gpu, k))
@@ -91,8 +61,7 @@ fn gpu_frames<S: TestScalar>(w: &BeeWorld, inputs: &[FrameInput<S>]) -> FrameWor
 #[derive(Debug, Default)]
 struct Agreement {
     /// Frames compared, and those with every word equal.
-    frames: usize,
-    same: usize,
+    frames: Tally,
     /// The first difference, described.
     first: Option<String>,
     /// Frames with neighbours, with a full list of them (more candidates than it holds: the
@@ -110,11 +79,8 @@ struct Agreement {
 
 impl Agreement {
     fn add(&mut self, o: Agreement) {
-        self.frames += o.frames;
-        self.same += o.same;
-        if self.first.is_none() {
-            self.first = o.first;
-        }
+        self.frames.add(o.frames);
+        keep_first(&mut self.first, o.first);
         self.neighbours += o.neighbours;
         self.full += o.full;
         self.targets += o.targets;
@@ -125,11 +91,7 @@ impl Agreement {
     }
 
     fn share(&self) -> f64 {
-        if self.frames == 0 {
-            1.0
-        } else {
-            self.same as f64 / self.frames as f64
-        }
+        self.frames.share()
     }
 
     fn coverage(&self) -> String {
@@ -151,8 +113,8 @@ impl Agreement {
         if let Some(first) = &self.first {
             panic!(
                 "{what}: {} of {} frames differ; the first: {first}",
-                self.frames - self.same,
-                self.frames,
+                self.frames.differ(),
+                self.frames.total,
             );
         }
     }
@@ -174,10 +136,8 @@ fn compare<S: TestScalar>(what: &str, w: &BeeWorld, inputs: &[FrameInput<S>]) ->
             let mut want = Vec::with_capacity(FRAME_WORDS);
             write_frame(&mut want, &frame);
             let g = &got.frames[i * FRAME_WORDS..(i + 1) * FRAME_WORDS];
-            a.frames = 1;
-            if g == want {
-                a.same = 1;
-            } else {
+            a.frames = Tally::one(g == want);
+            if g != want {
                 a.first = Some(format!(
                     "{what}: the frame of slot {i} (at {:?}, id {})\n  CPU {frame:?}\n  GPU {:?}",
                     w.sensed.pos[i],
@@ -221,7 +181,7 @@ fn inputs_of<S: TestScalar>(sim: &BeeSim) -> Vec<FrameInput<S>> {
         sim.agents()
     ];
     for g in &sim.groups {
-        let g = S::group(g).expect("every group in the scalar asked for");
+        let g = S::pick::<BeeGroups>(g).expect("every group in the scalar asked for");
         let dt = g.params.dt.to_f64();
         for (k, &id) in g.ids.iter().enumerate() {
             inputs[g.first + k] = FrameInput {
@@ -237,14 +197,7 @@ fn inputs_of<S: TestScalar>(sim: &BeeSim) -> Vec<FrameInput<S>> {
 /// fraction of the shortened run), every bee's frame sensed on the GPU against the CPU's every
 /// `every` steps (the world indexed as the step's decisions read it).
 fn simulate<S: TestScalar>(name: &str, steps: u32, every: u32) -> Agreement {
-    let mut sc = builtin(name).unwrap_or_else(|| panic!("no built-in scenario {name}"));
-    for g in &mut sc.groups {
-        g.scalar = S::TYPE;
-    }
-    for e in &mut sc.events {
-        e.step = (u64::from(e.step) * u64::from(steps) / u64::from(sc.steps)) as u32;
-    }
-    sc.steps = steps;
+    let sc = shortened::<S>(name, steps);
     let mut sim = BeeSim::from_scenario(&sc, sc.seed).expect("the scenario builds");
     let mut total = Agreement::default();
     for t in 0..steps {
@@ -292,12 +245,12 @@ fn fx_frames_of_builtin_scenarios_are_bit_for_bit() {
     println!(
         "fixed point, {} bee scenarios: {} frames identical on the GPU ({:.1} s)\n  {}",
         SCENARIOS.len(),
-        total.same,
+        total.frames.same,
         t0.elapsed().as_secs_f64(),
         total.coverage(),
     );
-    assert_eq!(total.frames, total.same);
-    assert!(total.frames >= 40_000, "{}", total.frames);
+    assert_eq!(total.frames.total, total.frames.same);
+    assert!(total.frames.total >= 40_000, "{}", total.frames.total);
     // What the frames covered.
     assert!(total.full > 200 && total.full_targets > 200 && total.obstacles > 4000);
     assert!(total.goals > 40_000 && total.targets > 500);
@@ -321,12 +274,9 @@ fn f32_frames_of_builtin_scenarios_are_measured() {
             .name,
         SCENARIOS.len(),
         100.0 * total.share(),
-        total.frames,
+        total.frames.total,
         t0.elapsed().as_secs_f64(),
-        total
-            .first
-            .as_ref()
-            .map_or(String::new(), |f| format!("\n  the first difference: {f}")),
+        first_difference(total.first.as_ref()),
     );
     assert!(total.share() >= F32_FLOOR, "{total:?}");
 }
@@ -674,7 +624,7 @@ fn fx_edge_cases_are_bit_for_bit() {
     total.assert_identical("fixed point");
     println!(
         "fixed point, edge worlds: {} frames identical\n  {}",
-        total.same,
+        total.frames.same,
         total.coverage()
     );
     assert!(total.full > 50 && total.full_targets > 10 && total.inside > 50);
@@ -708,11 +658,8 @@ fn f32_edge_cases_are_measured() {
     println!(
         "f32, edge worlds: {:.2} % of {} frames bit-identical{}",
         100.0 * total.share(),
-        total.frames,
-        total
-            .first
-            .as_ref()
-            .map_or(String::new(), |f| format!("\n  the first difference: {f}")),
+        total.frames.total,
+        first_difference(total.first.as_ref()),
     );
     assert!(total.share() >= F32_FLOOR, "{total:?}");
 }
@@ -741,12 +688,7 @@ fn bare_worlds_are_bit_for_bit() {
 /// The sensing kernels compile (naga, as wgpu would) over both scalars.
 #[test]
 fn the_sensing_kernels_are_valid_wgsl() {
-    for scalar in SCALARS {
-        shaders::tests::validate(
-            &format!("bee sensing over {}", scalar.name),
-            &shaders::compose(&modules(scalar), SENSE_KERNEL),
-        );
-    }
+    assert_valid_wgsl("bee sensing", modules, SENSE_KERNEL);
     assert_eq!(scalar_module::<Fx>().name, "scalar_fx");
 }
 
@@ -754,14 +696,7 @@ fn the_sensing_kernels_are_valid_wgsl() {
 #[test]
 fn the_world_constants_are_the_shaders() {
     let wgsl = format!("{}{}", BEE_WORLD.source, BEE_SENSE.source);
-    for &(name, value) in WGSL_CONSTANTS {
-        let decl = format!("const {name}: u32 = {value}u;");
-        let hex = format!("const {name}: u32 = {value:#x}u;");
-        assert!(
-            wgsl.contains(&decl) || wgsl.contains(&hex),
-            "{decl} is not in the shaders"
-        );
-    }
+    assert_constants(&wgsl, WGSL_CONSTANTS, true);
 }
 
 /// The open faces are `Shape3::surface`'s: a box's faces on or past the bounds closed, a

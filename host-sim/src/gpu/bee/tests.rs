@@ -16,7 +16,6 @@
 //! `cargo test -p swarm-sim --lib gpu::bee -- --nocapture` prints the figures.
 
 use std::fmt::Debug;
-use std::sync::OnceLock;
 use std::time::Instant;
 
 use rayon::prelude::*;
@@ -24,47 +23,21 @@ use swarm_core::bee::{
     self, BeeDecision, BeeNeighbor, BeeParams, BeeState, BeeStepReply, BeeStepRequest,
     ObstacleSense, curl, oscillation, perlin, sph,
 };
-use swarm_core::wire::decode_payload;
-use swarm_core::{Checked, Error, Fx, Scalar, ScalarKind, Vec3};
+use swarm_core::{Checked, Error, Fx, Scalar, Vec3};
 
 use super::layout::*;
 use super::*;
-use crate::bees::{AnyBeeGroup, BeeGroup, BeeSim, BeeSimFrame, N, P};
+use crate::bees::{BeeSim, BeeSimFrame, N, P};
 use crate::engine::{Engine, apply_due_events};
 use crate::gpu::kernel::map_words;
-use crate::gpu::shaders::{self, BEE_FRAME, SCALAR_FX, SCALARS};
+use crate::gpu::shaders::{self, BEE_FRAME, SCALAR_FX};
 use crate::gpu::test_gpu;
 use crate::gpu::tests::Rng;
-use crate::scalar::{ByScalar, SimScalar};
-use crate::scenario::{ScalarType, builtin, builtin_names};
-
-/// A scalar of the simulator, as the tests need it.
-trait TestScalar: Word + SimScalar {
-    /// The scenario's name for it.
-    const TYPE: ScalarType;
-    /// `g` if it computes in this scalar.
-    fn group(g: &AnyBeeGroup) -> Option<&BeeGroup<Self>>;
-}
-
-impl TestScalar for Fx {
-    const TYPE: ScalarType = ScalarType::Fixed;
-    fn group(g: &AnyBeeGroup) -> Option<&BeeGroup<Fx>> {
-        match g {
-            ByScalar::Fixed(g) => Some(g),
-            ByScalar::F32(_) => None,
-        }
-    }
-}
-
-impl TestScalar for f32 {
-    const TYPE: ScalarType = ScalarType::F32;
-    fn group(g: &AnyBeeGroup) -> Option<&BeeGroup<f32>> {
-        match g {
-            ByScalar::F32(g) => Some(g),
-            ByScalar::Fixed(_) => None,
-        }
-    }
-}
+use crate::gpu::tests::harness::{
+    self, BeeGroups, Measure, PerScalar, StatusWords, TestScalar, assert_constants,
+    assert_valid_wgsl, decode_exchange, params_by_id, share, shortened,
+};
+use crate::scenario::builtin_names;
 
 /// The inputs of one `step_checked`.
 #[derive(Clone, Debug)]
@@ -87,42 +60,38 @@ const NEXT_POS: usize = 1 + DECISION_WORDS;
 /// Where `avoiding` lies in a step's output words.
 const AVOIDING: usize = 1 + 8;
 
-/// How the GPU's answers compare with Rust's.
+/// How far apart the next positions of two Ok answers are, at most.
 #[derive(Debug, Default)]
-struct Compared {
-    /// Decisions compared.
-    total: usize,
-    /// Those with every output word equal.
-    identical: usize,
-    /// Those with the same status and, if Ok, the same avoidance.
-    discrete: usize,
-    /// Those refused (by Rust).
-    refused: usize,
+struct PosDiff {
     /// The largest distance between the next positions of two Ok answers.
     max_pos_diff: f64,
     /// The largest such distance relative to the position's magnitude (at least 1).
     max_pos_rel: f64,
-    /// The first that differs: index, Rust's words, the GPU's words.
-    first: Option<(usize, Vec<u32>, Vec<u32>)>,
 }
 
-impl Compared {
-    /// `got` (the GPU's output) against `want` (Rust's), a step's output words each.
-    fn of<S: Word>(got: &[u32], want: &[u32]) -> Compared {
-        assert_eq!(got.len(), want.len(), "output length");
-        let mut c = Compared::default();
-        let w = STEP_OUTPUT_WORDS;
-        for (i, (g, w)) in got.chunks(w).zip(want.chunks(w)).enumerate() {
-            c.total += 1;
-            c.refused += usize::from(w[0] != 0);
-            if g == w {
-                c.identical += 1;
-                c.discrete += 1;
-                continue;
-            }
-            if g[0] == w[0] && g[AVOIDING] == w[AVOIDING] {
-                c.discrete += 1;
-            }
+impl Measure for PosDiff {
+    fn add(&mut self, o: PosDiff) {
+        if worse(o.max_pos_diff, self.max_pos_diff) {
+            self.max_pos_diff = o.max_pos_diff;
+        }
+        if worse(o.max_pos_rel, self.max_pos_rel) {
+            self.max_pos_rel = o.max_pos_rel;
+        }
+    }
+}
+
+/// How the GPU's answers compare with Rust's (with the same status and, if Ok, the same
+/// avoidance as the discrete fields).
+type Compared = harness::Compared<PosDiff>;
+
+/// `got` (the GPU's output) against `want` (Rust's), a step's output words each.
+fn compared<S: Word>(got: &[u32], want: &[u32]) -> Compared {
+    Compared::of(
+        got,
+        want,
+        STEP_OUTPUT_WORDS,
+        |g, w| g[AVOIDING] == w[AVOIDING],
+        |c, g, w| {
             if g[0] == 0 && w[0] == 0 {
                 let pos = |x: &[u32]| {
                     let p = Vec3::<S>::new(
@@ -143,34 +112,8 @@ impl Compared {
                     c.max_pos_rel = rel;
                 }
             }
-            c.first.get_or_insert((i, w.to_vec(), g.to_vec()));
-        }
-        c
-    }
-
-    fn add(&mut self, o: Compared) {
-        self.total += o.total;
-        self.identical += o.identical;
-        self.discrete += o.discrete;
-        self.refused += o.refused;
-        if worse(o.max_pos_diff, self.max_pos_diff) {
-            self.max_pos_diff = o.max_pos_diff;
-        }
-        if worse(o.max_pos_rel, self.max_pos_rel) {
-            self.max_pos_rel = o.max_pos_rel;
-        }
-        if self.first.is_none() {
-            self.first = o.first;
-        }
-    }
-
-    fn share(n: usize, total: usize) -> f64 {
-        if total == 0 {
-            1.0
-        } else {
-            n as f64 / total as f64
-        }
-    }
+        },
+    )
 }
 
 /// Whether the distance `d` is larger than `max` (NaN counts as the largest).
@@ -192,32 +135,18 @@ fn compare<S: TestScalar>(
         write_step_result(&mut want, r);
     }
     let got = k.step(gpu, &input).expect("step kernel");
-    (Compared::of::<S>(&got, &want), rust)
+    (compared::<S>(&got, &want), rust)
 }
 
 /// Panics unless every decision of `c` is bit for bit Rust's, with the first that is not.
 fn assert_identical<S: Word, C: Debug>(what: &str, c: &Compared, cases: &[C]) {
-    if let Some((i, want, got)) = &c.first {
-        panic!(
-            "{what}: {} of {} decisions differ; the first, #{i}:\n  input {:?}\n  Rust {:?}\n  GPU  {:?}",
-            c.total - c.identical,
-            c.total,
-            cases.get(*i),
-            read_step_result::<S>(want),
-            read_step_result::<S>(got),
-        );
-    }
+    c.assert_identical(what, cases, |w| format!("{:?}", read_step_result::<S>(w)));
 }
 
 /// The test GPU and the bee kernel over `S`, made once for every test.
 fn kernels<S: TestScalar>() -> &'static (Gpu, BeeKernels) {
-    static FX: OnceLock<(Gpu, BeeKernels)> = OnceLock::new();
-    static F32: OnceLock<(Gpu, BeeKernels)> = OnceLock::new();
-    let cell = match S::KIND {
-        ScalarKind::I16F16 => &FX,
-        ScalarKind::F32 => &F32,
-    };
-    cell.get_or_init(|| {
+    static KERNELS: PerScalar<(Gpu, BeeKernels)> = PerScalar::new();
+    KERNELS.get::<S>(|| {
         let gpu = test_gpu();
         let k = BeeKernels::new::<S>(&gpu).expect("the bee kernel compiles");
         (gpu, k)
@@ -237,24 +166,11 @@ struct Real<S> {
 /// same fraction of the shortened run), every bee's step exchange (`Engine::exchanges`, decoded
 /// from postcard) recorded every `every` steps.
 fn real<S: TestScalar>(name: &str, ticks: u32, every: u32) -> Real<S> {
-    let mut sc = builtin(name).unwrap_or_else(|| panic!("no built-in scenario {name}"));
-    for g in &mut sc.groups {
-        g.scalar = S::TYPE;
-    }
-    for e in &mut sc.events {
-        e.step = (u64::from(e.step) * u64::from(ticks) / u64::from(sc.steps)) as u32;
-    }
-    sc.steps = ticks;
+    let sc = shortened::<S>(name, ticks);
     let mut sim = BeeSim::from_scenario(&sc, sc.seed).expect("the scenario builds");
     let ids: Vec<u32> = (0..sim.agents() as u32).collect();
-    let mut params = vec![None; ids.len()];
-    for g in &sim.groups {
-        let g = S::group(g).expect("every group in the scalar asked for");
-        for &id in &g.ids {
-            params[id as usize] = Some(g.params);
-        }
-    }
-    let params: Vec<Checked<BeeParams<S>>> = params.into_iter().map(Option::unwrap).collect();
+    let params: Vec<Checked<BeeParams<S>>> =
+        params_by_id::<S, BeeGroups, _>(ids.len(), &sim.groups, |g| (&g.ids, g.params));
     let mut out = Real {
         cases: Vec::new(),
         replies: Vec::new(),
@@ -264,8 +180,7 @@ fn real<S: TestScalar>(name: &str, ticks: u32, every: u32) -> Real<S> {
         Engine::decide(&mut sim, 0).expect("step");
         if t % every == every - 1 {
             for ex in Engine::exchanges(&sim, 0, &ids).expect("step exchanges") {
-                let req: BeeStepRequest<S> = decode_payload(&ex.request.bytes).unwrap();
-                let reply: BeeStepReply<S> = decode_payload(&ex.reply.bytes).unwrap();
+                let (req, reply): (BeeStepRequest<S>, BeeStepReply<S>) = decode_exchange(&ex);
                 out.cases.push(StepCase {
                     state: req.state,
                     frame: req.frame,
@@ -390,7 +305,7 @@ const F32_MAX_POS_REL: f64 = 1e-6;
 fn f32_real_exchanges_are_measured() {
     let t0 = Instant::now();
     let (c, _) = real_runs::<f32>(|_, _, _| {});
-    let pct = |n, c: &Compared| 100.0 * Compared::share(n, c.total);
+    let pct = |n, c: &Compared| 100.0 * share(n, c.total);
     println!(
         "f32 on {}: {} step decisions, {:.2} % bit-identical, {:.3} % the same status and \
          avoidance, next positions at most {:.2e} apart ({:.1} s)",
@@ -398,7 +313,7 @@ fn f32_real_exchanges_are_measured() {
         c.total,
         pct(c.identical, &c),
         pct(c.discrete, &c),
-        c.max_pos_diff,
+        c.measured.max_pos_diff,
         t0.elapsed().as_secs_f64(),
     );
     assert!(c.total >= 100_000);
@@ -415,20 +330,17 @@ fn f32_real_exchanges_are_measured() {
         pct(r.identical, &r),
         pct(r.discrete, &r),
         r.refused,
-        r.max_pos_diff,
-        r.max_pos_rel,
+        r.measured.max_pos_diff,
+        r.measured.max_pos_rel,
     );
-    assert!(
-        Compared::share(c.identical, c.total) >= F32_IDENTICAL_FLOOR,
-        "{c:?}"
-    );
-    assert!(c.max_pos_diff <= F32_MAX_POS_DIFF, "{c:?}");
+    assert!(share(c.identical, c.total) >= F32_IDENTICAL_FLOOR, "{c:?}");
+    assert!(c.measured.max_pos_diff <= F32_MAX_POS_DIFF, "{c:?}");
     for (what, c) in [("real", &c), ("random", &r)] {
         assert!(
-            Compared::share(c.discrete, c.total) >= F32_DISCRETE_FLOOR,
+            share(c.discrete, c.total) >= F32_DISCRETE_FLOOR,
             "{what}: {c:?}"
         );
-        assert!(c.max_pos_rel <= F32_MAX_POS_REL, "{what}: {c:?}");
+        assert!(c.measured.max_pos_rel <= F32_MAX_POS_REL, "{what}: {c:?}");
     }
 }
 
@@ -1093,46 +1005,31 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
 /// The kernel compiles (naga, as wgpu would) over both scalars.
 #[test]
 fn the_kernel_is_valid_wgsl() {
-    for scalar in SCALARS {
-        shaders::tests::validate(
-            &format!("bee step over {}", scalar.name),
-            &shaders::compose(&modules(scalar), STEP_KERNEL),
-        );
-    }
+    assert_valid_wgsl("bee step", modules, STEP_KERNEL);
 }
 
 /// Both sides of the layout have the same word counts and capacities.
 #[test]
 fn the_layout_constants_are_the_shaders() {
     let wgsl = format!("{}{}", BEE_LAYOUT.source, BEE_FRAME.source);
-    for &(name, value) in WGSL_CONSTANTS {
-        let decl = format!("const {name}: u32 = {value}u;");
-        assert!(wgsl.contains(&decl), "{decl} is not in the shaders");
-    }
+    assert_constants(&wgsl, WGSL_CONSTANTS, false);
 }
 
 /// The status words name every field of `FIELDS` as `shaders/bee_frame.wgsl` does, and decode
 /// to the error they encode.
 #[test]
 fn status_words_are_the_shaders() {
-    let wgsl = BEE_FRAME.source;
-    for (code, field) in FIELDS.iter().enumerate().skip(1) {
-        let name = field.replace('.', "_").to_uppercase();
-        let decl = format!("const BEE_FIELD_{name}: u32 = {code}u; // \"{field}\"");
-        assert!(wgsl.contains(&decl), "{decl} is not in bee_frame.wgsl");
-        for index in [None, Some(0), Some(15)] {
-            for e in [
-                Error::NonFinite { field, index },
-                Error::OutOfRange { field, index },
-            ] {
-                assert_eq!(status_error(status_of(&e)).unwrap(), Err(e));
-            }
-        }
+    StatusWords {
+        wgsl: BEE_FRAME.source,
+        file: "bee_frame.wgsl",
+        prefix: "BEE",
+        fields: &FIELDS,
+        kinds: 2,
+        indices: [None, Some(0), Some(15)],
+        status_of,
+        status_error,
     }
-    assert_eq!(status_error(0).unwrap(), Ok(()));
-    assert!(status_error(0x0000_ff01).is_err());
-    assert!(status_error(0x0000_0103).is_err());
-    assert_eq!(status_of(&Error::Payload), u32::MAX);
+    .check();
     assert_eq!(
         status_of(&Error::Inconsistent {
             field: "state.pos",

@@ -6,6 +6,7 @@
 
 mod fx;
 mod geom;
+pub(super) mod harness;
 mod rand;
 mod scalar;
 
