@@ -4,10 +4,11 @@
 //! [`GpuAntSim`] keeps the CPU simulation ([`AntSim`]) as its host view: the world's objects,
 //! the groups' parameters and ids, what the outputs and the mirror read. A tick sends nothing
 //! but its number: the grid, the plan, the resolve, the events, the route and the food are
-//! computed on the GPU. The host reads back only when it needs to look ([`Engine::sync`]
-//! before a recorded frame and at the end, [`Engine::exchanges`] for the mirror, and a check for
-//! refusals every [`CHECK_EVERY`] ticks), and uploads only what a scenario event changed (the
-//! world's words, and the ants an obstacle pushed out).
+//! computed on the GPU. The host reads back only when it needs to look (a recorded step through
+//! double-buffered staging, [`Engine::snapshot`] and [`Engine::take_snapshot`]; the end of a
+//! run, [`Engine::sync`]; [`Engine::exchanges`] for the mirror; a check for refusals every
+//! [`CHECK_EVERY`] ticks), and uploads only what a scenario event changed (the world's words,
+//! and the ants an obstacle pushed out).
 //!
 //! In fixed point every word is the CPU engine's: the kernels are `swarm-core`'s controllers
 //! and the CPU's sensing function by function (`docs/gpu.md`), the events and the route's
