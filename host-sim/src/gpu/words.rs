@@ -1,5 +1,5 @@
 //! What the word layouts of the ant and bee kernels share: a scalar as one `u32` ([`Word`]) and
-//! a reader of words in order ([`Words`]).
+//! a reader of words in order (`Words`).
 
 use swarm_core::{Fx, Rect, Scalar, Vec2, Vec3};
 
