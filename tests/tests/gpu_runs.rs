@@ -154,19 +154,38 @@ struct F32Agreement {
     deliveries: (u64, u64),
 }
 
-fn f32_agreement(name: &str) -> F32Agreement {
+/// Built-in scenario `name` in `f32` over [`STEPS`] ticks, recorded every 10.
+fn f32_scenario(name: &str) -> Scenario {
     let mut sc = fixed(name);
     for g in &mut sc.groups {
         g.scalar = ScalarType::F32;
     }
     sc.outputs.every = 10;
+    sc
+}
+
+/// `sc` run on the CPU and on the GPU (into `cpu` and `gpu` of the returned folder), and the
+/// frames each recorded.
+fn f32_runs(
+    sc: &Scenario,
+) -> (
+    tempfile::TempDir,
+    Vec<swarm_sim::output::Frame>,
+    Vec<swarm_sim::output::Frame>,
+) {
     let tmp = tempfile::tempdir().expect("temp dir");
     let (cpu, gpu) = (tmp.path().join("cpu"), tmp.path().join("gpu"));
-    run_on(&sc, Backend::Cpu, 2, &cpu);
-    run_on(&sc, Backend::Gpu, 2, &gpu);
+    run_on(sc, Backend::Cpu, 2, &cpu);
+    run_on(sc, Backend::Gpu, 2, &gpu);
     let frames = |d: &Path| swarm_sim::output::read_csv(d.join("trajectories.csv")).unwrap();
     let (a, b) = (frames(&cpu), frames(&gpu));
-    assert_eq!(a.len(), b.len(), "{name}: recorded frames");
+    assert_eq!(a.len(), b.len(), "{}: recorded frames", sc.name);
+    (tmp, a, b)
+}
+
+fn f32_agreement(name: &str) -> F32Agreement {
+    let (tmp, a, b) = f32_runs(&f32_scenario(name));
+    let (cpu, gpu) = (tmp.path().join("cpu"), tmp.path().join("gpu"));
     let mut first_difference = None;
     let (mut max_error_100, mut max_error_end) = (0.0f32, 0.0f32);
     let (mut same, mut samples) = (0u64, 0u64);
@@ -278,19 +297,10 @@ fn goal_of(sc: &Scenario) -> [f32; 3] {
 }
 
 fn bee_f32_agreement(name: &str) -> BeeF32Agreement {
-    let mut sc = fixed(name);
-    for g in &mut sc.groups {
-        g.scalar = ScalarType::F32;
-    }
-    sc.outputs.every = 10;
+    let sc = f32_scenario(name);
     let goal = goal_of(&sc);
-    let tmp = tempfile::tempdir().expect("temp dir");
+    let (tmp, a, b) = f32_runs(&sc);
     let (cpu, gpu) = (tmp.path().join("cpu"), tmp.path().join("gpu"));
-    run_on(&sc, Backend::Cpu, 2, &cpu);
-    run_on(&sc, Backend::Gpu, 2, &gpu);
-    let frames = |d: &Path| swarm_sim::output::read_csv(d.join("trajectories.csv")).unwrap();
-    let (a, b) = (frames(&cpu), frames(&gpu));
-    assert_eq!(a.len(), b.len(), "{name}: recorded frames");
     let mut first_difference = None;
     let (mut max_error_100, mut max_error_end) = (0.0f32, 0.0f32);
     let mut goal_distance = (0.0f64, 0.0f64);
