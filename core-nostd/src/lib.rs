@@ -69,6 +69,7 @@ pub mod geom;
 pub mod model;
 pub mod rand;
 pub mod scalar;
+pub mod wang;
 #[cfg(feature = "serde")]
 pub mod wire;
 
