@@ -38,6 +38,12 @@ pub trait Engine: Send {
     fn backend(&self) -> &'static str {
         "cpu"
     }
+    /// What the engine has to say in the run log since it was last asked (e.g. a global field
+    /// it solved, with what the solve cost); the run loop asks after building the engine and
+    /// after each step's events.
+    fn notes(&mut self) -> Vec<String> {
+        Vec::new()
+    }
     /// The GPU adapter a GPU engine runs on (name, API, driver); `None` on the CPU.
     fn adapter(&self) -> Option<String> {
         None

@@ -38,11 +38,13 @@ mod error;
 pub mod gpu;
 pub mod grid;
 pub mod models;
+pub(crate) mod nearest;
 pub mod output;
 mod par;
 pub mod run;
 pub mod scalar;
 pub mod scenario;
 pub mod spawn;
+pub mod wang;
 
 pub use error::{Result, SimError};

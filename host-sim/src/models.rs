@@ -11,6 +11,7 @@ use crate::error::{Result, SimError};
 use crate::gpu::Gpu;
 use crate::gpu::ant::engine::GpuAntSim;
 use crate::scenario::{Backend, GroupCheck, Problem, ScalarType, Scenario};
+use crate::wang::{WangSim, bench_wang_world};
 
 /// What the simulator knows of a model: the world it lives in, the rules of its groups, how
 /// to build its engine for a scenario, and its benchmark world.
@@ -93,6 +94,16 @@ pub const BUILTIN: &[ModelEntry] = &[
                 )?))
             },
         }),
+    },
+    ModelEntry {
+        name: "wang",
+        about: "noise-aware insect swarms: curl noise, fast-marching navigation and minimum \
+                distance enforcement (wang2014), 3D",
+        dim: 3,
+        check: crate::wang::scenario::check,
+        engine: |sc, seed| Ok(Box::new(WangSim::from_scenario(sc, seed)?)),
+        bench_world: |n, seed, scalar| Box::new(bench_wang_world(n, seed, scalar)),
+        gpu: None,
     },
 ];
 

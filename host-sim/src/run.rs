@@ -93,7 +93,10 @@ pub fn run_with(
             }
             let dir = stage.path();
             pool.install(|| {
-                let engine = engine(&sc, seed)?;
+                let mut engine = engine(&sc, seed)?;
+                for note in engine.notes() {
+                    log.line(note)?;
+                }
                 if let Some(a) = engine.adapter() {
                     log.line(format_args!("backend gpu: {a}"))?;
                 }
@@ -176,6 +179,9 @@ fn run_loop(
             log.line(format_args!("step {step}: {verb} {object}"))?;
         }
         engine.tick()?;
+        for note in engine.notes() {
+            log.line(format_args!("step {step}: {note}"))?;
+        }
         engine.after_tick(&mut summary);
         let done = step + 1;
         if done % every == 0 || done == sc.steps {
@@ -418,9 +424,10 @@ fn shape_of(name: &str, kind: &ObjectKind, from: u32, to: Option<u32>) -> Option
         ObjectKind::Shaft { center, radius, .. } => {
             Shape::circle([center[0], 0.0, center[1]], *radius, ShapeKind::Shaft)
         }
-        ObjectKind::Target { center, radius, .. } => {
+        ObjectKind::Target { center, radius, .. } | ObjectKind::Zone { center, radius } => {
             Shape::circle(*center, *radius, ShapeKind::Target)
         }
+        ObjectKind::Region { min, max } => Shape::cuboid(*min, *max, ShapeKind::Target),
     };
     let from = (from > 0).then_some(from);
     Some(shape.named(name).during(from, to))

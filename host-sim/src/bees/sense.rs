@@ -8,7 +8,7 @@ use swarm_core::bee::{BeeFrame, BeeNeighbor, ObstacleSense};
 use swarm_core::wire::{WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS};
 
 use super::world::BeeWorld;
-use crate::grid::Grid;
+use crate::nearest::{Selected, d2f, key, loose2, select, squared};
 use crate::scalar::{SimScalar, v3};
 
 /// Neighbour capacity of a bee frame (the wire's).
@@ -18,64 +18,6 @@ pub const P: usize = WIRE_BEE_TARGETS;
 
 /// The sensor frame of the simulator (and of the wire).
 pub type BeeSimFrame<S> = BeeFrame<S, N, P>;
-
-/// Candidates buffered before a merge.
-const SCAN: usize = 48;
-/// Room for a merge: `SCAN` candidates plus the `K ≤ 16` kept so far.
-const KEYED: usize = 64;
-
-/// Selection key: the order bits of the squared distance in the sensing bee's scalar
-/// ([`SimScalar::order_bits`]), then the tie key.
-#[inline]
-fn key(d: u32, tie: u32) -> u64 {
-    (u64::from(d) << 32) | u64::from(tie)
-}
-
-/// The `K` nearest entries of a query, sorted by squared distance then tie key, each as
-/// `(key, slot)`: a deterministic selection whatever the order (or slots) candidates arrive in.
-#[derive(Debug)]
-pub(crate) struct Selected<const K: usize> {
-    items: [(u64, u32); K],
-    len: usize,
-}
-
-impl<const K: usize> Selected<K> {
-    fn new() -> Self {
-        const { assert!(K + SCAN <= KEYED) };
-        Selected {
-            items: [(0, 0); K],
-            len: 0,
-        }
-    }
-
-    /// The selected slots, nearest first.
-    pub(crate) fn slots(&self) -> impl Iterator<Item = usize> + '_ {
-        self.items[..self.len].iter().map(|&(_, s)| s as usize)
-    }
-
-    /// Merges buffered `(squared distance order bits, slot)` candidates: keeps the `K`
-    /// smallest `(distance, tie(slot))`.
-    fn merge(&mut self, cands: &[(u32, u32)], tie: &impl Fn(u32) -> u32) {
-        if cands.is_empty() {
-            return;
-        }
-        let mut keyed = [(0u64, 0u32); KEYED];
-        keyed[..self.len].copy_from_slice(&self.items[..self.len]);
-        let mut n = self.len;
-        for &(d, j) in cands {
-            keyed[n] = (key(d, tie(j)), j);
-            n += 1;
-        }
-        self.take(&mut keyed[..n]);
-    }
-
-    /// Keeps the `K` smallest of `keyed` (keys are unique: the tie keys are).
-    fn take(&mut self, keyed: &mut [(u64, u32)]) {
-        keyed.sort_unstable_by_key(|e| e.0);
-        self.len = keyed.len().min(K);
-        self.items[..self.len].copy_from_slice(&keyed[..self.len]);
-    }
-}
 
 /// Sorts entries with distinct keys by key: insertion sort when there are few (the usual
 /// handful of neighbours), else the standard sort.
@@ -117,64 +59,6 @@ fn rank_distinct(keyed: &[(u64, u32)], out: &mut [(u64, u32); N]) -> bool {
         placed |= 1 << rank;
     }
     placed == (1u32 << keyed.len()) - 1
-}
-
-/// The `K` entries of `grid` nearest to `me` strictly within `range`, `skip` excluded, ties
-/// broken by `tie(slot)`, by squared distance in the scalar `S` (`at(slot, copy)`: an entry's
-/// position in `S` from its slot and the grid's `f32` copy `copy`). The grid query and an
-/// `f32` pre-selection (`range` plus a rounding margin) only narrow the candidates.
-pub(crate) fn select<S: SimScalar, const K: usize>(
-    grid: &Grid,
-    me: Vec3<S>,
-    range: f32,
-    skip: u32,
-    at: impl Fn(u32, [f32; 3]) -> Vec3<S>,
-    tie: impl Fn(u32) -> u32,
-) -> Selected<K> {
-    let p = me.to_f32();
-    let p = [p.x, p.y, p.z];
-    let (r2, loose) = (squared::<S>(range), loose2(range));
-    let mut out = Selected::new();
-    let mut buf = [(0u32, 0u32); SCAN];
-    let mut len = 0usize;
-    grid.for_each_candidate(p, range + MARGIN, |j, q| {
-        if j == skip || d2f(q, p) >= loose {
-            return;
-        }
-        let d = (at(j, q) - me).length_sq();
-        if d < r2 {
-            buf[len] = (d.order_bits(), j);
-            len += 1;
-            if len == SCAN {
-                out.merge(&buf[..SCAN], &tie);
-                len = 0;
-            }
-        }
-    });
-    out.merge(&buf[..len], &tie);
-    out
-}
-
-/// What the `f32` pre-selections add to a range for the rounding of positions to `f32`.
-const MARGIN: f32 = 1e-3;
-
-/// `r` squared, in `S`.
-fn squared<S: SimScalar>(r: f32) -> S {
-    let r = S::from_f32(r);
-    r * r
-}
-
-/// `r` plus [`MARGIN`] (relative too), squared: the radius of an `f32` pre-selection.
-fn loose2(r: f32) -> f32 {
-    let r = r + MARGIN * (1.0 + r);
-    r * r
-}
-
-/// Squared distance, from the grid's `f32` copy of the positions (pre-selection only).
-#[inline]
-fn d2f(a: [f32; 3], b: [f32; 3]) -> f32 {
-    let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
 }
 
 /// The `N` bees nearest to slot `i` within the world's neighbour range (strictly: capsule gap

@@ -606,52 +606,7 @@ impl BeeWorld {
     /// bounds (clamped, the outward velocity removed), in the bee's scalar. Returns what was
     /// corrected: bit 0 an obstacle, bit 1 the bounds.
     pub fn confine<S: SimScalar>(&self, s: &mut BeeState<S>) -> u8 {
-        let (mut p, mut v) = (s.pos, s.vel);
-        let offset = S::from_f32(SURFACE_OFFSET);
-        let (lo, hi) = (at::<S>(self.min), at::<S>(self.max));
-        let mut flags = 0u8;
-        for _ in 0..4 {
-            let mut moved = false;
-            for o in self.obstacles.iter().filter(|o| o.active) {
-                if !o.may_be_within(a3(p), 0.0) {
-                    continue;
-                }
-                let surf = self.surface(o, p);
-                if !surf.inside {
-                    continue;
-                }
-                let n = surf.normal;
-                p = surf.point + n * offset;
-                let vn = v.dot(n);
-                if vn < S::ZERO {
-                    v -= n * vn;
-                }
-                flags |= 1;
-                moved = true;
-            }
-            for k in 0..3 {
-                let (x, min, max) = (axis(p, k), axis(lo, k), axis(hi, k));
-                if x < min {
-                    p = with_axis(p, k, min);
-                    v = with_axis(v, k, axis(v, k).max(S::ZERO));
-                    flags |= 2;
-                    moved = true;
-                } else if x > max {
-                    p = with_axis(p, k, max);
-                    v = with_axis(v, k, axis(v, k).min(S::ZERO));
-                    flags |= 2;
-                    moved = true;
-                }
-            }
-            if !moved {
-                break;
-            }
-        }
-        if flags != 0 {
-            s.pos = p;
-            s.vel = v;
-        }
-        flags
+        confine(&self.obstacles, self.min, self.max, &mut s.pos, &mut s.vel)
     }
 
     /// Whether `p` lies inside an active obstacle (strictly; see [`Shape3::surface`]), in the
@@ -662,6 +617,66 @@ impl BeeWorld {
             .filter(|o| o.active && o.may_be_within(a3(p), 0.0))
             .find(|o| self.surface(o, p).inside)
     }
+}
+
+/// Keeps a point physical: out of every active obstacle of `obstacles` (put back on the
+/// surface, [`SURFACE_OFFSET`] along the normal, the inward normal velocity removed) and inside
+/// the bounds `[min, max]` (clamped, the outward velocity removed), in the point's scalar.
+/// Returns what was corrected: bit 0 an obstacle, bit 1 the bounds. Shared by the 3D models
+/// (the bee world's [`BeeWorld::confine`]).
+pub fn confine<S: SimScalar>(
+    obstacles: &[BeeObstacle],
+    min: [f32; 3],
+    max: [f32; 3],
+    pos: &mut Vec3<S>,
+    vel: &mut Vec3<S>,
+) -> u8 {
+    let (mut p, mut v) = (*pos, *vel);
+    let offset = S::from_f32(SURFACE_OFFSET);
+    let (lo, hi) = (at::<S>(min), at::<S>(max));
+    let mut flags = 0u8;
+    for _ in 0..4 {
+        let mut moved = false;
+        for o in obstacles.iter().filter(|o| o.active) {
+            if !o.may_be_within(a3(p), 0.0) {
+                continue;
+            }
+            let surf = o.shape.surface(p, min, max);
+            if !surf.inside {
+                continue;
+            }
+            let n = surf.normal;
+            p = surf.point + n * offset;
+            let vn = v.dot(n);
+            if vn < S::ZERO {
+                v -= n * vn;
+            }
+            flags |= 1;
+            moved = true;
+        }
+        for k in 0..3 {
+            let (x, min, max) = (axis(p, k), axis(lo, k), axis(hi, k));
+            if x < min {
+                p = with_axis(p, k, min);
+                v = with_axis(v, k, axis(v, k).max(S::ZERO));
+                flags |= 2;
+                moved = true;
+            } else if x > max {
+                p = with_axis(p, k, max);
+                v = with_axis(v, k, axis(v, k).min(S::ZERO));
+                flags |= 2;
+                moved = true;
+            }
+        }
+        if !moved {
+            break;
+        }
+    }
+    if flags != 0 {
+        *pos = p;
+        *vel = v;
+    }
+    flags
 }
 
 #[cfg(test)]

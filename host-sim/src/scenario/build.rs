@@ -334,7 +334,7 @@ impl RawObject {
         use KindTag as K;
         let tag = self.kind;
         let (fields, required): (&[&str], &[&str]) = match tag {
-            K::Nest | K::Rock | K::Disturbance | K::Sphere => {
+            K::Nest | K::Rock | K::Disturbance | K::Sphere | K::Zone => {
                 (&["center", "radius"], &["center", "radius"])
             }
             K::Food => (&["center", "radius", "amount"], &["center", "radius"]),
@@ -347,7 +347,7 @@ impl RawObject {
                 &["center", "radius", "particles"],
             ),
             K::Polygon => (&["points"], &["points"]),
-            K::Box => (&["min", "max"], &["min", "max"]),
+            K::Box | K::Region => (&["min", "max"], &["min", "max"]),
             K::Shaft => (
                 &["center", "radius", "y_min", "y_max"],
                 &["center", "radius", "y_min", "y_max"],
@@ -438,6 +438,14 @@ impl RawObject {
                 min: array(self.min.as_deref().unwrap_or(&[]), "min", "[x, y, z]")?,
                 max: array(self.max.as_deref().unwrap_or(&[]), "max", "[x, y, z]")?,
             },
+            K::Zone => ObjectKind::Zone {
+                center: center3()?,
+                radius,
+            },
+            K::Region => ObjectKind::Region {
+                min: array(self.min.as_deref().unwrap_or(&[]), "min", "[x, y, z]")?,
+                max: array(self.max.as_deref().unwrap_or(&[]), "max", "[x, y, z]")?,
+            },
             K::Shaft => ObjectKind::Shaft {
                 center: array(
                     self.center.as_deref().unwrap_or(&[]),
@@ -469,6 +477,8 @@ fn tag_name(tag: KindTag) -> &'static str {
         KindTag::Box => "box",
         KindTag::Shaft => "shaft",
         KindTag::Target => "target",
+        KindTag::Zone => "zone",
+        KindTag::Region => "region",
     }
 }
 
@@ -519,6 +529,12 @@ impl From<Object> for RawObject {
             ObjectKind::Target { particles, .. } => {
                 raw.particles = Some(particles);
                 KindTag::Target
+            }
+            ObjectKind::Zone { .. } => KindTag::Zone,
+            ObjectKind::Region { min, max } => {
+                raw.min = Some(min.to_vec());
+                raw.max = Some(max.to_vec());
+                KindTag::Region
             }
         };
         raw

@@ -45,6 +45,13 @@ builtins! {
     "bees-fig11-grassland" => "chen Fig. 11: 1000 bees swarming over grassland",
     "bees-fig15-nest" => "chen Fig. 15: 350 bees around a nest, zig-zag approach",
     "bees-fig14-shafts" => "chen Fig. 14: a swarm flying through vertical shafts to a goal",
+    "wang-fig6-two-blocks" => "wang2014 Fig. 6: 300 insects through the passage between two blocks",
+    "wang-fig7-min-cost" => "wang2014 Fig. 7: minimum-cost paths through, round and over two blocks",
+    "wang-fig8-chasing" => "wang2014 Fig. 8: 100 insects chase a ball moved every 25 s",
+    "wang-fig9-aggregation" => "wang2014 Fig. 9: 1000 insects swarm where they started",
+    "wang-fig10-phototaxis" => "wang2014 Fig. 10: 30 moths drawn to a street lamp",
+    "wang-fig1a-locusts" => "wang2014 Fig. 1a: 5000 locusts cross a hamlet",
+    "wang-fig13-noise-compare" => "wang2014 Fig. 11/13: curl vs Perlin vs random noise",
 }
 
 /// The names of the built-in scenarios (their summaries: [`BUILTINS`]).

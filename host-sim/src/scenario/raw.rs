@@ -163,6 +163,8 @@ pub(crate) enum KindTag {
     Box,
     Shaft,
     Target,
+    Zone,
+    Region,
 }
 
 /// `[[objects]]`: every geometry field of every kind, optional; the conversion checks that

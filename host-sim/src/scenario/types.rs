@@ -362,7 +362,8 @@ pub struct Object {
     pub kind: ObjectKind,
 }
 
-/// The kinds of object, with their geometry. Ant kinds are 2D, bee kinds 3D.
+/// The kinds of object, with their geometry. Ant kinds are 2D; bee and field-model kinds
+/// (spheres, boxes, shafts, targets, zones, regions) 3D.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ObjectKind {
     /// Ants: a nest (circle).
@@ -446,6 +447,22 @@ pub enum ObjectKind {
         /// Number of virtual particles.
         particles: u32,
     },
+    /// 3D field models: a ball-shaped area agents head for (a goal area of wang2014 §5, where
+    /// the navigation field is zero); not an obstacle.
+    Zone {
+        /// Centre `[x, y, z]`.
+        center: [f32; 3],
+        /// Radius.
+        radius: f32,
+    },
+    /// 3D field models: a box-shaped area agents head for (a goal area of wang2014 §5); not an
+    /// obstacle.
+    Region {
+        /// Lower corner `[x, y, z]`.
+        min: [f32; 3],
+        /// Upper corner `[x, y, z]`.
+        max: [f32; 3],
+    },
 }
 
 impl ObjectKind {
@@ -462,6 +479,8 @@ impl ObjectKind {
             ObjectKind::Box { .. } => "box",
             ObjectKind::Shaft { .. } => "shaft",
             ObjectKind::Target { .. } => "target",
+            ObjectKind::Zone { .. } => "zone",
+            ObjectKind::Region { .. } => "region",
         }
     }
 
@@ -477,7 +496,9 @@ impl ObjectKind {
             ObjectKind::Sphere { .. }
             | ObjectKind::Box { .. }
             | ObjectKind::Shaft { .. }
-            | ObjectKind::Target { .. } => 3,
+            | ObjectKind::Target { .. }
+            | ObjectKind::Zone { .. }
+            | ObjectKind::Region { .. } => 3,
         }
     }
 
@@ -503,8 +524,10 @@ impl ObjectKind {
             | ObjectKind::Disturbance { center, .. }
             | ObjectKind::Waypoint { center, .. }
             | ObjectKind::Shaft { center, .. } => Some(center),
-            ObjectKind::Sphere { center, .. } | ObjectKind::Target { center, .. } => Some(center),
-            ObjectKind::Polygon { .. } | ObjectKind::Box { .. } => None,
+            ObjectKind::Sphere { center, .. }
+            | ObjectKind::Target { center, .. }
+            | ObjectKind::Zone { center, .. } => Some(center),
+            ObjectKind::Polygon { .. } | ObjectKind::Box { .. } | ObjectKind::Region { .. } => None,
         }
     }
 
@@ -527,8 +550,9 @@ impl ObjectKind {
             | ObjectKind::Waypoint { radius, .. }
             | ObjectKind::Sphere { radius, .. }
             | ObjectKind::Shaft { radius, .. }
-            | ObjectKind::Target { radius, .. } => Some(*radius),
-            ObjectKind::Polygon { .. } | ObjectKind::Box { .. } => None,
+            | ObjectKind::Target { radius, .. }
+            | ObjectKind::Zone { radius, .. } => Some(*radius),
+            ObjectKind::Polygon { .. } | ObjectKind::Box { .. } | ObjectKind::Region { .. } => None,
         }
     }
 
@@ -542,10 +566,12 @@ impl ObjectKind {
             | ObjectKind::Disturbance { center, .. }
             | ObjectKind::Waypoint { center, .. }
             | ObjectKind::Shaft { center, .. } => set_array(center, to),
-            ObjectKind::Sphere { center, .. } | ObjectKind::Target { center, .. } => {
-                set_array(center, to)
+            ObjectKind::Sphere { center, .. }
+            | ObjectKind::Target { center, .. }
+            | ObjectKind::Zone { center, .. } => set_array(center, to),
+            ObjectKind::Polygon { .. } | ObjectKind::Box { .. } | ObjectKind::Region { .. } => {
+                false
             }
-            ObjectKind::Polygon { .. } | ObjectKind::Box { .. } => false,
         }
     }
 

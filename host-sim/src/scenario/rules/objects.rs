@@ -76,7 +76,8 @@ pub(super) fn validate_geometry(world: &World, o: &Object, path: &str) -> Result
         | ObjectKind::Rock { .. }
         | ObjectKind::Disturbance { .. }
         | ObjectKind::Waypoint { .. }
-        | ObjectKind::Sphere { .. } => Ok(()),
+        | ObjectKind::Sphere { .. }
+        | ObjectKind::Zone { .. } => Ok(()),
         ObjectKind::Food { amount, .. } => {
             if *amount == Some(0) {
                 return Err(Problem::new(
@@ -97,7 +98,7 @@ pub(super) fn validate_geometry(world: &World, o: &Object, path: &str) -> Result
             }
             Ok(())
         }
-        ObjectKind::Box { min, max } => {
+        ObjectKind::Box { min, max } | ObjectKind::Region { min, max } => {
             inside(world, min, &field("min"), "the corner")?;
             inside(world, max, &field("max"), "the corner")?;
             if min.iter().zip(max).any(|(lo, hi)| lo >= hi) {

@@ -47,8 +47,10 @@ fn role(kind: &ObjectKind) -> Role<'_> {
         ObjectKind::Food { center, radius, .. } | ObjectKind::Waypoint { center, radius, .. } => {
             Role::Destination(center, *radius)
         }
-        ObjectKind::Target { center, radius, .. } => Role::Destination(center, *radius),
-        ObjectKind::Disturbance { .. } => Role::Other,
+        ObjectKind::Target { center, radius, .. } | ObjectKind::Zone { center, radius } => {
+            Role::Destination(center, *radius)
+        }
+        ObjectKind::Disturbance { .. } | ObjectKind::Region { .. } => Role::Other,
         _ => Solid::of(kind).map_or(Role::Other, Role::Obstacle),
     }
 }
@@ -79,6 +81,7 @@ fn unreachable(o: &Object) -> &'static str {
     match o.kind {
         ObjectKind::Waypoint { .. } => "the colony's route cannot pass through it",
         ObjectKind::Target { .. } => "no bee can reach it",
+        ObjectKind::Zone { .. } => "no insect can reach it",
         _ => "no ant can ever collect from it",
     }
 }
