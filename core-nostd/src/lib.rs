@@ -64,6 +64,7 @@ macro_rules! wire_type {
 
 pub mod ant;
 pub mod bee;
+mod check;
 mod error;
 pub mod geom;
 pub mod model;

@@ -21,6 +21,19 @@ pub mod stream {
     /// Bee: the swarm's base roll phase, drawn once per seed (agent 0, step 0), see
     /// `bee::oscillation::clock_offset`.
     pub const BEE_PHASE_BASE: u32 = 0x21;
+    /// Wang: whether the phototaxis bias toward the lamp applies this step (wang2014 §7).
+    pub const WANG_PHOTO: u32 = 0x30;
+    /// Wang: x component of the random-noise baseline (wang2014 §7.1).
+    pub const WANG_NOISE_X: u32 = 0x31;
+    /// Wang: y component of the random-noise baseline.
+    pub const WANG_NOISE_Y: u32 = 0x32;
+    /// Wang: z component of the random-noise baseline.
+    pub const WANG_NOISE_Z: u32 = 0x33;
+    /// Wang: the height (cosine of the polar angle) of the direction that separates a
+    /// coincident MDE pair (wang2014 §6), drawn with the pair's lower id as the agent.
+    pub const WANG_MDE: u32 = 0x34;
+    /// Wang: the azimuth of that direction.
+    pub const WANG_MDE_AZIMUTH: u32 = 0x35;
 }
 
 /// Wellons' `lowbias32` finaliser: a bijective 32-bit mixer with low avalanche bias.

@@ -2,8 +2,8 @@
 //!
 //! Coordinates are world coordinates with y up (chen eq. 7 uses `[0, 1, 0]` as the up axis).
 
-use super::params::LIMIT;
-use crate::{Error, Result, Scalar, ScalarKind, Vec3};
+use crate::check::{check_nonneg as check_density, check_num, check_unit, check_vec};
+use crate::{Error, Result, Scalar, Vec3};
 
 wire_type! {
     /// What a bee carries from one step to the next.
@@ -120,7 +120,7 @@ impl<S: Scalar> BeeState<S> {
         }
     }
 
-    /// Checks every field: finite, within ±[`LIMIT`], density ≥ 0.
+    /// Checks every field: finite, within ±[`LIMIT`](super::params::LIMIT), density ≥ 0.
     pub fn validate(&self) -> Result<()> {
         check_vec(self.pos, "state.pos")?;
         check_vec(self.vel, "state.vel")?;
@@ -167,7 +167,7 @@ impl<S: Scalar, const N: usize, const P: usize> BeeFrame<S, N, P> {
         f
     }
 
-    /// Checks every field: finite numbers within ±[`LIMIT`], t ≥ 0, densities ≥ 0, a unit
+    /// Checks every field: finite numbers within ±[`LIMIT`](super::params::LIMIT), t ≥ 0, densities ≥ 0, a unit
     /// normal (±1 %). List errors carry the entry's index.
     pub fn validate(&self) -> Result<()> {
         check_num(self.t, "frame.t")?;
@@ -187,59 +187,8 @@ impl<S: Scalar, const N: usize, const P: usize> BeeFrame<S, N, P> {
         }
         if let Some(ob) = self.obstacle {
             check_vec(ob.point, "frame.obstacle.point")?;
-            check_vec(ob.normal, "frame.obstacle.normal")?;
-            let len = ob.normal.length();
-            if !(len >= S::from_f32(0.99) && len <= S::from_f32(1.01)) {
-                return Err(Error::out_of_range("frame.obstacle.normal"));
-            }
+            check_unit(ob.normal, "frame.obstacle.normal")?;
         }
-        Ok(())
-    }
-}
-
-/// |v| ≤ l (false for NaN): for `f32` through the sign-clearing `f32::abs`.
-#[inline]
-fn within<S: Scalar>(v: S, l: S) -> bool {
-    if S::KIND == ScalarKind::F32 {
-        v.to_f32().abs() <= l.to_f32()
-    } else {
-        v.abs() <= l
-    }
-}
-
-/// `Err` unless `v` is finite and `|v| ≤ LIMIT`.
-#[inline]
-fn check_num<S: Scalar>(v: S, field: &'static str) -> Result<()> {
-    // Fast path: NaN fails the comparisons, and an infinity exceeds the limit.
-    if within(v, S::from_f32(LIMIT)) {
-        Ok(())
-    } else if !v.is_finite() {
-        Err(Error::non_finite(field))
-    } else {
-        Err(Error::out_of_range(field))
-    }
-}
-
-/// [`check_num`] on every component (a non-finite component is reported before an
-/// out-of-range one).
-#[inline]
-fn check_vec<S: Scalar>(v: Vec3<S>, field: &'static str) -> Result<()> {
-    let l = S::from_f32(LIMIT);
-    if within(v.x, l) & within(v.y, l) & within(v.z, l) {
-        return Ok(());
-    }
-    v.check(field)?;
-    [v.x, v.y, v.z]
-        .into_iter()
-        .try_for_each(|c| check_num(c, field))
-}
-
-/// [`check_num`] and `v ≥ 0`.
-fn check_density<S: Scalar>(v: S, field: &'static str) -> Result<()> {
-    check_num(v, field)?;
-    if v < S::ZERO {
-        Err(Error::out_of_range(field))
-    } else {
         Ok(())
     }
 }

@@ -19,13 +19,14 @@ use super::frame::max_frame_len;
 use crate::Error;
 use crate::ant::MAX_ANT_PAYLOAD;
 use crate::bee::MAX_BEE_PAYLOAD;
+use crate::wang::MAX_WANG_PAYLOAD;
+
+const fn max(a: usize, b: usize) -> usize {
+    if a > b { a } else { b }
+}
 
 /// The largest payload of any message of the built-in models, for either scalar.
-pub const MAX_PAYLOAD: usize = if MAX_ANT_PAYLOAD > MAX_BEE_PAYLOAD {
-    MAX_ANT_PAYLOAD
-} else {
-    MAX_BEE_PAYLOAD
-};
+pub const MAX_PAYLOAD: usize = max(max(MAX_ANT_PAYLOAD, MAX_BEE_PAYLOAD), MAX_WANG_PAYLOAD);
 /// The longest frame of any message of this module, delimiter included: the size of a send
 /// buffer that always suffices, and an [`Accumulator`](super::Accumulator) capacity that
 /// always receives.
@@ -41,7 +42,8 @@ pub const MAX_FRAME: usize = max_frame_len(MAX_PAYLOAD);
 /// | `0x0F`      | [`ErrorReply`]                                           |
 /// | `0x10-0x1F` | ant controller; a reply is its request's kind + 1        |
 /// | `0x20-0x2F` | bee controller; a reply is its request's kind + 1        |
-/// | `0x30-0x7F` | reserved                                                 |
+/// | `0x30-0x3F` | wang controller; a reply is its request's kind + 1       |
+/// | `0x40-0x7F` | reserved                                                 |
 /// | `0x80-0xFF` | free for applications and tests; this crate sends none   |
 pub mod kind {
     /// [`Hello`](crate::wire::Hello): host → device, opens the handshake.
@@ -74,6 +76,14 @@ pub mod kind {
     pub const BEE_STEP_REQUEST: u8 = 0x20;
     /// [`BeeStepReply`](crate::bee::BeeStepReply).
     pub const BEE_STEP_REPLY: u8 = 0x21;
+    /// [`AdvectRequest`](crate::wang::AdvectRequest).
+    pub const WANG_ADVECT_REQUEST: u8 = 0x30;
+    /// [`AdvectReply`](crate::wang::AdvectReply).
+    pub const WANG_ADVECT_REPLY: u8 = 0x31;
+    /// [`SeparateRequest`](crate::wang::SeparateRequest).
+    pub const WANG_SEPARATE_REQUEST: u8 = 0x32;
+    /// [`SeparateReply`](crate::wang::SeparateReply).
+    pub const WANG_SEPARATE_REPLY: u8 = 0x33;
 
     /// The message's name, for logs and reports; `None` for a kind this build does not know.
     pub const fn name(kind: u8) -> Option<&'static str> {
@@ -93,6 +103,10 @@ pub mod kind {
             ANT_RESOLVE_REPLY => "AntResolveReply",
             BEE_STEP_REQUEST => "BeeStepRequest",
             BEE_STEP_REPLY => "BeeStepReply",
+            WANG_ADVECT_REQUEST => "WangAdvectRequest",
+            WANG_ADVECT_REPLY => "WangAdvectReply",
+            WANG_SEPARATE_REQUEST => "WangSeparateRequest",
+            WANG_SEPARATE_REPLY => "WangSeparateReply",
             _ => return None,
         })
     }
@@ -110,6 +124,8 @@ pub mod kind {
                 | ANT_PLAN_REPLY
                 | ANT_RESOLVE_REPLY
                 | BEE_STEP_REPLY
+                | WANG_ADVECT_REPLY
+                | WANG_SEPARATE_REPLY
         )
     }
 

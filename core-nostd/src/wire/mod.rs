@@ -46,11 +46,13 @@
 //!    receive buffer ([`Identity::window`]);
 //! 2. [`Configure`] → [`Configured`]: the host opens a session (the device checks the
 //!    parameter hash once more);
-//! 3. controller requests ([`AntPlanRequest`], [`AntResolveRequest`], [`BeeStepRequest`]),
+//! 3. controller requests ([`AntPlanRequest`], [`AntResolveRequest`], [`BeeStepRequest`],
+//!    [`AdvectRequest`], [`SeparateRequest`]),
 //!    pipelined, each answered by its reply or an [`ErrorReply`] with the same sequence
 //!    number; [`Ping`] → [`Pong`] and [`StatsRequest`] → [`DeviceStats`] at any time.
 //!
-//! The device side is [`DeviceEndpoint`] (aliases [`AntDevice`], [`BeeDevice`]): bytes in,
+//! The device side is [`DeviceEndpoint`] (aliases [`AntDevice`], [`BeeDevice`],
+//! [`WangDevice`]): bytes in,
 //! reply frames out, fixed buffers, for firmware and for a soft device on a host alike.
 //!
 //! ```
@@ -113,6 +115,11 @@ pub use crate::ant::{
 pub use crate::bee::{
     BeeDevice, BeeStepReply, BeeStepRequest, MAX_BEE_FRAME, MAX_BEE_PAYLOAD, MAX_BEE_REPLY_FRAME,
     MAX_BEE_REPLY_PAYLOAD, WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS, WireBeeFrame,
+};
+pub use crate::wang::{
+    AdvectReply, AdvectRequest, MAX_WANG_FRAME, MAX_WANG_PAYLOAD, MAX_WANG_REPLY_FRAME,
+    MAX_WANG_REPLY_PAYLOAD, SeparateReply, SeparateRequest, WIRE_WANG_NEIGHBOURS, WangDevice,
+    WireSeparateFrame,
 };
 pub use session::{
     Capacities, Configure, Configured, ControllerKind, DEVICE_NAME_LEN, DeviceName, DeviceStats,

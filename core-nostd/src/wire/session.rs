@@ -43,6 +43,8 @@ impl ControllerKind {
     pub const ANT: ControllerKind = ControllerKind(0);
     /// The bee controller ([`crate::bee`]): step requests.
     pub const BEE: ControllerKind = ControllerKind(1);
+    /// The wang2014 insect ([`crate::wang`]): advect and separate requests.
+    pub const WANG: ControllerKind = ControllerKind(2);
 }
 
 /// The capacity of each list of a sensor frame the device accepts; 0 for a list its
@@ -404,11 +406,12 @@ const fn math_name(m: MathBackend) -> &'static str {
 }
 
 impl fmt::Display for ControllerKind {
-    /// `ant`, `bee`, or `controller N` for any other.
+    /// `ant`, `bee`, `wang`, or `controller N` for any other.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
             ControllerKind::ANT => f.write_str("ant"),
             ControllerKind::BEE => f.write_str("bee"),
+            ControllerKind::WANG => f.write_str("wang"),
             ControllerKind(n) => write!(f, "controller {n}"),
         }
     }
