@@ -23,6 +23,10 @@ pub const NOISE_RANDOM: u8 = 2;
 /// (spec §2.6, measured), rounded up.
 pub const PEAK_CURL: f32 = 3.2;
 
+/// The factor of the peak speed of the other sources in the time-step bound: ‖P‖ ≤ √3·1.04·gain
+/// for Perlin noise, √3·gain for random noise, rounded up.
+pub const PEAK_BASELINE: f32 = 1.81;
+
 wire_type! {
     /// The parameters of the wang2014 insect (per-insect part: eq. 1-3, 8-9, §6, §7).
     ///
@@ -39,7 +43,9 @@ wire_type! {
         /// s0: inherent speed (m/s), V_g = s0·(−∇C/‖∇C‖) (eq. 8). Table 1: 1.5-8.
         pub s0: S,
         /// Δt: time step (s) of the explicit Euler step (ours; the paper gives none). Bounded
-        /// by `dt·(3.2·gain/scale + s0 + u_photo) ≤ ½·min(scale, d0)` (spec §2.6).
+        /// by `dt·(peak noise speed + s0 + u_photo) ≤ ½·min(scale, d0)` (spec §2.6), the
+        /// peak noise speed being 3.2·gain/scale for curl noise ([`PEAK_CURL`]) and 1.81·gain
+        /// for the baselines ([`PEAK_BASELINE`]).
         pub dt: S,
         /// d0: ramp width of eq. 3 (m), "equivalent to the side length of the grid" (§4):
         /// l = 1.
@@ -137,9 +143,14 @@ impl<S: Scalar> WangParams<S> {
     }
 
     /// The rule between fields (spec §2.6): a step moves at most half the finest feature,
-    /// `dt·(3.2·gain/scale + s0 + u_photo) ≤ ½·min(scale, d0)`; else `BadParam("dt")`.
+    /// `dt·(peak noise speed + s0 + u_photo) ≤ ½·min(scale, d0)`; else `BadParam("dt")`.
     fn dt_fits(&self) -> Result<()> {
-        let speed = S::from_f32(PEAK_CURL) * (self.gain / self.scale) + self.s0 + self.u_photo;
+        let noise = if self.noise == NOISE_CURL {
+            S::from_f32(PEAK_CURL) * (self.gain / self.scale)
+        } else {
+            S::from_f32(PEAK_BASELINE) * self.gain
+        };
+        let speed = noise + self.s0 + self.u_photo;
         let step = self.dt * speed;
         let half = self.scale.min(self.d0) * S::from_f32(0.5);
         if step <= half {
@@ -155,7 +166,7 @@ model_params! {
         scale: real = Range::above(0.0, 64.0), "m";
         gain: real = Range::closed(0.0, 16.0), "";
         s0: real = Range::closed(0.0, 100.0), "m/s";
-        dt: real = Range::above(0.0, 1.0), "s, with dt·(3.2·gain/scale + s0 + u_photo) ≤ ½·min(scale, d0)";
+        dt: real = Range::above(0.0, 1.0), "s, with dt·(peak noise speed + s0 + u_photo) ≤ ½·min(scale, d0)";
         d0: real = Range::above(0.0, 64.0), "m";
         d_min: real = Range::closed(0.0, 8.0), "m";
         p_photo: real = Range::closed(0.0, 1.0), "";

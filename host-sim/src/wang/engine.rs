@@ -14,7 +14,7 @@ use crate::by_scalar;
 use crate::engine::{Device, Engine, Exchange, ModelGroup, exchanges_by_slot, group_of};
 use crate::error::Result;
 use crate::output::{Frame, Summary};
-use crate::scalar::SimScalar;
+use crate::scalar::{AgentGroup, SimScalar};
 use crate::scenario::Action;
 
 /// The wang2014 tick's phases, by name.
@@ -116,12 +116,20 @@ impl Engine for WangSim {
         self.world.d_min
     }
     fn after_tick(&mut self, _summary: &mut Summary) {
-        let (pos, vel) = (self.positions_by_id(), self.velocities_by_id());
-        self.metrics.tick(self.last, &pos, &vel);
+        self.measure();
     }
     fn closing(&self, summary: &mut Summary) -> String {
         let m = &self.metrics;
         summary.extra.extend(m.to_json());
+        if self.groups.len() > 1 {
+            let by_group: serde_json::Map<String, serde_json::Value> = self
+                .groups
+                .iter()
+                .zip(&self.group_metrics)
+                .map(|(g, m)| (g.name().to_string(), m.to_json().into()))
+                .collect();
+            summary.extra.insert("groups".into(), by_group.into());
+        }
         let steps = m.steps.max(1) as f64;
         format!(
             "MDE displaced {:.3} % of the insects per step (Table 1: 0.01-0.68 %), polarisation \

@@ -128,9 +128,7 @@ impl<S: SimScalar> WangGroup<S> {
         let ids = &w.id;
         let at = |j: u32, q: [f32; 3]| S::sensed3(q, || w.moved[j as usize]);
         let d_min = self.params.d_min.to_f32();
-        let mut frame = SeparateFrame {
-            neighbours: heapless::Vec::new(),
-        };
+        let mut frame = SeparateFrame::new();
         if d_min <= 0.0 {
             return frame;
         }
@@ -163,7 +161,7 @@ impl<S: SimScalar> WangGroup<S> {
             let s = &this.states[k];
             let frame = this.advect_frame(w, s);
             let ctx = this.ctx(seed, step, k);
-            *out = wang::advect(s, &frame, &this.params, ctx)
+            *out = wang::advect_checked(s, &frame, &this.params, ctx)
                 .map_err(|e| SimError::controller("wang advect", step, ctx.agent, e))?;
             Ok(())
         });
@@ -196,7 +194,7 @@ impl<S: SimScalar> WangGroup<S> {
     fn separate(&mut self, w: &WangWorld, seed: u32, step: u32) -> Result<()> {
         let first = self.first;
         let this = &*self;
-        let mut next = vec![WangState::new(Vec3::zero(), Vec3::zero()); this.states.len()];
+        let mut next = vec![WangState::new(Vec3::zero()); this.states.len()];
         let mut pushes = vec![0u8; this.states.len()];
         for_each_agent(
             next.par_iter_mut().zip(pushes.par_iter_mut()),
@@ -204,7 +202,7 @@ impl<S: SimScalar> WangGroup<S> {
             |(), k, (out, pushed)| {
                 let frame = this.separate_frame(w, first + k);
                 let ctx = this.ctx(seed, step, k);
-                let (s, n) = wang::separate(&this.placed[k], &frame, &this.params, ctx)
+                let (s, n) = wang::separate_checked(&this.placed[k], &frame, &this.params, ctx)
                     .map_err(|e| SimError::controller("wang separate", step, ctx.agent, e))?;
                 *out = s;
                 *pushed = n;
@@ -253,6 +251,16 @@ impl<S: SimScalar> WangGroup<S> {
         self.next.clone_from(&self.states);
     }
 
+    /// What the world corrected and MDE did to this group at the last step.
+    pub fn counts(&self) -> Counts {
+        let (obstacle, bounds) = tally(&self.corrected);
+        Counts {
+            obstacle,
+            bounds,
+            pushed: self.pushes.iter().filter(|&&n| n > 0).count() as u64,
+        }
+    }
+
     /// The states in id order.
     pub fn by_id(&self) -> Vec<(u32, WangState<S>)> {
         let mut v: Vec<_> = self.ids.iter().copied().zip(self.states.iter().copied()).collect();
@@ -290,8 +298,11 @@ pub struct WangSim {
     pub last: Counts,
     /// What happened since the start.
     pub total: Counts,
-    /// The paper's measures, counted by [`Engine::after_tick`](crate::engine::Engine).
+    /// The paper's measures over all insects, counted by
+    /// [`Engine::after_tick`](crate::engine::Engine).
     pub metrics: super::Metrics,
+    /// The same measures group by group.
+    pub group_metrics: Vec<super::Metrics>,
 }
 
 impl WangSim {
@@ -313,9 +324,15 @@ impl WangSim {
             last: Counts::default(),
             total: Counts::default(),
             metrics: super::Metrics::default(),
+            group_metrics: Vec::new(),
         };
         sim.reorder();
         sim.metrics = super::Metrics::new(sim.positions_by_id());
+        sim.group_metrics = sim
+            .groups
+            .iter()
+            .map(|g| by_scalar!(g, g => super::Metrics::new(g.by_id().iter().map(|(_, s)| a3(s.pos)).collect())))
+            .collect();
         Ok(sim)
     }
 
@@ -409,6 +426,23 @@ impl WangSim {
             });
         }
         out
+    }
+
+    /// Counts the last step into the measures (overall and by group).
+    pub fn measure(&mut self) {
+        let mut all = Counts::default();
+        for (g, m) in self.groups.iter().zip(&mut self.group_metrics) {
+            by_scalar!(g, g => {
+                let c = g.counts();
+                let states = g.by_id();
+                let pos: Vec<_> = states.iter().map(|(_, s)| a3(s.pos)).collect();
+                let vel: Vec<_> = states.iter().map(|(_, s)| a3(s.vel)).collect();
+                m.tick(c, &pos, &vel);
+                all += c;
+            });
+        }
+        let (pos, vel) = (self.positions_by_id(), self.velocities_by_id());
+        self.metrics.tick(all, &pos, &vel);
     }
 
     /// Every insect's velocity V of its last step, in id order.
