@@ -345,7 +345,7 @@ fn advect_sums_the_fields_and_takes_an_euler_step() {
             assert!(c.abs() < p.gain);
             sq += c * c;
         }
-        sum = sum + m.vel;
+        sum += m.vel;
     }
     let mean = sum * (1.0 / n as f32);
     assert!(mean.length() < 0.03 * p.gain, "mean {mean:?}");
@@ -415,7 +415,7 @@ fn separate_pushes_apart_in_jacobi_form() {
     for c in [list[2], list[0], list[1]] {
         let diff = moved.pos - c.pos;
         let d = diff.length();
-        want = want + diff * ((p.d_min - d) * 0.5 / d);
+        want += diff * ((p.d_min - d) * 0.5 / d);
     }
     assert!((next.pos - want).length() < 1e-6);
     // Every order of the list: the same bits.

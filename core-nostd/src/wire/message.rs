@@ -784,7 +784,7 @@ mod tests {
             [f[1], f[3], x[1], x[3]].iter().max(),
             Some(&MAX_WANG_REPLY_PAYLOAD)
         );
-        assert!(crate::wang::MAX_WANG_PAYLOAD <= MAX_PAYLOAD);
+        const { assert!(crate::wang::MAX_WANG_PAYLOAD <= MAX_PAYLOAD) };
         assert_eq!(MAX_WANG_FRAME, 214);
     }
 
