@@ -1401,6 +1401,9 @@ mod spec {
     impl Castable for BeeParams<f32> {
         type Fx = BeeParams<Fx>;
     }
+    impl Castable for WangParams<f32> {
+        type Fx = WangParams<Fx>;
+    }
 
     fn hash_of(cell: &str) -> u64 {
         u64::from_str_radix(cell.trim_start_matches("0x"), 16).unwrap()
@@ -1467,6 +1470,36 @@ mod spec {
             assert_eq!(bee_fx[i], (name.to_string(), postcard_bytes(x)));
         }
 
+        // WangParams: fields and the four presets.
+        let rows = table(text, "`WangParams` field");
+        check_fields::<WangParams<f32>>(&rows);
+        let wang = [
+            (
+                "WangParams::default()",
+                WangParams::<f32>::default(),
+                WangParams::<Fx>::default(),
+            ),
+            (
+                "WangParams::aggregation()",
+                WangParams::aggregation(),
+                WangParams::<Fx>::aggregation(),
+            ),
+            (
+                "WangParams::phototaxis()",
+                WangParams::phototaxis(),
+                WangParams::<Fx>::phototaxis(),
+            ),
+            (
+                "WangParams::locusts()",
+                WangParams::locusts(),
+                WangParams::<Fx>::locusts(),
+            ),
+        ];
+        for (column, (_, f, x)) in wang.iter().enumerate() {
+            check_values(&rows, 3 + column, f, x);
+            assert_eq!(f.cast::<Fx>(), *x, "the Fx preset is the cast f32 preset");
+        }
+
         // The hash table, both scalars.
         let rows = table(text, "preset");
         let expected = [
@@ -1490,6 +1523,10 @@ mod spec {
                 params_hash(&presets[2].1),
                 params_hash(&presets[2].2),
             ),
+            (wang[0].0, params_hash(&wang[0].1), params_hash(&wang[0].2)),
+            (wang[1].0, params_hash(&wang[1].1), params_hash(&wang[1].2)),
+            (wang[2].0, params_hash(&wang[2].1), params_hash(&wang[2].2)),
+            (wang[3].0, params_hash(&wang[3].1), params_hash(&wang[3].2)),
         ];
         assert_eq!(rows.len(), expected.len());
         for (row, (name, f, x)) in rows.iter().zip(expected) {
