@@ -103,10 +103,10 @@ pub mod kind {
             ANT_RESOLVE_REPLY => "AntResolveReply",
             BEE_STEP_REQUEST => "BeeStepRequest",
             BEE_STEP_REPLY => "BeeStepReply",
-            WANG_ADVECT_REQUEST => "WangAdvectRequest",
-            WANG_ADVECT_REPLY => "WangAdvectReply",
-            WANG_SEPARATE_REQUEST => "WangSeparateRequest",
-            WANG_SEPARATE_REPLY => "WangSeparateReply",
+            WANG_ADVECT_REQUEST => "AdvectRequest",
+            WANG_ADVECT_REPLY => "AdvectReply",
+            WANG_SEPARATE_REQUEST => "SeparateRequest",
+            WANG_SEPARATE_REPLY => "SeparateReply",
             _ => return None,
         })
     }
@@ -307,7 +307,7 @@ mod tests {
             !kind::is_reply(kind::WANG_ADVECT_REQUEST)
                 && !kind::is_reply(kind::WANG_SEPARATE_REQUEST)
         );
-        assert_eq!(kind::name(0x33), Some("WangSeparateReply"));
+        assert_eq!(kind::name(0x33), Some("SeparateReply"));
         assert_eq!(kind::name(0x80), None);
         assert_eq!(kind::name(kind::BEE_STEP_REPLY), Some("BeeStepReply"));
     }
