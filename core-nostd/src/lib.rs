@@ -8,6 +8,9 @@
 //! * [`bee`]: the bee controller of Chen et al., *A Bio-inspired Model for Bee Simulations*
 //!   (sections III-V, eq. 1-11, Table I): body oscillation, visual roll-to-avoid, curl noise and
 //!   SPH repulsion;
+//! * [`wang`]: the noise-aware insect swarm of Wang et al. 2014, *Inherent Noise-Aware Insect
+//!   Swarm Simulation* (§4-7, eq. 1-9): bounded curl noise plus a navigation direction, as a
+//!   two-phase `advect` → `separate` (minimum distance enforcement) step;
 //! * [`wire`] (feature `serde`): the message types, the frame codec
 //!   `COBS(header ‖ postcard payload ‖ CRC) ‖ 0x00`, the session protocol (handshake,
 //!   configure, ping, statistics) and the device endpoint
@@ -82,8 +85,9 @@ pub use scalar::{Constant, MathBackend, Scalar, ScalarKind};
 
 /// Parameters that passed their `validate()`: a controller given `Checked` parameters does not
 /// check them again (a simulator validates once, then runs millions of ticks). Obtained from
-/// [`AntParams::checked`](ant::AntParams::checked) or
-/// [`BeeParams::checked`](bee::BeeParams::checked); read-only afterwards.
+/// [`AntParams::checked`](ant::AntParams::checked),
+/// [`BeeParams::checked`](bee::BeeParams::checked) or
+/// [`WangParams::checked`](wang::WangParams::checked); read-only afterwards.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Checked<P>(P);
 

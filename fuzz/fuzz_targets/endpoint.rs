@@ -1,4 +1,4 @@
-//! The device endpoint on arbitrary bytes, for both controllers and both scalars, with or
+//! The device endpoint on arbitrary bytes, for every controller and both scalars, with or
 //! without an open session. Nothing may panic or hang; every reply must be one well-formed
 //! frame; there are never more replies than delimiters; and after any bytes, a `0x00` and an
 //! intact Ping are answered with exactly its Pong.
@@ -8,8 +8,10 @@ use libfuzzer_sys::fuzz_target;
 use swarm_core::Fx;
 use swarm_core::ant::AntParams;
 use swarm_core::bee::BeeParams;
+use swarm_core::wang::WangParams;
 use swarm_core::wire::{
-    self, AntDevice, BeeDevice, Configure, Controller, DeviceEndpoint, Hello, MAX_FRAME, Ping, Pong,
+    self, AntDevice, BeeDevice, Configure, Controller, DeviceEndpoint, Hello, MAX_FRAME, Ping,
+    Pong, WangDevice,
 };
 
 fn frame<M: wire::Message>(seq: u16, msg: &M) -> Vec<u8> {
@@ -75,8 +77,8 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let open = mode & 1 != 0;
-    let step = usize::from(mode >> 3) + 1;
-    match (mode >> 1) & 3 {
+    let step = usize::from(mode >> 4) + 1;
+    match (mode >> 1) % 6 {
         0 => run(
             AntDevice::<f32>::new(AntParams::default(), "fuzz").unwrap(),
             open,
@@ -95,8 +97,20 @@ fuzz_target!(|data: &[u8]| {
             step,
             data,
         ),
-        _ => run(
+        3 => run(
             BeeDevice::<Fx>::new(BeeParams::default(), "fuzz").unwrap(),
+            open,
+            step,
+            data,
+        ),
+        4 => run(
+            WangDevice::<f32>::new(WangParams::default(), "fuzz").unwrap(),
+            open,
+            step,
+            data,
+        ),
+        _ => run(
+            WangDevice::<Fx>::new(WangParams::default(), "fuzz").unwrap(),
             open,
             step,
             data,

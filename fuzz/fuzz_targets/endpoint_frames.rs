@@ -10,8 +10,10 @@ use serde::ser::{Serialize, SerializeTuple, Serializer};
 use swarm_core::Fx;
 use swarm_core::ant::AntParams;
 use swarm_core::bee::BeeParams;
+use swarm_core::wang::WangParams;
 use swarm_core::wire::{
-    self, AntDevice, BeeDevice, Configure, Controller, DeviceEndpoint, Hello, MAX_FRAME, kind,
+    self, AntDevice, BeeDevice, Configure, Controller, DeviceEndpoint, Hello, MAX_FRAME,
+    WangDevice, kind,
 };
 
 /// Serializes as its bytes, with no length prefix.
@@ -27,7 +29,7 @@ impl Serialize for Raw<'_> {
     }
 }
 
-const KINDS: [u8; 13] = [
+const KINDS: [u8; 16] = [
     kind::HELLO,
     kind::CONFIGURE,
     kind::PING,
@@ -35,11 +37,14 @@ const KINDS: [u8; 13] = [
     kind::ANT_PLAN_REQUEST,
     kind::ANT_RESOLVE_REQUEST,
     kind::BEE_STEP_REQUEST,
+    kind::WANG_ADVECT_REQUEST,
+    kind::WANG_SEPARATE_REQUEST,
     kind::ANT_PLAN_REPLY,
+    kind::WANG_SEPARATE_REPLY,
     kind::ERROR_REPLY,
     0x00,
     0x09,
-    0x30,
+    0x40,
     0xff,
 ];
 
@@ -110,7 +115,7 @@ fuzz_target!(|data: &[u8]| {
     let Some((&mode, data)) = data.split_first() else {
         return;
     };
-    match mode & 3 {
+    match mode % 6 {
         0 => run(
             AntDevice::<f32>::new(AntParams::default(), "fuzz").unwrap(),
             data,
@@ -123,8 +128,16 @@ fuzz_target!(|data: &[u8]| {
             BeeDevice::<f32>::new(BeeParams::default(), "fuzz").unwrap(),
             data,
         ),
-        _ => run(
+        3 => run(
             BeeDevice::<Fx>::new(BeeParams::default(), "fuzz").unwrap(),
+            data,
+        ),
+        4 => run(
+            WangDevice::<f32>::new(WangParams::default(), "fuzz").unwrap(),
+            data,
+        ),
+        _ => run(
+            WangDevice::<Fx>::new(WangParams::default(), "fuzz").unwrap(),
             data,
         ),
     }

@@ -33,7 +33,8 @@ pub use phase::{Phase, Phases};
 /// The sensor frames and decisions are the phases' requests and replies: for the ants a plan
 /// phase (state and plan frame → plan) then a resolve phase (plan and the neighbours'
 /// predictions → next state), for the bees one step (state and frame → decision and next
-/// state). With the `serde` feature, [`Controller`](crate::wire::Controller) adds the
+/// state), for the wang insects an advect phase (state and fields → tentative position) then
+/// a separate phase (tentative position and the neighbours' → next state). With the `serde` feature, [`Controller`](crate::wire::Controller) adds the
 /// wire description (controller kind, frame capacities, largest messages).
 pub trait Model: ModelParams + Clone + PartialEq {
     /// The model's short name (`ant`, `bee`): scenario files, reports, run logs.

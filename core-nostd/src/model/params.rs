@@ -264,6 +264,7 @@ mod tests {
     use crate::Fx;
     use crate::ant::AntParams;
     use crate::bee::BeeParams;
+    use crate::wang::WangParams;
 
     /// Every parameter of `P`: the default is in range; the ends of the range are accepted and
     /// a value just outside each end is refused, naming the parameter; `set` of the other kind
@@ -329,6 +330,8 @@ mod tests {
         ranges_hold::<AntParams<Fx>>(13);
         ranges_hold::<BeeParams<f32>>(17);
         ranges_hold::<BeeParams<Fx>>(17);
+        ranges_hold::<WangParams<f32>>(9);
+        ranges_hold::<WangParams<Fx>>(9);
     }
 
     #[test]
@@ -346,6 +349,15 @@ mod tests {
             spec("collect_ticks").to_string(),
             "an integer from 1 to 65535 (ticks)"
         );
+    }
+
+    #[test]
+    fn the_wang_rule_between_fields_is_checked() {
+        let p = WangParams::<f32> {
+            dt: 0.5, // 0.5·(3.2·0.25/0.4 + 1.5) = 1.75 > 0.2
+            ..Default::default()
+        };
+        assert_eq!(p.validate(), Err(Error::BadParam { field: "dt" }));
     }
 
     #[test]

@@ -48,7 +48,7 @@ pub fn advect_checked<S: Scalar>(
         && rand::chance(ctx, stream::WANG_PHOTO, p.p_photo)
         && let Some(toward) = (lamp - state.pos).normalized()
     {
-        v = v + toward * p.u_photo;
+        v += toward * p.u_photo;
     }
     let moved = WangState {
         pos: state.pos + v * p.dt,
@@ -152,7 +152,7 @@ pub fn separate_checked<S: Scalar, const K: usize>(
     }
     let mut pos = moved.pos;
     for (_, push) in &pushes[..n] {
-        pos = pos + *push;
+        pos += *push;
     }
     let state = WangState {
         pos,

@@ -154,8 +154,8 @@ impl<C: Controller, const TX: usize> Core<C, TX> {
 /// * `TX`: the send buffer, at least [`Controller::MAX_REPLY_FRAME`] and
 ///   [`MAX_SESSION_FRAME`] (both checked at compile time).
 ///
-/// [`AntDevice`](crate::ant::AntDevice) and [`BeeDevice`](crate::bee::BeeDevice) pick both
-/// for you.
+/// [`AntDevice`](crate::ant::AntDevice), [`BeeDevice`](crate::bee::BeeDevice) and
+/// [`WangDevice`](crate::wang::WangDevice) pick both for you.
 ///
 /// Behaviour (`docs/protocol.md`, section 10, is the normative version):
 ///

@@ -103,10 +103,10 @@ pub mod kind {
             ANT_RESOLVE_REPLY => "AntResolveReply",
             BEE_STEP_REQUEST => "BeeStepRequest",
             BEE_STEP_REPLY => "BeeStepReply",
-            WANG_ADVECT_REQUEST => "WangAdvectRequest",
-            WANG_ADVECT_REPLY => "WangAdvectReply",
-            WANG_SEPARATE_REQUEST => "WangSeparateRequest",
-            WANG_SEPARATE_REPLY => "WangSeparateReply",
+            WANG_ADVECT_REQUEST => "AdvectRequest",
+            WANG_ADVECT_REPLY => "AdvectReply",
+            WANG_SEPARATE_REQUEST => "SeparateRequest",
+            WANG_SEPARATE_REPLY => "SeparateReply",
             _ => return None,
         })
     }
@@ -252,6 +252,11 @@ mod tests {
         BeeDecision, BeeNeighbor, BeeParams, BeeState, BeeStepReply, BeeStepRequest, MAX_BEE_FRAME,
         MAX_BEE_REPLY_PAYLOAD, ObstacleSense, WireBeeFrame,
     };
+    use crate::wang::{
+        AdvectFrame, AdvectReply, AdvectRequest, Boundary, Close, MAX_WANG_FRAME,
+        MAX_WANG_REPLY_PAYLOAD, SeparateReply, SeparateRequest, WangParams, WangState,
+        WireSeparateFrame,
+    };
     use crate::wire::test_util::{frame_of, hex, payload_len, through_the_wire};
     use crate::wire::{encode_frame, encode_message};
     use crate::{Fx, Rect, Vec2, Vec3};
@@ -275,6 +280,10 @@ mod tests {
             <AntResolveReply<f32> as Message>::KIND,
             <BeeStepRequest<Fx> as Message>::KIND,
             <BeeStepReply<Fx> as Message>::KIND,
+            <AdvectRequest<f32> as Message>::KIND,
+            <AdvectReply<f32> as Message>::KIND,
+            <SeparateRequest<Fx> as Message>::KIND,
+            <SeparateReply<Fx> as Message>::KIND,
         ];
         for (i, a) in kinds.iter().enumerate() {
             assert!(kind::name(*a).is_some());
@@ -285,6 +294,20 @@ mod tests {
         assert_eq!(kind::ANT_PLAN_REPLY, kind::ANT_PLAN_REQUEST + 1);
         assert_eq!(kind::ANT_RESOLVE_REPLY, kind::ANT_RESOLVE_REQUEST + 1);
         assert_eq!(kind::BEE_STEP_REPLY, kind::BEE_STEP_REQUEST + 1);
+        assert_eq!(kind::WANG_ADVECT_REPLY, kind::WANG_ADVECT_REQUEST + 1);
+        assert_eq!(kind::WANG_SEPARATE_REPLY, kind::WANG_SEPARATE_REQUEST + 1);
+        assert_eq!(
+            (kind::WANG_ADVECT_REQUEST, kind::WANG_SEPARATE_REQUEST),
+            (0x30, 0x32)
+        );
+        assert!(
+            kind::is_reply(kind::WANG_ADVECT_REPLY) && kind::is_reply(kind::WANG_SEPARATE_REPLY)
+        );
+        assert!(
+            !kind::is_reply(kind::WANG_ADVECT_REQUEST)
+                && !kind::is_reply(kind::WANG_SEPARATE_REQUEST)
+        );
+        assert_eq!(kind::name(0x33), Some("SeparateReply"));
         assert_eq!(kind::name(0x80), None);
         assert_eq!(kind::name(kind::BEE_STEP_REPLY), Some("BeeStepReply"));
     }
@@ -380,12 +403,56 @@ mod tests {
         assert_eq!(through_the_wire(3, &reply), reply);
     }
 
+    fn wang_round_trip<S: Scalar + Serialize + DeserializeOwned>() {
+        let mut frame = AdvectFrame::new(v3(0.0, 0.6, 0.8));
+        frame.boundary = Some(Boundary {
+            point: v3(0.0, 0.0, 0.0),
+            normal: v3(0.0, 1.0, 0.0),
+            curvature: S::from_f32(0.5),
+            axis: v3(1.0, 0.0, 0.0),
+        });
+        frame.lamp = Some(v3(3.0, 6.5, -1.0));
+        let ctx = StepCtx {
+            seed: 5,
+            agent: 2,
+            step: 40,
+        };
+        let req = AdvectRequest {
+            state: WangState::new(v3(1.0, 0.5, 2.0)),
+            frame,
+            ctx,
+        };
+        assert_eq!(through_the_wire(4, &req), req);
+        let params = WangParams::default();
+        let reply = req.run(&params).unwrap();
+        assert_eq!(through_the_wire(4, &reply), reply);
+        let mut frame = WireSeparateFrame::new();
+        frame
+            .neighbours
+            .push(Close {
+                id: 9,
+                pos: reply.moved.pos + v3(0.05, 0.0, 0.0),
+            })
+            .unwrap();
+        let req = SeparateRequest {
+            moved: reply.moved,
+            frame,
+            ctx,
+        };
+        assert_eq!(through_the_wire(5, &req), req);
+        let reply = req.run(&params).unwrap();
+        assert_eq!(reply.pushes, 1);
+        assert_eq!(through_the_wire(5, &reply), reply);
+    }
+
     #[test]
     fn model_messages_round_trip_in_both_scalars() {
         ant_round_trip::<f32>();
         ant_round_trip::<Fx>();
         bee_round_trip::<f32>();
         bee_round_trip::<Fx>();
+        wang_round_trip::<f32>();
+        wang_round_trip::<Fx>();
     }
 
     #[test]
@@ -646,6 +713,79 @@ mod tests {
             roll: S::widest(),
             pitch: S::widest(),
         }
+    }
+
+    fn wide_wang_state<S: Widest>() -> WangState<S> {
+        WangState {
+            pos: w3(),
+            vel: w3(),
+        }
+    }
+
+    /// Payload lengths of the widest instance of every wang message: advect request and
+    /// reply, separate request and reply.
+    fn widest_wang_payloads<S: Widest>() -> [usize; 4] {
+        let ctx = StepCtx {
+            seed: u32::MAX,
+            agent: u32::MAX,
+            step: u32::MAX,
+        };
+        let frame = AdvectFrame {
+            guide: w3(),
+            boundary: Some(Boundary {
+                point: w3(),
+                normal: w3(),
+                curvature: S::widest(),
+                axis: w3(),
+            }),
+            lamp: Some(w3()),
+        };
+        let mut near = WireSeparateFrame::<S>::new();
+        while near
+            .neighbours
+            .push(Close {
+                id: u32::MAX,
+                pos: w3(),
+            })
+            .is_ok()
+        {}
+        [
+            payload_len(&AdvectRequest {
+                state: wide_wang_state(),
+                frame,
+                ctx,
+            }),
+            payload_len(&AdvectReply {
+                moved: wide_wang_state::<S>(),
+            }),
+            payload_len(&SeparateRequest {
+                moved: wide_wang_state(),
+                frame: near,
+                ctx,
+            }),
+            payload_len(&SeparateReply {
+                state: wide_wang_state::<S>(),
+                pushes: u8::MAX,
+            }),
+        ]
+    }
+
+    #[test]
+    fn widest_wang_messages_fit_max_wang_payload() {
+        let f = widest_wang_payloads::<f32>();
+        let x = widest_wang_payloads::<Fx>();
+        assert_eq!(f, [105, 24, 176, 25]);
+        assert_eq!(x, [127, 30, 206, 31]);
+        assert_eq!(
+            f.iter().chain(&x).max(),
+            Some(&crate::wang::MAX_WANG_PAYLOAD)
+        );
+        assert_eq!(
+            [f[1], f[3], x[1], x[3]].iter().max(),
+            Some(&MAX_WANG_REPLY_PAYLOAD)
+        );
+        const { assert!(crate::wang::MAX_WANG_PAYLOAD <= MAX_PAYLOAD) };
+        assert_eq!(MAX_WANG_FRAME, 214);
     }
 
     /// Payload lengths of the widest instance of every message.

@@ -14,6 +14,7 @@ use crate::ant::{
 };
 use crate::bee::{self, BeeNeighbor, BeeParams, BeeState, ObstacleSense};
 use crate::rand::rand;
+use crate::wang::{self, AdvectFrame, Boundary, Close, WangParams, WangState};
 use crate::{Error, Fx, Rect, Scalar, StepCtx, Vec2, Vec3};
 
 // ---- helpers ----
@@ -108,6 +109,10 @@ fn ant_device<S: Scalar + Serialize + DeserializeOwned>() -> AntDevice<S> {
 
 fn bee_device<S: Scalar + Serialize + DeserializeOwned>() -> BeeDevice<S> {
     BeeDevice::<S>::new(BeeParams::default(), "bee-test").unwrap()
+}
+
+fn wang_device<S: Scalar + Serialize + DeserializeOwned>() -> WangDevice<S> {
+    WangDevice::<S>::new(WangParams::default(), "wang-test").unwrap()
 }
 
 /// A small deterministic generator for test inputs (counter-based, like the controllers).
@@ -478,9 +483,16 @@ fn identity_says_what_the_device_runs() {
         MathBackend::Integer,
     );
     let bee_runs = (ControllerKind::BEE, ScalarKind::F32, MathBackend::F32);
+    let wang = wang_device::<Fx>().identity();
+    let wang_runs = (
+        ControllerKind::WANG,
+        ScalarKind::I16F16,
+        MathBackend::Integer,
+    );
     for (id, runs, capacities) in [
         (&ant, ant_runs, (8, 4, 0, 6)),
         (&bee, bee_runs, (16, 0, 16, 0)),
+        (&wang, wang_runs, (8, 0, 0, 0)),
     ] {
         let c = id.capacities;
         assert_eq!((id.controller, id.scalar, id.math), runs);
@@ -496,6 +508,13 @@ fn identity_says_what_the_device_runs() {
     // The buffer sizes of docs/protocol.md, section 10.7.
     assert_eq!((MAX_ANT_FRAME, MAX_BEE_FRAME), (450, 941));
     assert_eq!((MAX_ANT_REPLY_FRAME, MAX_BEE_REPLY_FRAME), (82, 130));
+    assert_eq!((MAX_WANG_FRAME, MAX_WANG_REPLY_FRAME), (214, 79));
+    assert_eq!(usize::from(wang.max_frame), MAX_WANG_FRAME + 1);
+    assert_eq!(ControllerKind::WANG.to_string(), "wang");
+    assert_eq!(
+        wang.params_hash,
+        params_hash(&WangParams::<Fx>::default()).unwrap()
+    );
     assert_eq!(usize::from(bee_device::<Fx>().identity().max_frame), 942);
     assert_eq!(ant.name, "ant-test");
     assert_eq!(
@@ -838,6 +857,109 @@ fn bee_agrees<S: Scalar + Serialize + DeserializeOwned>(seed: u32, n: usize) {
         );
     }
     assert!(served > n / 2 && served < n);
+}
+
+/// A random, mostly valid wang advect request.
+fn wang_advect_request<S: Scalar>(g: &mut Gen) -> AdvectRequest<S> {
+    let pos = g.v3::<S>(-20.0, 20.0);
+    let state = WangState {
+        pos,
+        vel: g.v3(-2.0, 2.0),
+    };
+    let mut frame = AdvectFrame::new(Vec3::new(S::ZERO, S::ZERO, S::ONE));
+    if g.chance(0.6) {
+        let n = Vec3::new(S::ZERO, S::ONE, S::ZERO);
+        frame.boundary = Some(Boundary {
+            point: pos - n * S::from_f32(g.range(0.0, 1.2)),
+            normal: n,
+            curvature: S::from_f32(g.range(0.0, 0.5)),
+            axis: if g.chance(0.5) {
+                Vec3::new(S::ONE, S::ZERO, S::ZERO)
+            } else {
+                Vec3::zero()
+            },
+        });
+    }
+    if g.chance(0.5) {
+        frame.lamp = Some(g.v3(-10.0, 10.0));
+    }
+    AdvectRequest {
+        state,
+        frame,
+        ctx: StepCtx {
+            seed: g.u32(),
+            agent: g.below(16),
+            step: g.u32(),
+        },
+    }
+}
+
+fn wang_agrees<S: Scalar + Serialize + DeserializeOwned>(seed: u32, n: usize) {
+    let params = WangParams::<S>::default();
+    let mut dev = wang_device::<S>();
+    open(&mut dev, seed);
+    let mut g = Gen::new(seed);
+    let (mut served, mut pushed) = (0, 0);
+    for i in 0..n {
+        let seq = (i * 7) as u16;
+        let mut req = wang_advect_request::<S>(&mut g);
+        if i % 17 == 0 {
+            req.frame.guide = req.frame.guide * S::from_f32(2.0); // refused: |guide| > 1.01
+        }
+        let direct = wang::advect(&req.state, &req.frame, &params, req.ctx);
+        assert_eq!(
+            reply_to(&mut dev, seq, &req),
+            expected(seq, direct.map(|moved| AdvectReply { moved })),
+            "advect {i}"
+        );
+        let Ok(moved) = direct else {
+            continue;
+        };
+        served += 1;
+        let mut frame = WireSeparateFrame::new();
+        for k in 0..g.below(WIRE_WANG_NEIGHBOURS as u32 + 1) {
+            let _ = frame.neighbours.push(Close {
+                id: k,
+                pos: moved.pos + g.v3(-0.1, 0.1),
+            });
+        }
+        if g.chance(0.1) {
+            let _ = frame.neighbours.push(Close {
+                id: 100,
+                pos: moved.pos, // coincident
+            });
+        }
+        if i % 13 == 0 && !frame.neighbours.is_empty() {
+            frame.neighbours[0].pos.x = S::from_f32(20_000.0); // refused: out of range
+        }
+        let req = SeparateRequest {
+            moved,
+            frame,
+            ctx: req.ctx,
+        };
+        let direct = wang::separate(&req.moved, &req.frame, &params, req.ctx);
+        if let Ok((_, k)) = direct {
+            pushed += usize::from(k > 0);
+        }
+        assert_eq!(
+            reply_to(&mut dev, seq.wrapping_add(1), &req),
+            expected(
+                seq.wrapping_add(1),
+                direct.map(|(state, pushes)| SeparateReply { state, pushes })
+            ),
+            "separate {i}"
+        );
+    }
+    assert!(
+        served > n / 2 && served < n && pushed > n / 4,
+        "{served} {pushed}"
+    );
+}
+
+#[test]
+fn wang_endpoint_serves_both_phases_as_direct_calls_in_both_scalars() {
+    wang_agrees::<f32>(31, 200);
+    wang_agrees::<Fx>(32, 200);
 }
 
 #[test]
@@ -1279,6 +1401,9 @@ mod spec {
     impl Castable for BeeParams<f32> {
         type Fx = BeeParams<Fx>;
     }
+    impl Castable for WangParams<f32> {
+        type Fx = WangParams<Fx>;
+    }
 
     fn hash_of(cell: &str) -> u64 {
         u64::from_str_radix(cell.trim_start_matches("0x"), 16).unwrap()
@@ -1345,6 +1470,36 @@ mod spec {
             assert_eq!(bee_fx[i], (name.to_string(), postcard_bytes(x)));
         }
 
+        // WangParams: fields and the four presets.
+        let rows = table(text, "`WangParams` field");
+        check_fields::<WangParams<f32>>(&rows);
+        let wang = [
+            (
+                "WangParams::default()",
+                WangParams::<f32>::default(),
+                WangParams::<Fx>::default(),
+            ),
+            (
+                "WangParams::aggregation()",
+                WangParams::aggregation(),
+                WangParams::<Fx>::aggregation(),
+            ),
+            (
+                "WangParams::phototaxis()",
+                WangParams::phototaxis(),
+                WangParams::<Fx>::phototaxis(),
+            ),
+            (
+                "WangParams::locusts()",
+                WangParams::locusts(),
+                WangParams::<Fx>::locusts(),
+            ),
+        ];
+        for (column, (_, f, x)) in wang.iter().enumerate() {
+            check_values(&rows, 3 + column, f, x);
+            assert_eq!(f.cast::<Fx>(), *x, "the Fx preset is the cast f32 preset");
+        }
+
         // The hash table, both scalars.
         let rows = table(text, "preset");
         let expected = [
@@ -1368,6 +1523,10 @@ mod spec {
                 params_hash(&presets[2].1),
                 params_hash(&presets[2].2),
             ),
+            (wang[0].0, params_hash(&wang[0].1), params_hash(&wang[0].2)),
+            (wang[1].0, params_hash(&wang[1].1), params_hash(&wang[1].2)),
+            (wang[2].0, params_hash(&wang[2].1), params_hash(&wang[2].2)),
+            (wang[3].0, params_hash(&wang[3].1), params_hash(&wang[3].2)),
         ];
         assert_eq!(rows.len(), expected.len());
         for (row, (name, f, x)) in rows.iter().zip(expected) {
@@ -1512,7 +1671,9 @@ mod spec {
     }
 
     /// The kinds a device never answers, whatever the version: 0x00 and the reply kinds.
-    const NEVER_ANSWERED: [u8; 9] = [0x00, 0x02, 0x04, 0x06, 0x08, 0x0f, 0x11, 0x13, 0x21];
+    const NEVER_ANSWERED: [u8; 11] = [
+        0x00, 0x02, 0x04, 0x06, 0x08, 0x0f, 0x11, 0x13, 0x21, 0x31, 0x33,
+    ];
 
     /// Sections 5, 10.4, 10.5: a foreign-version frame of kind 0x00 or of a reply kind is
     /// dropped unanswered (counted in `ignored`), one of any other kind is answered with
@@ -1540,8 +1701,8 @@ mod spec {
                 .collect();
             assert_eq!(answered, expected, "version {version}");
             let s = dev.stats();
-            assert_eq!((s.link.version_errors, s.errors, s.requests), (256, 247, 0));
-            assert_eq!((s.ignored, s.decode_errors, s.replies), (9, 0, 0));
+            assert_eq!((s.link.version_errors, s.errors, s.requests), (256, 245, 0));
+            assert_eq!((s.ignored, s.decode_errors, s.replies), (11, 0, 0));
         }
         // The same kinds in this version: dropped, counted in requests and ignored.
         let mut dev = ant_device::<f32>();
@@ -1550,7 +1711,7 @@ mod spec {
             assert!(replies(&mut dev, &frame_of_kind(k, 1, &())).is_empty());
         }
         let s = dev.stats();
-        assert_eq!((s.link.frames_ok, s.requests, s.ignored), (9, 9, 9));
+        assert_eq!((s.link.frames_ok, s.requests, s.ignored), (11, 11, 11));
         assert_eq!((s.errors, s.decode_errors, s.replies), (0, 0, 0));
     }
 
