@@ -133,7 +133,7 @@ impl CostField {
                     cell[k] = a.lower;
                 }
             }
-            sum = sum + self.cell_guide(cell) * w;
+            sum += self.cell_guide(cell) * w;
         }
         let half = S::from_f32(0.5);
         let nearest = std::array::from_fn(|k| {
