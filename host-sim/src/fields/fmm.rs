@@ -242,6 +242,8 @@ impl CostField {
 /// Fast marching from the goal cells with per-cell cost `lf` (= l·F); the costs, `f32`.
 fn march(grid: &CellGrid, lf: &[f64], goal: &[bool]) -> Vec<f32> {
     let n = grid.len();
+    let dims = grid.dims;
+    let stride = [1, dims[0] as usize, dims[0] as usize * dims[1] as usize];
     let mut c = vec![f64::INFINITY; n];
     let mut known = vec![false; n];
     let mut heap = BinaryHeap::with_capacity(n.min(1 << 20));
@@ -258,15 +260,35 @@ fn march(grid: &CellGrid, lf: &[f64], goal: &[bool]) -> Vec<f32> {
             continue;
         }
         known[x] = true;
-        for y in grid.neighbours(x).into_iter().flatten() {
+        let cx = grid.coords(x);
+        for f in 0..6 {
+            let k = f / 2;
+            let y = if f % 2 == 0 {
+                if cx[k] == 0 {
+                    continue;
+                }
+                x - stride[k]
+            } else {
+                if cx[k] + 1 >= dims[k] {
+                    continue;
+                }
+                x + stride[k]
+            };
             if known[y] {
                 continue;
             }
+            let mut cy = cx;
+            cy[k] = if f % 2 == 0 { cx[k] - 1 } else { cx[k] + 1 };
             // The smallest known neighbour of y per axis.
-            let nb = grid.neighbours(y);
-            let a = std::array::from_fn(|k| {
-                let side = |f: usize| nb[f].filter(|&z| known[z]).map_or(f64::INFINITY, |z| c[z]);
-                side(2 * k).min(side(2 * k + 1))
+            let a = std::array::from_fn(|m| {
+                let mut best = f64::INFINITY;
+                if cy[m] > 0 && known[y - stride[m]] {
+                    best = c[y - stride[m]];
+                }
+                if cy[m] + 1 < dims[m] && known[y + stride[m]] {
+                    best = best.min(c[y + stride[m]]);
+                }
+                best
             });
             let u = upwind(a, lf[y]);
             if u < c[y] {
