@@ -79,17 +79,27 @@ fn axis<S: Scalar>(p: S, min: f32, cell: f32, n: u32) -> Axis<S> {
 
 impl CostField {
     /// The unit navigation direction at `p` (wang2014 eq. 8 without the speed `s0`; spec §2.4):
-    /// the trilinear interpolation of the 8 surrounding cell-centre unit vectors [`guide`](
-    /// CostField::guide), renormalised to unit length; where the interpolation is shorter than
+    /// the trilinear interpolation of the 8 surrounding cell-centre unit vectors
+    /// ([`CostField::guide`]), renormalised to unit length; where the interpolation is shorter than
     /// 10⁻³ (between opposite vectors, or among goal cells), the vector of the nearest cell
     /// instead (zero in a goal cell).
     ///
-    /// Every operation is in `S`: the cell index `⌊(p − min)/cell − ½⌋` and weight per axis,
-    /// the weighted sum of the corners (converted with `S::from_f32`, summed in the order
-    /// (i, j, k) = (0,0,0), (1,0,0), (0,1,0), (1,1,0), (0,0,1), …), and the normalisation
-    /// (`Vec3::normalized`), so that another implementation of the same steps (a GPU kernel)
-    /// gives the same bits. Points outside the grid take the border cells' values (the
-    /// coordinate is clamped); non-finite coordinates give zero. Never panics.
+    /// Every operation is in `S`, so that another implementation of the same steps (a GPU
+    /// kernel) gives the same bits:
+    ///
+    /// 1. per axis `u = (p − min)/cell − ½` (`min`, `cell` converted with `S::from_f32`),
+    ///    `i = ⌊u⌋` ([`Scalar::floor_i32`]); for `i < 0` both cells are 0 and `t = 0`, for
+    ///    `i ≥ n − 1` both are `n − 1` and `t = 0` (points beyond the border cell centres take
+    ///    the border values), otherwise the cells are `i`, `i + 1` and `t = u − i` clamped to
+    ///    [0, 1];
+    /// 2. for the corners `c = 0..8` (bit k of c: the upper cell on axis k, so the order is
+    ///    (0,0,0), (1,0,0), (0,1,0), (1,1,0), (0,0,1), …) the weight `w = 1·w_x·w_y·w_z`
+    ///    (`t` or `1 − t`, multiplied in that order) and `sum += v·w`, `v` the corner's stored
+    ///    vector converted with `S::from_f32`;
+    /// 3. if `sum.length() ≥ 10⁻³`: `sum.normalized()`; otherwise the stored vector of the
+    ///    nearest cell (per axis the upper cell where `t ≥ ½`), converted, not renormalised.
+    ///
+    /// Non-finite coordinates give zero. Never panics.
     pub fn guide_at<S: Scalar>(&self, p: Vec3<S>) -> Vec3<S> {
         let Some((sum, nearest)) = self.interpolate(p) else {
             return Vec3::zero();

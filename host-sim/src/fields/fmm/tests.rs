@@ -569,6 +569,36 @@ fn guide_goes_around_an_obstacle() {
     assert!(v.y > 0.0, "{v:?}: around the near side");
 }
 
+/// A scenario event that moves the goal: one `CostField::build` with the new goal turns the
+/// guide around; moving an obstacle onto a point makes the guide there point out of it.
+#[test]
+fn rebuilding_follows_a_moved_goal_or_obstacle() {
+    let (lo, hi) = ([0.0; 3], [30.0, 10.0, 10.0]);
+    let grid = CellGrid::new(lo, hi, 1.0).unwrap();
+    let w = CostWeights::default();
+    let goal_at = |x: f32| Shape3::Sphere {
+        center: [x, 5.0, 5.0],
+        radius: 1.0,
+    };
+    let p = Vec3::new(15.2f32, 5.1, 4.9);
+    let (_, east) = CostField::build(&grid, &[], &[goal_at(27.0)], lo, hi, w).unwrap();
+    let (_, west) = CostField::build(&grid, &[], &[goal_at(3.0)], lo, hi, w).unwrap();
+    assert!(east.guide_at(p).x > 0.99, "{:?}", east.guide_at(p));
+    assert!(west.guide_at(p).x < -0.99, "{:?}", west.guide_at(p));
+    let rock = Shape3::Sphere {
+        center: [15.0, 5.0, 5.0],
+        radius: 3.0,
+    };
+    let q = Vec3::new(16.5f32, 5.5, 5.5);
+    let (sdf, moved) = CostField::build(&grid, &[rock], &[goal_at(27.0)], lo, hi, w).unwrap();
+    assert!(sdf.inside(grid.index(grid.cell_of([16.5, 5.5, 5.5]).unwrap())));
+    let v = moved.guide_at(q);
+    // Out of the rock (away from its centre, and towards the goal).
+    let out = (q - Vec3::new(15.0, 5.0, 5.0)).normalized().unwrap();
+    assert!(v.dot(out) > 0.7 && v.x > 0.5, "{v:?}");
+    assert!(moved.cost[grid.index([16, 5, 5])] > 1000.0);
+}
+
 /// Solve times on Table 1's largest grids (release: `cargo test --release -p swarm-sim --lib
 /// fields -- --ignored --nocapture`).
 #[test]
