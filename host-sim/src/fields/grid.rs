@@ -73,6 +73,35 @@ impl CellGrid {
         })
     }
 
+    /// `Ok` for a grid [`CellGrid::new`] could have made: finite corner, positive finite
+    /// side, 1 to [`MAX_CELLS`] cells (what a solver checks of a grid built by hand).
+    pub fn check(&self) -> Result<()> {
+        let max = self.max();
+        let cells = self
+            .dims
+            .iter()
+            .fold(1u64, |n, &d| n.saturating_mul(u64::from(d)));
+        let finite = self.min.iter().chain(&max).all(|v| v.is_finite());
+        if !finite || !(self.cell > 0.0) || !self.cell.is_finite() || cells == 0 {
+            return Err(SimError::FieldGridInvalid {
+                min: self.min,
+                max,
+                cell: self.cell,
+            });
+        }
+        if cells > MAX_CELLS {
+            return Err(SimError::FieldGridTooLarge {
+                min: self.min,
+                max,
+                cell: self.cell,
+                dims: self.dims.map(u64::from),
+                cells,
+                limit: MAX_CELLS,
+            });
+        }
+        Ok(())
+    }
+
     /// The number of cells.
     #[inline]
     pub fn len(&self) -> usize {
@@ -259,5 +288,39 @@ mod tests {
         assert!(e.to_string().contains("[10000, 10000, 10000]"), "{e}");
         let e = CellGrid::new([0.0; 3], [1e30; 3], 1e-30).unwrap_err();
         assert!(matches!(e, SimError::FieldGridTooLarge { .. }), "{e}");
+        // Grids built by hand.
+        let ok = CellGrid::new([0.0; 3], [1.0; 3], 0.5).unwrap();
+        assert!(ok.check().is_ok());
+        for bad in [
+            CellGrid {
+                dims: [0, 1, 1],
+                ..ok.clone()
+            },
+            CellGrid {
+                cell: 0.0,
+                ..ok.clone()
+            },
+            CellGrid {
+                cell: f32::NAN,
+                ..ok.clone()
+            },
+            CellGrid {
+                min: [f32::INFINITY, 0.0, 0.0],
+                ..ok.clone()
+            },
+        ] {
+            assert!(
+                matches!(bad.check(), Err(SimError::FieldGridInvalid { .. })),
+                "{bad:?}"
+            );
+        }
+        let huge = CellGrid {
+            dims: [u32::MAX; 3],
+            ..ok
+        };
+        assert!(matches!(
+            huge.check(),
+            Err(SimError::FieldGridTooLarge { .. })
+        ));
     }
 }

@@ -442,6 +442,17 @@ fn refuses_bad_input() {
     }
     let ok = CostField::solve(&grid, &sdf, &goal, w).unwrap();
     assert!(ok.is_goal(0) && !ok.is_goal(1) && !ok.is_goal(usize::MAX));
+    assert!(
+        ok.solve
+            .to_string()
+            .starts_with("cost field: 64 cells (64 reachable, 1 goal cells) in ")
+    );
+    let flat = CellGrid {
+        dims: [4, 4, 0],
+        ..grid.clone()
+    };
+    let e = CostField::solve(&flat, &SignedDistance { phi: vec![] }, &[], w).unwrap_err();
+    assert!(matches!(e, SimError::FieldGridInvalid { .. }), "{e}");
 }
 
 /// Random points in and a little beyond the grid of `layout`.
