@@ -82,7 +82,7 @@ impl CellGrid {
             .iter()
             .fold(1u64, |n, &d| n.saturating_mul(u64::from(d)));
         let finite = self.min.iter().chain(&max).all(|v| v.is_finite());
-        if !finite || !(self.cell > 0.0) || !self.cell.is_finite() || cells == 0 {
+        if !finite || !self.cell.is_finite() || self.cell <= 0.0 || cells == 0 {
             return Err(SimError::FieldGridInvalid {
                 min: self.min,
                 max,
