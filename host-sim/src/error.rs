@@ -246,6 +246,70 @@ pub enum SimError {
         /// Their cells' size (4 bytes each).
         needed: u64,
     },
+    /// A field grid ([`fields::CellGrid`](crate::fields::CellGrid)) whose box or cell side is
+    /// not finite, empty, or not positive.
+    #[error(
+        "field grid: box min {min:?} max {max:?} with cell side {cell} is not a grid (the corners \
+         and the side must be finite, min < max on every axis, cell > 0)"
+    )]
+    FieldGridInvalid {
+        /// The lower corner asked for.
+        min: [f32; 3],
+        /// The upper corner asked for.
+        max: [f32; 3],
+        /// The cell side asked for.
+        cell: f32,
+    },
+    /// A field grid with more cells than the limit.
+    #[error(
+        "field grid: box min {min:?} max {max:?} with cell side {cell} needs {dims:?} = {cells} \
+         cells, more than the limit of {limit}: a larger cell side or a smaller box"
+    )]
+    FieldGridTooLarge {
+        /// The lower corner asked for.
+        min: [f32; 3],
+        /// The upper corner asked for.
+        max: [f32; 3],
+        /// The cell side asked for.
+        cell: f32,
+        /// The cells per axis it needs.
+        dims: [u64; 3],
+        /// Their product.
+        cells: u64,
+        /// The most cells a grid may have.
+        limit: u64,
+    },
+    /// A per-cell array handed to a field solver whose length is not the grid's cell count.
+    #[error("field: {what} has {len} values, the grid has {cells} cells")]
+    FieldLength {
+        /// Which array (`signed distance`, `goal mask`).
+        what: &'static str,
+        /// Its length.
+        len: usize,
+        /// The grid's cells.
+        cells: usize,
+    },
+    /// A cost field asked for with no goal cell.
+    #[error(
+        "cost field: no goal cell (no cell centre of the {cells}-cell grid lies in a goal region)"
+    )]
+    FieldNoGoal {
+        /// The grid's cells.
+        cells: usize,
+    },
+    /// Cost weights that do not give every cell a positive, finite cost per unit length.
+    #[error(
+        "cost field: weights a = {a}, b = {b}, inside = {inside} must be finite with a > 0, \
+         b >= 0, inside > 0"
+    )]
+    FieldWeights {
+        /// Weight of the path length.
+        a: f32,
+        /// Weight of the repulsion.
+        b: f32,
+        /// Cost per unit length inside obstacles.
+        inside: f32,
+    },
     /// A benchmark with nothing to time.
     #[error("bench: needs at least one agent and one step (got {agents} agents, {steps} steps)")]
     EmptyBench {

@@ -10,6 +10,8 @@
 //!   any model, one phase at a time (and what a mirror asks of it: requests, replies, the
 //!   device); [`models`]: the one place naming the built-in models;
 //! * [`ants`], [`bees`]: each model's world, sensing and deterministic parallel CPU engine;
+//! * [`fields`]: global fields on a grid of cells (signed distance, a fast-marching cost field
+//!   and its descent direction) for the field-based models;
 //! * [`run`]: `swarm run`, a scenario from its first tick to its last into one output folder
 //!   ([`output`]: CSV, `.npy`, JSON, PNG, GIF); [`mod@bench`]: `swarm bench`.
 //!
@@ -35,6 +37,7 @@ pub mod bench;
 pub mod cli;
 pub mod engine;
 mod error;
+pub mod fields;
 pub mod gpu;
 pub mod grid;
 pub mod models;
