@@ -58,6 +58,20 @@ fn rock_on_the_nest() -> Scenario {
     short(sc)
 }
 
+/// wang2014 Fig. 8 with the chased ball moved next to the swarm at step 4: the cost field is
+/// solved again and every insect turns (issue 15).
+fn chase() -> Scenario {
+    let mut sc = scenario::builtin("wang-fig8-chasing").unwrap();
+    sc.events = vec![Event {
+        step: 4,
+        action: Action::Move {
+            object: "ball".into(),
+            to: vec![40.0, 20.0, 4.0],
+        },
+    }];
+    short(sc)
+}
+
 /// `sc` run for [`STEPS`] steps, recording only the trajectories.
 fn short(mut sc: Scenario) -> Scenario {
     sc.set_steps(STEPS);
@@ -177,8 +191,11 @@ fn a_mirrored_scenario_applies_its_events_and_ends_where_its_run_ends() {
             ScalarType::Fixed,
             Backend::Gpu,
         ),
+        ("chase", chase(), ScalarType::F32, Backend::Cpu),
+        ("chase-fixed", chase(), ScalarType::Fixed, Backend::Cpu),
     ];
     for (name, sc, scalar, backend) in cases {
+        let model = sc.groups[0].model.to_string();
         let mut sc = with_scalar(&sc, scalar);
         sc.backend = backend;
         let dir = scratch(name);
@@ -186,7 +203,7 @@ fn a_mirrored_scenario_applies_its_events_and_ends_where_its_run_ends() {
         assert_eq!(r.decisions, 25 * 2 * u64::from(STEPS), "{name}");
         assert_eq!(r.mismatches, 0, "{name}: {}", r.human());
         assert!(r.passed(), "{name}: {}", r.human());
-        assert_eq!(r.model, "ant", "{name}");
+        assert_eq!(r.model, model, "{name}");
         assert_eq!(r.backend, backend.name(), "{name}");
         assert_eq!(frame.step, STEPS, "{name}");
         // The events changed where the ants are ...

@@ -23,6 +23,6 @@ pub use scenario::{BeeParamsOverride, BeePreset, bee_params};
 pub use sense::{BeeSimFrame, N, P, bee_frame, neighbour_slots};
 pub use sim::{AnyBeeGroup, BeeGroup, BeeSim, Contacts, bee_frame_time, frame_time};
 pub use world::{
-    BeeObstacle, BeeTarget, BeeWorld, SURFACE_OFFSET, Sensed, Shape3, Surface, box_surface, confine,
-    box_surface_open, shaft_surface, shaft_surface_open, sphere_surface,
+    BeeObstacle, BeeTarget, BeeWorld, SURFACE_OFFSET, Sensed, Shape3, Surface, box_surface,
+    box_surface_open, confine, shaft_surface, shaft_surface_open, sphere_surface,
 };

@@ -308,6 +308,7 @@ fn fill_with<S: SimScalar>(
 mod tests {
     use super::*;
     use crate::bees::world::{BeeObstacle, BeeTarget, Shape3};
+    use crate::grid::Grid;
 
     fn v(p: [f32; 3]) -> Vec3<f32> {
         Vec3::new(p[0], p[1], p[2])

@@ -101,13 +101,14 @@ impl CostField {
     ///
     /// Non-finite coordinates give zero. Never panics.
     pub fn guide_at<S: Scalar>(&self, p: Vec3<S>) -> Vec3<S> {
-        let Some((sum, nearest)) = self.interpolate(p) else {
+        let Some((sum, nearest, reach)) = self.interpolate(p) else {
             return Vec3::zero();
         };
         if sum.length() >= S::from_f32(1e-3)
             && let Some(unit) = sum.normalized()
         {
-            return unit;
+            // Within a cell of the goal: faded by the weight of the corners outside it.
+            return if reach < S::ONE { unit * reach } else { unit };
         }
         self.cell_guide(nearest)
     }
@@ -120,7 +121,7 @@ impl CostField {
 
     /// The trilinear interpolation of the cell guides at `p` before normalisation, and the
     /// nearest cell (`None` for non-finite `p`): the steps of [`guide_at`](CostField::guide_at).
-    pub(super) fn interpolate<S: Scalar>(&self, p: Vec3<S>) -> Option<(Vec3<S>, [u32; 3])> {
+    pub(super) fn interpolate<S: Scalar>(&self, p: Vec3<S>) -> Option<(Vec3<S>, [u32; 3], S)> {
         if !(p.x.is_finite() && p.y.is_finite() && p.z.is_finite()) {
             return None;
         }
@@ -131,6 +132,7 @@ impl CostField {
             axis(p.z, g.min[2], g.cell, g.dims[2]),
         ];
         let mut sum = Vec3::zero();
+        let mut reach = S::ZERO;
         for c in 0..8 {
             let mut w = S::ONE;
             let mut cell = [0u32; 3];
@@ -144,6 +146,9 @@ impl CostField {
                 }
             }
             sum += self.cell_guide(cell) * w;
+            if !self.is_goal(self.grid.index(cell)) {
+                reach += w;
+            }
         }
         let half = S::from_f32(0.5);
         let nearest = std::array::from_fn(|k| {
@@ -153,6 +158,6 @@ impl CostField {
                 ax[k].lower
             }
         });
-        Some((sum, nearest))
+        Some((sum, nearest, reach))
     }
 }

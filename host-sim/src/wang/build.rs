@@ -236,8 +236,12 @@ where
         },
     ];
     for (k, shape) in shapes.into_iter().enumerate() {
-        w.obstacles
-            .push(BeeObstacle::new(k as u16, format!("obstacle-{k}"), shape, true));
+        w.obstacles.push(BeeObstacle::new(
+            k as u16,
+            format!("obstacle-{k}"),
+            shape,
+            true,
+        ));
     }
     w.goals.push(Goal {
         id: 4,

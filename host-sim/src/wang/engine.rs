@@ -2,11 +2,11 @@
 //! in the run log, and the paper's measures in the summary.
 
 use swarm_core::Checked;
+use swarm_core::StepCtx;
 use swarm_core::model::{Model, Phases};
 use swarm_core::wang::{
     Advect, AdvectReply, AdvectRequest, Separate, SeparateReply, SeparateRequest, WangParams,
 };
-use swarm_core::StepCtx;
 
 use super::build::wang_frame_samples;
 use super::sim::{WangGroup, WangSim};
@@ -79,7 +79,7 @@ impl Engine for WangSim {
         Ok(())
     }
     fn notes(&mut self) -> Vec<String> {
-        let grid = self.world.grid;
+        let grid = self.world.grid.clone();
         self.world
             .solves
             .drain(..)

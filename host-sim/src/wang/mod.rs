@@ -21,3 +21,6 @@ pub use metrics::Metrics;
 pub use scenario::{WangParamsOverride, WangPreset, wang_params};
 pub use sim::{AnyWangGroup, Counts, K, WangGroup, WangSeparateFrame, WangSim};
 pub use world::{Goal, GoalArea, WangWorld};
+
+#[cfg(test)]
+mod tests;

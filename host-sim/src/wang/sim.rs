@@ -132,9 +132,7 @@ impl<S: SimScalar> WangGroup<S> {
         if d_min <= 0.0 {
             return frame;
         }
-        let near = select::<S, K>(&w.mde_grid, me, d_min, slot as u32, at, |j| {
-            ids[j as usize]
-        });
+        let near = select::<S, K>(&w.mde_grid, me, d_min, slot as u32, at, |j| ids[j as usize]);
         for j in near.slots() {
             let _ = frame.neighbours.push(Close {
                 id: ids[j],
@@ -157,14 +155,18 @@ impl<S: SimScalar> WangGroup<S> {
     fn advect(&mut self, w: &WangWorld, seed: u32, step: u32) -> Result<()> {
         let mut moved = std::mem::take(&mut self.moved);
         let this = &*self;
-        let result = for_each_agent(moved.par_iter_mut(), || (), |(), k, out| {
-            let s = &this.states[k];
-            let frame = this.advect_frame(w, s);
-            let ctx = this.ctx(seed, step, k);
-            *out = wang::advect_checked(s, &frame, &this.params, ctx)
-                .map_err(|e| SimError::controller("wang advect", step, ctx.agent, e))?;
-            Ok(())
-        });
+        let result = for_each_agent(
+            moved.par_iter_mut(),
+            || (),
+            |(), k, out| {
+                let s = &this.states[k];
+                let frame = this.advect_frame(w, s);
+                let ctx = this.ctx(seed, step, k);
+                *out = wang::advect_checked(s, &frame, &this.params, ctx)
+                    .map_err(|e| SimError::controller("wang advect", step, ctx.agent, e))?;
+                Ok(())
+            },
+        );
         self.moved = moved;
         result
     }
@@ -263,7 +265,12 @@ impl<S: SimScalar> WangGroup<S> {
 
     /// The states in id order.
     pub fn by_id(&self) -> Vec<(u32, WangState<S>)> {
-        let mut v: Vec<_> = self.ids.iter().copied().zip(self.states.iter().copied()).collect();
+        let mut v: Vec<_> = self
+            .ids
+            .iter()
+            .copied()
+            .zip(self.states.iter().copied())
+            .collect();
         v.sort_unstable_by_key(|e| e.0);
         v
     }
@@ -386,9 +393,8 @@ impl WangSim {
                 c.bounds += b;
             }
             let w = &mut self.world;
-            w.mde_grid.rebuild(&w.moved, |p| {
-                [p[0] as f32, p[1] as f32, p[2] as f32]
-            });
+            w.mde_grid
+                .rebuild(&w.moved, |p| [p[0] as f32, p[1] as f32, p[2] as f32]);
             self.last = c;
             return;
         }

@@ -12,11 +12,11 @@
 use swarm_core::wang::Boundary;
 use swarm_core::{Scalar, Vec2, Vec3};
 
+use crate::Result;
 use crate::bees::{BeeObstacle, Shape3};
 use crate::fields::{CellGrid, CostField, CostWeights, SignedDistance, Solve};
 use crate::grid::Grid;
 use crate::scalar::{SimScalar, a3};
-use crate::{Result, SimError};
 
 /// The area a goal stands for: where the navigation field is zero and toward which it leads.
 #[derive(Clone, Debug, PartialEq)]
@@ -148,14 +148,7 @@ impl WangWorld {
         let mut fields = Vec::new();
         for g in self.goals.iter().filter(|g| g.active) {
             let goal = self.goal_cells(g);
-            let field = CostField::solve(&self.grid, &sdf, &goal, self.weights).map_err(|e| {
-                match e {
-                    SimError::EmptyGoal { .. } => SimError::EmptyGoal {
-                        goal: g.name.clone(),
-                    },
-                    e => e,
-                }
-            })?;
+            let field = CostField::solve(&self.grid, &sdf, &goal, self.weights)?;
             self.solves.push((g.name.clone(), field.solve));
             fields.push((g.id, field));
         }
@@ -168,31 +161,29 @@ impl WangWorld {
     /// 0 < φ ≤ 2l around it, spec §2.7).
     fn goal_cells(&self, g: &Goal) -> Vec<bool> {
         let grid = &self.grid;
-        let shell = 2.0 * grid.cell;
-        let around = match g.area {
-            GoalArea::Around(id) => self.obstacles.iter().find(|o| o.id == id),
-            _ => None,
+        let region = match g.area {
+            GoalArea::Ball { center, radius } => Shape3::Sphere { center, radius },
+            GoalArea::Box { min, max } => Shape3::Box { min, max },
+            GoalArea::Around(id) => {
+                let shell = 2.0 * grid.cell;
+                let around = self.obstacles.iter().find(|o| o.id == id);
+                return (0..grid.len())
+                    .map(|i| {
+                        let c = grid.center(i);
+                        around.is_some_and(|o| {
+                            let s = o.shape.surface::<f32>(
+                                Vec3::new(c[0], c[1], c[2]),
+                                self.min,
+                                self.max,
+                            );
+                            !s.inside && s.distance > 0.0 && s.distance <= shell
+                        })
+                    })
+                    .collect();
+            }
         };
-        (0..grid.len())
-            .map(|i| {
-                let c = grid.center(i);
-                match &g.area {
-                    GoalArea::Ball { center, radius } => {
-                        let d2: f32 = (0..3).map(|k| (c[k] - center[k]).powi(2)).sum();
-                        d2 <= radius * radius
-                    }
-                    GoalArea::Box { min, max } => (0..3).all(|k| c[k] >= min[k] && c[k] <= max[k]),
-                    GoalArea::Around(_) => around.is_some_and(|o| {
-                        let s = o.shape.surface::<f32>(
-                            Vec3::new(c[0], c[1], c[2]),
-                            self.min,
-                            self.max,
-                        );
-                        !s.inside && s.distance > 0.0 && s.distance <= shell
-                    }),
-                }
-            })
-            .collect()
+        // A goal area smaller than a cell still has its nearest cell (`CellGrid::mask`).
+        grid.mask(&[region], self.min, self.max)
     }
 
     /// The field of goal `id`, if the goal is active.

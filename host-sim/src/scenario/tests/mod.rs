@@ -117,8 +117,10 @@ fn every_builtin_loads() {
         assert!(s.groups.iter().all(|g| g.model == *model));
         let (prefix, range) = if *model == Model::new("ant") {
             ("ants-", 3000..=6000)
-        } else {
+        } else if *model == Model::new("bee") {
             ("bees-", 1000..=2000)
+        } else {
+            ("wang-", 1000..=10000)
         };
         assert!(b.name.starts_with(prefix));
         assert!(range.contains(&s.steps), "{}: {} steps", b.name, s.steps);
