@@ -214,14 +214,14 @@ const PINNED: &[(&str, &str, u64, u64)] = &[
     (
         "wang-fig10-phototaxis",
         "f32",
-        0xfc41df36aac7109b,
-        0xa35196f51883ac3a,
+        0x6935cc8d8e488a20,
+        0xa2479a61fe27e105,
     ),
     (
         "wang-fig10-phototaxis",
         "fixed",
-        0x5ed0273cbc30ce5c,
-        0x357ee834e0162968,
+        0x8f749806e8bbda93,
+        0x19d37601f103b80a,
     ),
     (
         "wang-fig1a-locusts",
