@@ -3,7 +3,7 @@
 
 use swarm_core::rand::rand;
 
-use crate::scenario::Scenario;
+use crate::scenario::{Scenario, SpawnRegion};
 
 /// The tick the spawn draws are keyed by: `u32::MAX`, never a simulated tick.
 const SPAWN_STEP: u32 = u32::MAX;
@@ -21,6 +21,30 @@ pub fn around_center<const D: usize>(scenario: &Scenario, at: &str) -> [f32; D] 
         .and_then(|o| o.kind.point())
         .and_then(|c| <[f32; D]>::try_from(c).ok())
         .unwrap_or([0.0; D])
+}
+
+/// Where agent `id` of a 3D group spawning in `region` starts: uniform in the ball of radius
+/// `radius` around the object's centre (radius ∝ ∛u, direction uniform on the sphere) or in
+/// the box, from the run's counter-based draws.
+pub fn point3(scenario: &Scenario, region: &SpawnRegion, seed: u32, id: u32) -> [f32; 3] {
+    let u = |k| draw(seed, id, k);
+    match region {
+        SpawnRegion::Around { at, radius } => {
+            let c: [f32; 3] = around_center(scenario, at);
+            let r = radius * u(0).cbrt();
+            let cos_t = 1.0 - 2.0 * u(1);
+            let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
+            let phi = u(2) * std::f32::consts::TAU;
+            [
+                c[0] + r * sin_t * phi.cos(),
+                c[1] + r * cos_t,
+                c[2] + r * sin_t * phi.sin(),
+            ]
+        }
+        SpawnRegion::Box { min, max } => {
+            std::array::from_fn(|a| min[a] + (max[a] - min[a]) * u(a as u32))
+        }
+    }
 }
 
 /// The groups of `scenario`, in order, each made by `make(group, params, first)` from its

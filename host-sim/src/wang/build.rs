@@ -11,8 +11,8 @@ use crate::bees::{BeeObstacle, Shape3, confine};
 use crate::by_scalar;
 use crate::output::{AgentSample, Frame};
 use crate::scalar::SimScalar;
-use crate::scenario::{Action, Group, ObjectKind, ScalarType, Scenario, SpawnRegion};
-use crate::spawn::{around_center, draw};
+use crate::scenario::{Action, Group, ObjectKind, ScalarType, Scenario};
+use crate::spawn::{draw, point3};
 use crate::{Result, SimError};
 
 impl WangSim {
@@ -132,24 +132,7 @@ fn spawn<S: SimScalar>(
     let states = (0..g.count)
         .map(|k| {
             let id = (first + k as usize) as u32;
-            let u = |k| draw(seed, id, k);
-            let pos = match &g.spawn.region {
-                SpawnRegion::Around { at, radius } => {
-                    let c: [f32; 3] = around_center(scenario, at);
-                    let r = radius * u(0).cbrt();
-                    let cos_t = 1.0 - 2.0 * u(1);
-                    let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
-                    let phi = u(2) * std::f32::consts::TAU;
-                    [
-                        c[0] + r * sin_t * phi.cos(),
-                        c[1] + r * cos_t,
-                        c[2] + r * sin_t * phi.sin(),
-                    ]
-                }
-                SpawnRegion::Box { min, max } => {
-                    std::array::from_fn(|a| min[a] + (max[a] - min[a]) * u(a as u32))
-                }
-            };
+            let pos = point3(scenario, &g.spawn.region, seed, id);
             WangState {
                 pos: Vec3::from_f32(pos[0], pos[1], pos[2]),
                 vel: Vec3::zero(),
