@@ -85,13 +85,16 @@ fn draw_shape(canvas: &mut Canvas, view: &View, scene: &Scene, s: &Shape) {
         Geometry::Box { min, max } => {
             let (x0, y0) = view.world(scene, *min);
             let (x1, y1) = view.world(scene, *max);
-            canvas.rect(
-                x0.min(x1).round() as i64,
-                y0.min(y1).round() as i64,
-                x0.max(x1).round() as i64,
-                y0.max(y1).round() as i64,
-                c,
-            );
+            let (xa, ya) = (x0.min(x1).round() as i64, y0.min(y1).round() as i64);
+            let (xb, yb) = (x0.max(x1).round() as i64, y0.max(y1).round() as i64);
+            if s.kind == ShapeKind::Target {
+                // A goal area (a `region`): its outline, so that what lies in it stays visible.
+                for k in 0..ring_px.round().max(1.0) as i64 {
+                    canvas.rect_outline(xa + k, ya + k, xb - k, yb - k, c);
+                }
+            } else {
+                canvas.rect(xa, ya, xb, yb, c);
+            }
         }
     }
 }
