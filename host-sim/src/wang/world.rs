@@ -139,7 +139,8 @@ impl WangWorld {
     ///
     /// # Errors
     ///
-    /// [`CostField::solve`]'s (a goal with no cell: [`SimError`]).
+    /// [`CostField::solve`]'s ([`SimError::FieldNoGoal`](crate::SimError::FieldNoGoal) for a goal
+    /// with no cell).
     pub fn solve_if_dirty(&mut self) -> Result<()> {
         if !self.dirty {
             return Ok(());
