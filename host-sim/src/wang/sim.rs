@@ -195,10 +195,12 @@ impl<S: SimScalar> WangGroup<S> {
     /// Phase 2: minimum distance enforcement.
     fn separate(&mut self, w: &WangWorld, seed: u32, step: u32) -> Result<()> {
         let first = self.first;
+        let (mut next, mut pushes) = (
+            std::mem::take(&mut self.next),
+            std::mem::take(&mut self.pushes),
+        );
         let this = &*self;
-        let mut next = vec![WangState::new(Vec3::zero()); this.states.len()];
-        let mut pushes = vec![0u8; this.states.len()];
-        for_each_agent(
+        let result = for_each_agent(
             next.par_iter_mut().zip(pushes.par_iter_mut()),
             || (),
             |(), k, (out, pushed)| {
@@ -210,26 +212,28 @@ impl<S: SimScalar> WangGroup<S> {
                 *pushed = n;
                 Ok(())
             },
-        )?;
+        );
         self.next = next;
         self.pushes = pushes;
-        Ok(())
+        result
     }
 
     /// Confines x_{k+1}, makes it current; returns the corrections and the insects pushed.
     fn commit(&mut self, w: &WangWorld) -> Counts {
         let (lo, hi) = (w.min, w.max);
         let obstacles = &w.obstacles;
-        self.states.clone_from(&self.next);
-        let mut fixes = vec![0u8; self.states.len()];
-        self.states
+        // The decided states become current (`next` keeps the old ones until the next step).
+        std::mem::swap(&mut self.states, &mut self.next);
+        let (obstacle, bounds) = self
+            .states
             .par_iter_mut()
-            .zip(fixes.par_iter_mut())
-            .for_each(|(s, fix)| *fix = confine(obstacles, lo, hi, &mut s.pos, &mut s.vel));
-        for (c, f) in self.corrected.iter_mut().zip(&fixes) {
-            *c |= f;
-        }
-        let (obstacle, bounds) = tally(&fixes);
+            .zip(self.corrected.par_iter_mut())
+            .map(|(s, c)| {
+                let fix = confine(obstacles, lo, hi, &mut s.pos, &mut s.vel);
+                *c |= fix;
+                (u64::from(fix & 1), u64::from(fix >> 1 & 1))
+            })
+            .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
         Counts {
             obstacle,
             bounds,
