@@ -47,6 +47,7 @@ mod par;
 pub mod run;
 pub mod scalar;
 pub mod scenario;
+pub mod space;
 pub mod spawn;
 pub mod wang;
 

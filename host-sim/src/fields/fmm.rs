@@ -8,8 +8,8 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use super::{CellGrid, SignedDistance, guide, repulsion};
-use crate::bees::Shape3;
 use crate::error::{Result, SimError};
+use crate::space::Shape3;
 
 /// The weights of the path cost (wang2014 eq. 4, `Cost = A∫ds + B∫g ds`) and the cost per unit
 /// length inside obstacles.

@@ -1,8 +1,8 @@
 //! A regular grid of cubic cells covering an axis-aligned box, the support of every global
 //! field (signed distance, cost, guide).
 
-use crate::bees::Shape3;
 use crate::error::{Result, SimError};
+use crate::space::Shape3;
 use swarm_core::{Scalar, Vec3};
 
 /// The most cells a [`CellGrid`] may have (2²⁶ ≈ 67 million: a few hundred MB per field).

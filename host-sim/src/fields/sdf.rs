@@ -5,7 +5,7 @@ use rayon::prelude::*;
 use swarm_core::Scalar;
 
 use super::CellGrid;
-use crate::bees::Shape3;
+use crate::space::Shape3;
 
 /// The signed distance φ from every cell centre to the nearest obstacle surface (wang2014
 /// eq. 5): `−distance` inside an obstacle, `+distance` outside, the minimum over the obstacles

@@ -7,11 +7,11 @@ use swarm_core::{Fx, Vec3};
 
 use super::sim::{AnyWangGroup, WangGroup, WangSim};
 use super::world::{Goal, GoalArea, WangWorld};
-use crate::bees::{BeeObstacle, Shape3, confine};
 use crate::by_scalar;
 use crate::output::{AgentSample, Frame};
 use crate::scalar::SimScalar;
 use crate::scenario::{Action, Group, ObjectKind, ScalarType, Scenario};
+use crate::space::{BeeObstacle, Shape3, confine};
 use crate::spawn::{draw, point3};
 use crate::{Result, SimError};
 

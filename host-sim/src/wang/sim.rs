@@ -18,13 +18,13 @@ use swarm_core::wang::{
 use swarm_core::{Checked, Fx, StepCtx, Vec3};
 
 use super::world::WangWorld;
-use crate::bees::confine;
 use crate::by_scalar;
 use crate::error::{Result, SimError};
 use crate::grid::permuted;
 use crate::nearest::select;
 use crate::par::for_each_agent;
 use crate::scalar::{AgentGroup, ByScalar, SimScalar, a3, v3};
+use crate::space::confine;
 
 /// The MDE neighbours of a separate frame (the wire's capacity).
 pub const K: usize = WIRE_WANG_NEIGHBOURS;

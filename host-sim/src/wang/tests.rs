@@ -99,19 +99,19 @@ fn a_moved_goal_is_solved_again_and_reported() {
 #[test]
 fn the_boundary_is_the_nearest_surface_with_its_curvature() {
     let mut w = WangWorld::new([0.0; 3], [20.0; 3], 1.0, 1.0, 0.05).unwrap();
-    w.obstacles.push(crate::bees::BeeObstacle::new(
+    w.obstacles.push(crate::space::BeeObstacle::new(
         0,
         "ball",
-        crate::bees::Shape3::Sphere {
+        crate::space::Shape3::Sphere {
             center: [10.0; 3],
             radius: 2.0,
         },
         true,
     ));
-    w.obstacles.push(crate::bees::BeeObstacle::new(
+    w.obstacles.push(crate::space::BeeObstacle::new(
         1,
         "shaft",
-        crate::bees::Shape3::Shaft {
+        crate::space::Shape3::Shaft {
             center: [5.0, 5.0],
             radius: 1.0,
             y_min: 0.0,

@@ -13,10 +13,10 @@ use swarm_core::wang::Boundary;
 use swarm_core::{Scalar, Vec2, Vec3};
 
 use crate::Result;
-use crate::bees::{BeeObstacle, Shape3};
 use crate::fields::{CellGrid, CostField, CostWeights, SignedDistance, Solve};
 use crate::grid::Grid;
 use crate::scalar::{SimScalar, a3};
+use crate::space::{BeeObstacle, Shape3};
 
 /// The area a goal stands for: where the navigation field is zero and toward which it leads.
 #[derive(Clone, Debug, PartialEq)]
