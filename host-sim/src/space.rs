@@ -379,7 +379,7 @@ impl BeeObstacle {
 /// surface, [`SURFACE_OFFSET`] along the normal, the inward normal velocity removed) and inside
 /// the bounds `[min, max]` (clamped, the outward velocity removed), in the point's scalar.
 /// Returns what was corrected: bit 0 an obstacle, bit 1 the bounds. Shared by the 3D models
-/// (the bee world's [`BeeWorld::confine`]).
+/// (the bee world's [`BeeWorld::confine`](crate::bees::BeeWorld::confine), the wang2014 engine).
 pub fn confine<S: SimScalar>(
     obstacles: &[BeeObstacle],
     min: [f32; 3],
