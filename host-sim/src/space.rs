@@ -28,7 +28,7 @@ pub struct Surface<S> {
 }
 
 /// A scenario point (`f32`) in the scalar `S`.
-fn at<S: Scalar>(p: [f32; 3]) -> Vec3<S> {
+pub(crate) fn at<S: Scalar>(p: [f32; 3]) -> Vec3<S> {
     Vec3::new(S::from_f32(p[0]), S::from_f32(p[1]), S::from_f32(p[2]))
 }
 
@@ -68,7 +68,7 @@ pub fn box_surface<S: Scalar>(min: Vec3<S>, max: Vec3<S>, p: Vec3<S>) -> Surface
 }
 
 /// Component `k` of `v`.
-fn axis<S: Copy>(v: Vec3<S>, k: usize) -> S {
+pub(crate) fn axis<S: Copy>(v: Vec3<S>, k: usize) -> S {
     match k {
         0 => v.x,
         1 => v.y,
@@ -77,7 +77,7 @@ fn axis<S: Copy>(v: Vec3<S>, k: usize) -> S {
 }
 
 /// `v` with component `k` set to `x`.
-fn with_axis<S>(mut v: Vec3<S>, k: usize, x: S) -> Vec3<S> {
+pub(crate) fn with_axis<S>(mut v: Vec3<S>, k: usize, x: S) -> Vec3<S> {
     match k {
         0 => v.x = x,
         1 => v.y = x,

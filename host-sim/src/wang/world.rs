@@ -16,7 +16,7 @@ use crate::Result;
 use crate::fields::{CellGrid, CostField, CostWeights, SignedDistance, Solve};
 use crate::grid::Grid;
 use crate::scalar::{SimScalar, a3};
-use crate::space::{BeeObstacle, Shape3};
+use crate::space::{BeeObstacle, Shape3, at, axis, with_axis};
 
 /// The area a goal stands for: where the navigation field is zero and toward which it leads.
 #[derive(Clone, Debug, PartialEq)]
@@ -244,7 +244,7 @@ impl WangWorld {
         let (lo, hi) = (at::<S>(self.min), at::<S>(self.max));
         for k in 0..3 {
             for (face, sign) in [(lo, S::ONE), (hi, -S::ONE)] {
-                let (x, f) = (axis_of(p, k), axis_of(face, k));
+                let (x, f) = (axis(p, k), axis(face, k));
                 let d = ((x - f) * sign).max(S::ZERO);
                 offer(
                     d,
@@ -291,26 +291,4 @@ fn curvature<S: Scalar>(shape: &Shape3, p: Vec3<S>, n: Vec3<S>) -> (S, Vec3<S>) 
         }
         Shape3::Box { .. } => (S::ZERO, Vec3::zero()),
     }
-}
-
-/// A scenario point (`f32`) in the scalar `S`.
-fn at<S: Scalar>(p: [f32; 3]) -> Vec3<S> {
-    Vec3::new(S::from_f32(p[0]), S::from_f32(p[1]), S::from_f32(p[2]))
-}
-
-fn axis_of<S: Copy>(v: Vec3<S>, k: usize) -> S {
-    match k {
-        0 => v.x,
-        1 => v.y,
-        _ => v.z,
-    }
-}
-
-fn with_axis<S>(mut v: Vec3<S>, k: usize, x: S) -> Vec3<S> {
-    match k {
-        0 => v.x = x,
-        1 => v.y = x,
-        _ => v.z = x,
-    }
-    v
 }
