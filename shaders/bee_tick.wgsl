@@ -21,7 +21,7 @@
 // Bindings (group 0), besides those of bee_sense.wgsl (0-5) and the sensing kernels' output
 // (6): 7 the tick's parameters, 8 the states, 9 the decisions, 10 the next states (before the
 // world's corrections: what the mirror compares), 11 the status words, 12 the groups'
-// parameters, 13 each bee's group, 14 the tick's atomics, 15 the obstacles' confinement boxes,
+// parameters, 13 each bee's group, 14 the tick's atomics, 15 the obstacles' confinement boxes (space.wgsl),
 // 16 the sensed bees (written; binding 2 reads them), 17 what the world corrected of each bee.
 
 struct BeeTickParams {
@@ -41,7 +41,6 @@ struct BeeTickParams {
 @group(0) @binding(12) var<storage, read> bee_tick_params: array<u32>;
 @group(0) @binding(13) var<storage, read> bee_tick_group: array<u32>;
 @group(0) @binding(14) var<storage, read_write> bee_tick_shared: array<atomic<u32>>;
-@group(0) @binding(15) var<storage, read> bee_tick_boxes: array<u32>;
 @group(0) @binding(16) var<storage, read_write> bee_tick_sensed: array<u32>;
 @group(0) @binding(17) var<storage, read_write> bee_tick_corrected: array<u32>;
 
@@ -58,11 +57,6 @@ const BEE_TICK_KEPT_SLOT: u32 = 5u;
 const BEE_TICK_KEPT_STATUS: u32 = 6u;
 const BEE_TICK_TOTAL_OBSTACLE: u32 = 7u;
 const BEE_TICK_TOTAL_BOUNDS: u32 = 9u;
-
-// Words of an obstacle's confinement box (engine.rs, BOX_WORDS): whether no point of S passes
-// (`never`), then per axis the least value of S at or above the bounding box's low side less
-// 1e-3 (in f64) and the greatest at or below its high side plus 1e-3.
-const BEE_TICK_BOX_WORDS: u32 = 7u;
 
 // The current state of the bee in slot i.
 fn bee_tick_state(i: u32) -> BeeState {
@@ -120,73 +114,12 @@ fn bee_tick_step_main(@builtin(global_invocation_id) id: vec3<u32>,
     }
 }
 
-// BeeObstacle::may_be_within(p, 0.0) (world.rs) of obstacle `k`: p within the bounding box
-// widened by 1e-3 on every axis, compared in f64 on the CPU. A value of S converts to f64
-// exactly, so `p ≥ lo - 1e-3` holds exactly when p ≥ the least S at or above `lo - 1e-3`
-// (computed on the host in f64, engine.rs `confine_boxes`), and likewise above: the same test,
-// in S.
-fn bee_tick_may_be_within(k: u32, p: vec3<S>) -> bool {
-    let b = k * BEE_TICK_BOX_WORDS;
-    if (bee_tick_boxes[b] != 0u) {
-        return false;
-    }
-    let lo = bee_vec3_from_words(bee_tick_boxes[b + 1u], bee_tick_boxes[b + 2u],
-                                 bee_tick_boxes[b + 3u]);
-    let hi = bee_vec3_from_words(bee_tick_boxes[b + 4u], bee_tick_boxes[b + 5u],
-                                 bee_tick_boxes[b + 6u]);
-    return all(p >= lo) && all(p <= hi);
-}
-
-// BeeWorld::confine (world.rs): keeps a bee's new state physical, in the bee's scalar: out of
-// every active obstacle it is inside (put back on the surface, SURFACE_OFFSET along the
-// outward normal, the inward normal velocity removed) and inside the bounds (clamped, the
-// outward velocity removed), at most four rounds, until a round moves nothing. Returns what was
-// corrected: bit 0 an obstacle, bit 1 the bounds (the state changes only if something was).
+// BeeWorld::confine (world.rs): the state's position and velocity kept physical by
+// `space_confine` (space.wgsl). Returns what was corrected: bit 0 an obstacle, bit 1 the bounds.
 fn bee_tick_confine(s: ptr<function, BeeState>) -> u32 {
     var p = (*s).pos;
     var v = (*s).vel;
-    let offset = s_from_word(bee_tick.offset);
-    let lo = bee_world_min();
-    let hi = bee_world_max();
-    var flags = 0u;
-    for (var round = 0u; round < 4u; round = round + 1u) {
-        var moved = false;
-        for (var k = 0u; k < bee_world_obstacles(); k = k + 1u) {
-            let o = bee_world_obstacle(k);
-            if (!o.present || !bee_tick_may_be_within(k, p)) {
-                continue;
-            }
-            let surf = bee_world_surface(o, p);
-            if (!surf.inside) {
-                continue;
-            }
-            let n = surf.normal;
-            p = geom_vec3_add(surf.point, geom_vec3_mul(n, offset));
-            let vn = geom_vec3_dot(v, n);
-            if (vn < S_ZERO) {
-                v = geom_vec3_sub(v, geom_vec3_mul(n, vn));
-            }
-            flags = flags | 1u;
-            moved = true;
-        }
-        for (var k = 0u; k < 3u; k = k + 1u) {
-            let x = p[k];
-            if (x < lo[k]) {
-                p[k] = lo[k];
-                v[k] = s_max(v[k], S_ZERO);
-                flags = flags | 2u;
-                moved = true;
-            } else if (x > hi[k]) {
-                p[k] = hi[k];
-                v[k] = s_min(v[k], S_ZERO);
-                flags = flags | 2u;
-                moved = true;
-            }
-        }
-        if (!moved) {
-            break;
-        }
-    }
+    let flags = space_confine(&p, &v, s_from_word(bee_tick.offset));
     if (flags != 0u) {
         (*s).pos = p;
         (*s).vel = v;

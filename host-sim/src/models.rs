@@ -10,6 +10,7 @@ use crate::engine::Engine;
 use crate::error::{Result, SimError};
 use crate::gpu::Gpu;
 use crate::gpu::ant::engine::GpuAntSim;
+use crate::gpu::wang::engine::GpuWangSim;
 use crate::scenario::{Backend, GroupCheck, Problem, ScalarType, Scenario};
 use crate::wang::{WangSim, bench_wang_world};
 
@@ -103,7 +104,20 @@ pub const BUILTIN: &[ModelEntry] = &[
         check: crate::wang::scenario::check,
         engine: |sc, seed| Ok(Box::new(WangSim::from_scenario(sc, seed)?)),
         bench_world: |n, seed, scalar| Box::new(bench_wang_world(n, seed, scalar)),
-        gpu: None,
+        gpu: Some(GpuEntry {
+            engine: |sc, seed, gpu| {
+                Ok(Box::new(GpuWangSim::new(
+                    WangSim::from_scenario(sc, seed)?,
+                    gpu,
+                )?))
+            },
+            bench_world: |n, seed, scalar, gpu| {
+                Ok(Box::new(GpuWangSim::new(
+                    bench_wang_world(n, seed, scalar),
+                    gpu,
+                )?))
+            },
+        }),
     },
 ];
 

@@ -123,15 +123,25 @@ gpu_is_cpu! {
     bees_fig11: "bees-fig11-grassland",
     bees_fig14: "bees-fig14-shafts",
     bees_fig15: "bees-fig15-nest",
+    wang_fig6: "wang-fig6-two-blocks",
+    wang_fig7: "wang-fig7-min-cost",
+    wang_fig8: "wang-fig8-chasing",
+    wang_fig9: "wang-fig9-aggregation",
+    wang_fig10: "wang-fig10-phototaxis",
+    wang_fig1a: "wang-fig1a-locusts",
+    wang_fig13: "wang-fig13-noise-compare",
 }
 
 /// Every built-in scenario is covered: a model's scenarios join the list above when its GPU
 /// engine lands.
 #[test]
-fn every_built_in_ant_scenario_is_compared() {
+fn every_built_in_scenario_is_compared() {
     let here = include_str!("gpu_runs.rs");
     for name in scenario::builtin_names() {
-        if name.starts_with("ants-") || name.starts_with("bees-") {
+        if ["ants-", "bees-", "wang-"]
+            .iter()
+            .any(|m| name.starts_with(m))
+        {
             assert!(
                 here.contains(&format!("\"{name}\"")),
                 "{name} is not compared"

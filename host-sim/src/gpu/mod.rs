@@ -22,9 +22,11 @@ mod context;
 pub mod grid;
 pub mod kernel;
 pub mod shaders;
+pub mod space;
 pub mod status;
 #[cfg(test)]
 mod tests;
+pub mod wang;
 pub mod words;
 
 pub use context::{AdapterSummary, Gpu};

@@ -304,6 +304,17 @@ pub const BEE_SENSE: Module = Module {
     over_scalar: true,
 };
 
+/// The 3D world's corrections: `host-sim/src/space.rs`'s `confine` over the scalar
+/// (`space_confine`, with `space_may_be_within` on the confinement boxes of
+/// [`confine_boxes`](super::space::confine_boxes), binding 15), on the obstacles of
+/// [`BEE_WORLD`]; used by the bee and wang2014 ticks.
+pub const SPACE: Module = Module {
+    name: "space",
+    source: include_str!("../../../shaders/space.wgsl"),
+    uses: &[&BEE_WORLD],
+    over_scalar: true,
+};
+
 /// The bee tick of the GPU engine ([`GpuBeeSim`](crate::gpu::bee::engine::GpuBeeSim)): the
 /// kernels `bee_tick_step_main` (sense and step in one pass: `bee_sense_frame`, then
 /// `bee_step_checked`) and `bee_tick_commit_main` (the world's corrections of
@@ -312,7 +323,30 @@ pub const BEE_SENSE: Module = Module {
 pub const BEE_TICK: Module = Module {
     name: "bee_tick",
     source: include_str!("../../../shaders/bee_tick.wgsl"),
-    uses: &[&DISPATCH, &BEE_SENSE, &BEE_LAYOUT],
+    uses: &[&DISPATCH, &BEE_SENSE, &BEE_LAYOUT, &SPACE],
+    over_scalar: true,
+};
+
+/// The wang2014 controller: [`swarm_core::wang`] (`core-nostd/src/wang/`) over the scalar
+/// (`wang_advect_checked`, `wang_separate_checked`, the bounded curl noise `wang_curl_noise`
+/// and its baselines, the frames' validation with status words), on the bee model's Perlin
+/// potential and ramp as the Rust is; bit for bit over `Fx`.
+pub const WANG_STEP: Module = Module {
+    name: "wang_step",
+    source: include_str!("../../../shaders/wang_step.wgsl"),
+    uses: &[&BEE_CURL, &BEE_VISION, &RAND],
+    over_scalar: true,
+};
+
+/// The wang2014 tick of the GPU engine ([`GpuWangSim`](crate::gpu::wang::engine::GpuWangSim)):
+/// the kernels `wang_tick_advect_main` (the advect frame: `CostField::guide_at` on the fields'
+/// words, `WangWorld::boundary`; the step; the world's corrections of x*, its MDE grid cell),
+/// `wang_tick_separate_main` (the nearest x* within d_min, minimum distance enforcement) and
+/// `wang_tick_commit_main` (the world's corrections, counted; the first refusal kept).
+pub const WANG_TICK: Module = Module {
+    name: "wang_tick",
+    source: include_str!("../../../shaders/wang_tick.wgsl"),
+    uses: &[&DISPATCH, &WANG_STEP, &BEE_SENSE, &SPACE],
     over_scalar: true,
 };
 
@@ -356,6 +390,9 @@ pub const ALL: &[&Module] = &[
     &BEE_WORLD,
     &BEE_SENSE,
     &BEE_TICK,
+    &SPACE,
+    &WANG_STEP,
+    &WANG_TICK,
     &GRID,
 ];
 

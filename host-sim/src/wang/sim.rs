@@ -108,17 +108,22 @@ impl<S: SimScalar> WangGroup<S> {
     /// direction of the group's goal field, the nearest boundary within d0, the lamp when the
     /// group has phototaxis).
     pub fn advect_frame(&self, w: &WangWorld, s: &WangState<S>) -> AdvectFrame<S> {
-        let p = &self.params;
         AdvectFrame {
             guide: w
                 .field(self.goal)
                 .map_or(Vec3::zero(), |f| f.guide_at(s.pos)),
-            boundary: w.boundary(s.pos, p.d0),
-            lamp: (p.p_photo > S::ZERO)
-                .then(|| w.goal_center(self.goal))
-                .flatten()
-                .map(|c| Vec3::from_f32(c[0], c[1], c[2])),
+            boundary: w.boundary(s.pos, self.params.d0),
+            lamp: self.lamp(w),
         }
+    }
+
+    /// The lamp of the group's advect frames: its goal's centre while the goal is present,
+    /// when the group has phototaxis (p_photo > 0).
+    pub fn lamp(&self, w: &WangWorld) -> Option<Vec3<S>> {
+        (self.params.p_photo > S::ZERO)
+            .then(|| w.goal_center(self.goal))
+            .flatten()
+            .map(|c| Vec3::from_f32(c[0], c[1], c[2]))
     }
 
     /// The separate frame of the insect in world slot `slot`: the `K` nearest broadcast x*
