@@ -14,6 +14,7 @@ pub const SEEDS: [u8; 3] = [17, 101, 211];
 /// 1/L of eq. 8 then appears in the derivatives through the chain rule,
 /// ∂ψ_k/∂r = (ε/L)·∇Per_k(r/L), which is what eq. 9 uses. The curl magnitude thus scales as
 /// ε/L: a smaller L gives finer, more abrupt turns (§VI).
+#[inline]
 pub fn potential<S: Scalar>(pos: Vec3<S>, grid_edge: S, epsilon: S) -> [Noise<S>; 3] {
     let lattice = Lattice::new(lattice_point(pos, grid_edge));
     let scale = epsilon / grid_edge;
@@ -27,6 +28,7 @@ pub fn potential<S: Scalar>(pos: Vec3<S>, grid_edge: S, epsilon: S) -> [Noise<S>
 }
 
 /// r/L: the point in lattice units.
+#[inline]
 fn lattice_point<S: Scalar>(pos: Vec3<S>, grid_edge: S) -> Vec3<S> {
     Vec3::new(pos.x / grid_edge, pos.y / grid_edge, pos.z / grid_edge)
 }
@@ -35,6 +37,7 @@ fn lattice_point<S: Scalar>(pos: Vec3<S>, grid_edge: S) -> Vec3<S> {
 /// (∂ψ_z/∂y − ∂ψ_y/∂z, ∂ψ_x/∂z − ∂ψ_z/∂x, ∂ψ_y/∂x − ∂ψ_x/∂y), with ψ = (ψ_1, ψ_2, ψ_3) from
 /// [`potential`] and analytic derivatives. Divergence-free by construction (§V-A). The three
 /// potentials share one lattice cell ([`Lattice`]); their values are not needed.
+#[inline]
 pub fn curl_force<S: Scalar>(pos: Vec3<S>, grid_edge: S, epsilon: S) -> Vec3<S> {
     let lattice = Lattice::new(lattice_point(pos, grid_edge));
     let scale = epsilon / grid_edge;

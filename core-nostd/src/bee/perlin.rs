@@ -115,7 +115,7 @@ pub struct Lattice<S> {
 
 /// Σ_c a_c·b_c + e_c·f_c over the 8 corners, summed as a balanced tree (a fixed order, so the
 /// same bits everywhere, and one the compiler can evaluate several corners at a time).
-#[inline]
+#[inline(always)]
 fn corner_sum<S: Scalar>(a: &[S; 8], b: &[S; 8], e: &[S; 8], f: &[S; 8]) -> S {
     let mut t = [S::ZERO; 8];
     for (c, t) in t.iter_mut().enumerate() {
@@ -126,6 +126,7 @@ fn corner_sum<S: Scalar>(a: &[S; 8], b: &[S; 8], e: &[S; 8], f: &[S; 8]) -> S {
 
 impl<S: Scalar> Lattice<S> {
     /// The lattice cell of `p` (lattice units: one cell per unit).
+    #[inline(always)]
     pub fn new(p: Vec3<S>) -> Self {
         let ((ix, fx), (iy, fy), (iz, fz)) = (split(p.x), split(p.y), split(p.z));
         let (u, du) = fade(fx);
@@ -164,7 +165,7 @@ impl<S: Scalar> Lattice<S> {
 
     /// The corners' gradients g_c for `seed`, by axis, and their dot products with the
     /// corners' offsets.
-    #[inline]
+    #[inline(always)]
     fn corners(&self, seed: u8) -> ([[S; 8]; 3], [S; 8]) {
         let mut g = [[S::ZERO; 8]; 3];
         for (c, &h) in self.hash.iter().enumerate() {
@@ -184,19 +185,27 @@ impl<S: Scalar> Lattice<S> {
     }
 
     /// The gradient of the noise for `seed` with respect to the point.
+    #[inline(always)]
     pub fn grad(&self, seed: u8) -> Vec3<S> {
         let (g, dot) = self.corners(seed);
-        let component = |k: usize| corner_sum(&self.weight, &g[k], &self.dweight[k], &dot);
+        self.grad_of(&g, &dot)
+    }
+
+    /// The gradient from the corners' gradients and dot products ([`Lattice::corners`]).
+    #[inline(always)]
+    fn grad_of(&self, g: &[[S; 8]; 3], dot: &[S; 8]) -> Vec3<S> {
+        let component = |k: usize| corner_sum(&self.weight, &g[k], &self.dweight[k], dot);
         Vec3::new(component(0), component(1), component(2))
     }
 
-    /// The noise value and its gradient for `seed`.
+    /// The noise value and its gradient for `seed` (the corners computed once for both).
+    #[inline(always)]
     pub fn noise(&self, seed: u8) -> Noise<S> {
-        let (_, dot) = self.corners(seed);
+        let (g, dot) = self.corners(seed);
         let zero = [S::ZERO; 8];
         Noise {
             value: corner_sum(&self.weight, &dot, &zero, &zero),
-            grad: self.grad(seed),
+            grad: self.grad_of(&g, &dot),
         }
     }
 }
@@ -205,6 +214,7 @@ impl<S: Scalar> Lattice<S> {
 /// gradient: the reference hash `P[P[P[x] + y] + z]` with the seed folded in by one more
 /// permutation, `P[hash + seed]` (each seed relabels the corners' gradients, not a mere
 /// translation of the noise). See [`Lattice`] for several seeds at one point.
+#[inline]
 pub fn perlin<S: Scalar>(p: Vec3<S>, seed: u8) -> Noise<S> {
     Lattice::new(p).noise(seed)
 }

@@ -131,22 +131,26 @@ impl CostField {
             axis(p.y, g.min[1], g.cell, g.dims[1]),
             axis(p.z, g.min[2], g.cell, g.dims[2]),
         ];
+        // Per axis, the lower and upper cell's part of the cell index and weight (bit k of the
+        // corner: the upper one), computed once for the 8 corners.
+        let [nx, ny, _] = g.dims.map(|d| d as usize);
+        let stride = [1, nx, nx * ny];
+        let part: [[(usize, S); 2]; 3] = std::array::from_fn(|k| {
+            let a = &ax[k];
+            [
+                (a.lower as usize * stride[k], S::ONE - a.t),
+                (a.upper as usize * stride[k], a.t),
+            ]
+        });
         let mut sum = Vec3::zero();
         let mut reach = S::ZERO;
         for c in 0..8 {
-            let mut w = S::ONE;
-            let mut cell = [0u32; 3];
-            for (k, a) in ax.iter().enumerate() {
-                if c >> k & 1 == 1 {
-                    w *= a.t;
-                    cell[k] = a.upper;
-                } else {
-                    w *= S::ONE - a.t;
-                    cell[k] = a.lower;
-                }
-            }
-            sum += self.cell_guide(cell) * w;
-            if !self.is_goal(self.grid.index(cell)) {
+            let (x, y, z) = (part[0][c & 1], part[1][c >> 1 & 1], part[2][c >> 2 & 1]);
+            let w = S::ONE * x.1 * y.1 * z.1;
+            let i = x.0 + y.0 + z.0;
+            let [gx, gy, gz] = self.guide[i];
+            sum += Vec3::from_f32(gx, gy, gz) * w;
+            if !self.is_goal(i) {
                 reach += w;
             }
         }

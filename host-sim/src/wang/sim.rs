@@ -176,24 +176,24 @@ impl<S: SimScalar> WangGroup<S> {
         result
     }
 
-    /// Keeps x* physical and broadcasts it.
+    /// Keeps x* physical and broadcasts it (one parallel pass: copy, confine, broadcast).
     fn place(&mut self, w: &mut WangWorld) -> (u64, u64) {
         let (lo, hi) = (w.min, w.max);
-        let obstacles = &w.obstacles;
-        self.placed.clone_from(&self.moved);
+        let r = self.first..self.first + self.states.len();
+        let (obstacles, moved, id) = (&w.obstacles, &mut w.moved[r.clone()], &mut w.id[r]);
         self.placed
             .par_iter_mut()
+            .zip(self.moved.par_iter())
             .zip(self.corrected.par_iter_mut())
-            .for_each(|(s, fix)| *fix = confine(obstacles, lo, hi, &mut s.pos, &mut s.vel));
-        let r = self.first..self.first + self.states.len();
-        for ((m, id), (s, &i)) in w.moved[r.clone()]
-            .iter_mut()
-            .zip(&mut w.id[r])
-            .zip(self.placed.iter().zip(&self.ids))
-        {
-            *m = a3(s.pos);
-            *id = i;
-        }
+            .zip(moved.par_iter_mut().zip(id.par_iter_mut()))
+            .zip(self.ids.par_iter())
+            .with_min_len(1024)
+            .for_each(|((((s, m), fix), (out, id)), &i)| {
+                *s = *m;
+                *fix = confine(obstacles, lo, hi, &mut s.pos, &mut s.vel);
+                *out = a3(s.pos);
+                *id = i;
+            });
         tally(&self.corrected)
     }
 
@@ -229,20 +229,26 @@ impl<S: SimScalar> WangGroup<S> {
         let obstacles = &w.obstacles;
         // The decided states become current (`next` keeps the old ones until the next step).
         std::mem::swap(&mut self.states, &mut self.next);
-        let (obstacle, bounds) = self
+        let (obstacle, bounds, pushed) = self
             .states
             .par_iter_mut()
             .zip(self.corrected.par_iter_mut())
-            .map(|(s, c)| {
+            .zip(self.pushes.par_iter())
+            .with_min_len(1024)
+            .map(|((s, c), &n)| {
                 let fix = confine(obstacles, lo, hi, &mut s.pos, &mut s.vel);
                 *c |= fix;
-                (u64::from(fix & 1), u64::from(fix >> 1 & 1))
+                (
+                    u64::from(fix & 1),
+                    u64::from(fix >> 1 & 1),
+                    u64::from(n > 0),
+                )
             })
-            .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+            .reduce(|| (0, 0, 0), |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2));
         Counts {
             obstacle,
             bounds,
-            pushed: self.pushes.iter().filter(|&&n| n > 0).count() as u64,
+            pushed,
         }
     }
 
