@@ -177,61 +177,164 @@ pub fn wang_frame_samples(sim: &WangSim) -> Frame {
     }
 }
 
+/// How [`bench_wang_world_shaped`] varies the bench world, for W-T21's check that the step
+/// does not depend on the grid's size or the number of obstacles. The default, `(1, 1)`, is
+/// [`bench_wang_world`]'s world.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WangBenchShape {
+    /// Cost-grid cells per axis, as a multiple of the default: the cell is d0 / `grid_refine`
+    /// (1: the cell is d0, as the scenarios build it). 0 counts as 1.
+    pub grid_refine: u32,
+    /// Copies of the 4 obstacles (ground box, two spheres, a shaft): the world has
+    /// 4 × `obstacle_copies` of them, each extra copy at a fixed spot clear of the goal (a
+    /// ledge box, a sphere, a shaft). 0 counts as 1.
+    pub obstacle_copies: u32,
+}
+
+impl Default for WangBenchShape {
+    fn default() -> Self {
+        WangBenchShape {
+            grid_refine: 1,
+            obstacle_copies: 1,
+        }
+    }
+}
+
 /// A swarm of `n` insects (Table 1's aggregation parameters, in `scalar`) at the density of
 /// the aggregation scenario (1000 insects in a ball of radius 3, spread over ~5 m): a cube
 /// world scaled with ∛n holding a ball goal, two spheres, a shaft and a ground box, the
 /// insects spawned through the whole cube. For `swarm bench --model wang`.
 pub fn bench_wang_world(n: usize, seed: u32, scalar: ScalarType) -> WangSim {
+    bench_wang_world_shaped(n, seed, scalar, WangBenchShape::default())
+}
+
+/// [`bench_wang_world`] with a finer cost grid or more obstacles (`shape`); the default shape
+/// is the same world.
+///
+/// # Panics
+///
+/// When the cost grid has more than [`MAX_CELLS`](crate::fields::MAX_CELLS) (2²⁶) cells:
+/// never at `grid_refine` 1 (the largest world, 400 m, has 400³), from about 1.05·10⁶ insects
+/// at 2 (a side over 203 m), 3.1·10⁵ at 3, 1.3·10⁵ at 4. 256k insects (127 m) fit up to 3.
+pub fn bench_wang_world_shaped(
+    n: usize,
+    seed: u32,
+    scalar: ScalarType,
+    shape: WangBenchShape,
+) -> WangSim {
     match scalar {
-        ScalarType::F32 => bench_world::<f32>(n, seed),
-        ScalarType::Fixed => bench_world::<Fx>(n, seed),
+        ScalarType::F32 => bench_world::<f32>(n, seed, shape),
+        ScalarType::Fixed => bench_world::<Fx>(n, seed, shape),
     }
 }
 
-fn bench_world<S: SimScalar>(n: usize, seed: u32) -> WangSim
+/// The 4 obstacles of copy `copy` of the bench world of side `side` (copy 0: the base world's;
+/// the others at spots of a low-discrepancy sequence, clear of the goal ball of radius
+/// `goal_r` at the centre).
+fn bench_obstacles(side: f32, copy: u32, goal_r: f32) -> [Shape3; 4] {
+    let c = side / 2.0;
+    if copy == 0 {
+        return [
+            Shape3::Box {
+                min: [0.0; 3],
+                max: [side, 1.0, side],
+            },
+            Shape3::Sphere {
+                center: [c * 0.5, c, c * 0.5],
+                radius: 2.0,
+            },
+            Shape3::Sphere {
+                center: [c * 1.5, c, c * 1.5],
+                radius: 2.0,
+            },
+            Shape3::Shaft {
+                center: [c * 1.5, c * 0.5],
+                radius: 1.0,
+                y_min: 0.0,
+                y_max: side,
+            },
+        ];
+    }
+    // Points of the R3 sequence (Roberts' generalised golden ratio) in the middle 80 % of the
+    // cube, the first `t ≥ start` whose obstacle of bounding radius `r` clears the goal (in
+    // x-z only for a shaft, which spans the height).
+    const ALPHA: [f64; 3] = [
+        0.819_172_513_396_164_4,
+        0.671_043_606_703_789_2,
+        0.549_700_477_901_970_5,
+    ];
+    let mut t = u64::from(copy) * 64;
+    let mut spot = |r: f32, vertical: bool| -> [f32; 3] {
+        loop {
+            t += 1;
+            let p = ALPHA.map(|a| side * (0.1 + 0.8 * (0.5 + a * t as f64).fract() as f32));
+            let d2 = if vertical {
+                (p[0] - c).powi(2) + (p[2] - c).powi(2)
+            } else {
+                p.iter().map(|x| (x - c).powi(2)).sum()
+            };
+            if d2.sqrt() > goal_r + r + 0.5 {
+                return p;
+            }
+        }
+    };
+    let ledge = spot(2.2, false);
+    let a = spot(2.0, false);
+    let b = spot(2.0, false);
+    let shaft = spot(1.0, true);
+    [
+        Shape3::Box {
+            min: [ledge[0] - 1.5, ledge[1] - 0.5, ledge[2] - 1.5],
+            max: [ledge[0] + 1.5, ledge[1] + 0.5, ledge[2] + 1.5],
+        },
+        Shape3::Sphere {
+            center: a,
+            radius: 2.0,
+        },
+        Shape3::Sphere {
+            center: b,
+            radius: 2.0,
+        },
+        Shape3::Shaft {
+            center: [shaft[0], shaft[2]],
+            radius: 1.0,
+            y_min: 0.0,
+            y_max: side,
+        },
+    ]
+}
+
+fn bench_world<S: SimScalar>(n: usize, seed: u32, shape: WangBenchShape) -> WangSim
 where
     AnyWangGroup: From<WangGroup<S>>,
 {
     // 1000 insects per 20³ m³ (Table 1's aggregation).
     let side = (20.0 * (n.max(1) as f32 / 1000.0).cbrt()).clamp(12.0, 400.0);
     let params = WangParams::<f32>::aggregation();
-    let mut w = WangWorld::new([0.0; 3], [side; 3], params.d0, params.d0, params.d_min)
-        .expect("the bench world's grid is small");
+    let cell = params.d0 / shape.grid_refine.max(1) as f32;
+    let mut w = WangWorld::new([0.0; 3], [side; 3], cell, params.d0, params.d_min)
+        .expect("the bench world's grid is within MAX_CELLS");
     let c = side / 2.0;
-    let shapes = [
-        Shape3::Box {
-            min: [0.0; 3],
-            max: [side, 1.0, side],
-        },
-        Shape3::Sphere {
-            center: [c * 0.5, c, c * 0.5],
-            radius: 2.0,
-        },
-        Shape3::Sphere {
-            center: [c * 1.5, c, c * 1.5],
-            radius: 2.0,
-        },
-        Shape3::Shaft {
-            center: [c * 1.5, c * 0.5],
-            radius: 1.0,
-            y_min: 0.0,
-            y_max: side,
-        },
-    ];
-    for (k, shape) in shapes.into_iter().enumerate() {
-        w.obstacles.push(BeeObstacle::new(
-            k as u16,
-            format!("obstacle-{k}"),
-            shape,
-            true,
-        ));
+    let goal_r = 3.0;
+    let copies = shape.obstacle_copies.max(1);
+    for copy in 0..copies {
+        for shape in bench_obstacles(side, copy, goal_r) {
+            let k = w.obstacles.len();
+            w.obstacles.push(BeeObstacle::new(
+                k as u16,
+                format!("obstacle-{k}"),
+                shape,
+                true,
+            ));
+        }
     }
+    let goal = w.obstacles.len() as u16;
     w.goals.push(Goal {
-        id: 4,
+        id: goal,
         name: "goal".into(),
         area: GoalArea::Ball {
             center: [c; 3],
-            radius: 3.0,
+            radius: goal_r,
         },
         active: true,
     });
@@ -251,6 +354,6 @@ where
         .cast::<S>()
         .checked()
         .expect("Table 1 parameters are valid");
-    let group = WangGroup::new("bench".into(), 0, params, 4, states);
+    let group = WangGroup::new("bench".into(), 0, params, goal, states);
     WangSim::new(w, vec![group.into()], seed).expect("the bench goal has cells")
 }

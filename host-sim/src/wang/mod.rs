@@ -16,7 +16,7 @@ pub(crate) mod scenario;
 mod sim;
 mod world;
 
-pub use build::{bench_wang_world, wang_frame_samples};
+pub use build::{WangBenchShape, bench_wang_world, bench_wang_world_shaped, wang_frame_samples};
 pub use metrics::Metrics;
 pub use scenario::{WangParamsOverride, WangPreset, wang_params};
 pub use sim::{AnyWangGroup, Counts, K, WangGroup, WangSeparateFrame, WangSim};

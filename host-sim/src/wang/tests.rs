@@ -163,6 +163,33 @@ fn insects_never_end_a_step_inside_an_obstacle_and_the_bench_world_runs() {
 }
 
 #[test]
+fn the_shaped_bench_world_refines_the_grid_and_copies_obstacles_clear_of_the_goal() {
+    let base = bench_wang_world(4000, 5, ScalarType::F32);
+    let shape = WangBenchShape {
+        grid_refine: 2,
+        obstacle_copies: 4,
+    };
+    let mut sim = bench_wang_world_shaped(4000, 5, ScalarType::F32, shape);
+    let w = &sim.world;
+    assert_eq!(w.grid.dims, base.world.grid.dims.map(|d| 2 * d));
+    assert_eq!(w.obstacles.len(), 16);
+    assert_eq!(&w.obstacles[..4], &base.world.obstacles[..]);
+    let Some(GoalArea::Ball { center, radius }) = w.goals.first().map(|g| &g.area) else {
+        panic!("a ball goal");
+    };
+    for o in &w.obstacles {
+        let (lo, hi) = o.shape.aabb();
+        let d2: f32 = (0..3)
+            .map(|k| (center[k] - center[k].clamp(lo[k], hi[k])).powi(2))
+            .sum();
+        assert!(d2.sqrt() > *radius, "{o:?}");
+    }
+    for _ in 0..5 {
+        sim.tick().unwrap();
+    }
+}
+
+#[test]
 fn a_goal_of_the_wrong_kind_or_none_is_refused_by_name() {
     let text = scenario::builtin("wang-fig9-aggregation")
         .unwrap()
