@@ -4,7 +4,7 @@
 # ...) so both see the same load. Prints a Markdown table for docs/benchmarks.md: agent-steps/s
 # of each backend, ms per tick, the GPU's per-pass ms (timestamp queries) and device memory.
 #
-#   scripts/bench-gpu.sh [--models "ant bee"] [--agents "100000 1000000"] [--threads 2]
+#   scripts/bench-gpu.sh [--models "ant bee wang"] [--agents "100000 1000000"] [--threads 2]
 #                        [--steps-per-million 3] [--min-steps 3] [--swarm target/release/swarm]
 #
 # A model without a GPU engine gets a row saying so. JSON reports go to target/bench-gpu/.
@@ -14,7 +14,7 @@ if [[ ${1:-} == -h || ${1:-} == --help ]]; then
     exit 0
 fi
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-models="ant bee" agents="100000 1000000" threads=2 per_million=3 min_steps=3 swarm=""
+models="ant bee wang" agents="100000 1000000" threads=2 per_million=3 min_steps=3 swarm=""
 while [[ $# -gt 0 ]]; do
     case $1 in
         --models) models=$2 ;;

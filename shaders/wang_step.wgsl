@@ -90,14 +90,15 @@ const WANG_FIELD_FRAME_NEIGHBOURS_ID: u32 = 12u; // "frame.neighbours.id"
 
 // ---- validation (check.rs, frame.rs) ----
 
-// check_length: check_vec, then a length within [lo, hi] (limits included).
-fn wang_check_length(v: vec3<S>, lo: f32, hi: f32, field: u32) -> u32 {
+// check_length: check_vec, then a length within [lo, hi] (limits included; the callers convert
+// them as the Rust does, `S::from_f32`).
+fn wang_check_length(v: vec3<S>, lo: S, hi: S, field: u32) -> u32 {
     let e = bee_check_vec(v, field);
     if (e != BEE_OK) {
         return e;
     }
     let len = geom_vec3_length(v);
-    if (len >= s_from_f32(lo) && len <= s_from_f32(hi)) {
+    if (len >= lo && len <= hi) {
         return BEE_OK;
     }
     return bee_error(BEE_ERROR_OUT_OF_RANGE, field);
@@ -105,7 +106,7 @@ fn wang_check_length(v: vec3<S>, lo: f32, hi: f32, field: u32) -> u32 {
 
 // check_unit: a unit vector within 1 ± 1 %.
 fn wang_check_unit(v: vec3<S>, field: u32) -> u32 {
-    return wang_check_length(v, 0.99f, 1.01f, field);
+    return wang_check_length(v, s_from_f32(0.99f), s_from_f32(1.01f), field);
 }
 
 // Vec3::check: NonFinite unless every component is finite.
@@ -150,7 +151,8 @@ fn wang_boundary_validate(b: WangBoundary) -> u32 {
 
 // AdvectFrame::validate.
 fn wang_advect_frame_validate(f: WangAdvectFrame) -> u32 {
-    var e = wang_check_length(f.guide, 0.0f, WANG_MAX_GUIDE, WANG_FIELD_FRAME_GUIDE);
+    var e = wang_check_length(f.guide, s_from_f32(0.0f), s_from_f32(WANG_MAX_GUIDE),
+                              WANG_FIELD_FRAME_GUIDE);
     if (e == BEE_OK && f.has_boundary) {
         e = wang_boundary_validate(f.boundary);
     }

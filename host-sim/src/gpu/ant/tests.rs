@@ -1145,6 +1145,11 @@ fn the_shaders_constants_are_rusts() {
     assert_eq!(named("ANT_WINDING_LIMIT"), ant::WINDING_LIMIT);
     assert_eq!(named("ANT_SURFACE_MARGIN"), ant::SURFACE_MARGIN);
     assert_eq!(named("ANT_W_MAX"), ant::W_MAX);
+    assert_eq!(named("WANG_MAX_GUIDE"), swarm_core::wang::frame::MAX_GUIDE);
+    assert_eq!(
+        named("WANG_MAX_CURVATURE"),
+        swarm_core::wang::frame::MAX_CURVATURE
+    );
     let mut args: Vec<&str> = sources
         .iter()
         .flat_map(|s| s.split("s_from_f32(").skip(1))
