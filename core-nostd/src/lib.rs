@@ -11,6 +11,9 @@
 //! * [`wang`]: the noise-aware insect swarm of Wang et al. 2014, *Inherent Noise-Aware Insect
 //!   Swarm Simulation* (§4-7, eq. 1-9): bounded curl noise plus a navigation direction, as a
 //!   two-phase `advect` → `separate` (minimum distance enforcement) step;
+//! * [`fly`]: the force-based flying insect of Ren et al. 2016, *Simulating Flying Insects
+//!   Using Dynamics and Data-Driven Noise Modeling* (Eq. 2-5, Algorithm 1): zone forces,
+//!   friction, stimulus response and curl noise into a preferred velocity;
 //! * [`wire`] (feature `serde`): the message types, the frame codec
 //!   `COBS(header ‖ postcard payload ‖ CRC) ‖ 0x00`, the session protocol (handshake,
 //!   configure, ping, statistics) and the device endpoint
@@ -69,6 +72,7 @@ pub mod ant;
 pub mod bee;
 mod check;
 mod error;
+pub mod fly;
 pub mod geom;
 pub mod model;
 pub mod rand;

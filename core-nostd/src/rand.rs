@@ -34,6 +34,14 @@ pub mod stream {
     pub const WANG_MDE: u32 = 0x34;
     /// Wang: the azimuth of that direction.
     pub const WANG_MDE_AZIMUTH: u32 = 0x35;
+    /// ren2016: the escape angle θ of an episode.
+    pub const FLY_ESCAPE: u32 = 0x40;
+    /// ren2016: the white and Gaussian noise, x (the Gaussian's four draws add `k << 8`).
+    pub const FLY_NOISE_X: u32 = 0x41;
+    /// ren2016: the white and Gaussian noise, y.
+    pub const FLY_NOISE_Y: u32 = 0x42;
+    /// ren2016: the white and Gaussian noise, z.
+    pub const FLY_NOISE_Z: u32 = 0x43;
 }
 
 /// Wellons' `lowbias32` finaliser: a bijective 32-bit mixer with low avalanche bias.

@@ -40,6 +40,7 @@ mod error;
 pub mod fields;
 pub mod gpu;
 pub mod grid;
+pub mod huge;
 pub mod models;
 pub(crate) mod nearest;
 pub mod output;

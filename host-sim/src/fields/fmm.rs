@@ -9,6 +9,7 @@ use rayon::prelude::*;
 
 use super::{CellGrid, SignedDistance, guide, repulsion};
 use crate::error::{Result, SimError};
+use crate::huge::HugeSlice;
 use crate::space::Shape3;
 
 /// The weights of the path cost (wang2014 eq. 4, `Cost = A∫ds + B∫g ds`) and the cost per unit
@@ -106,12 +107,24 @@ pub struct CostField {
     pub grid: CellGrid,
     /// C per cell: 0 in goal cells, `+∞` where no goal can be reached.
     pub cost: Vec<f32>,
-    /// The unit vector `−∇C/‖∇C‖` per cell (node gradient one-sided towards the smaller
-    /// neighbour, spec W9); zero in goal cells and unreachable cells.
-    pub guide: Vec<[f32; 3]>,
+    /// What a step samples of each cell: its guide and whether it is a goal cell
+    /// ([`CostField::guide`], [`CostField::is_goal`]), on huge pages.
+    pub(super) cells: HugeSlice<GuideCell>,
     /// What the solve cost.
     pub solve: Solve,
-    goal: Vec<bool>,
+}
+
+/// What the step reads of a cell, in one aligned 16-byte record: a trilinear sample touches 8
+/// cells, one cache line each at most. The records live on huge pages ([`HugeSlice`]): the
+/// samples are scattered over the field.
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C, align(16))]
+pub(super) struct GuideCell {
+    /// The unit vector `−∇C/‖∇C‖` (node gradient one-sided towards the smaller neighbour, spec
+    /// W9); zero in goal cells and unreachable cells.
+    pub(super) guide: [f32; 3],
+    /// 1 for a goal cell, else 0.
+    pub(super) goal: u32,
 }
 
 /// A heap entry: a tentative cost and its cell. Ordered so that `BinaryHeap` pops the smallest
@@ -207,18 +220,25 @@ impl CostField {
             .collect();
         let cost = march(grid, &lf, goal);
         let reachable = cost.iter().filter(|c| c.is_finite()).count();
-        let guide = guide::descent(grid, &cost, goal);
+        let cells: Vec<GuideCell> = guide::descent(grid, &cost, goal)
+            .into_iter()
+            .zip(goal)
+            .map(|(guide, &goal)| GuideCell {
+                guide,
+                goal: u32::from(goal),
+            })
+            .collect();
+        let cells = HugeSlice::from_slice(&cells);
         Ok(CostField {
             grid: grid.clone(),
             cost,
-            guide,
+            cells,
             solve: Solve {
                 cells: n,
                 reachable,
                 goal_cells,
                 seconds: start.elapsed().as_secs_f64(),
             },
-            goal: goal.to_vec(),
         })
     }
 
@@ -243,12 +263,15 @@ impl CostField {
     /// Whether cell `index` is a goal cell (false past the last cell).
     #[inline]
     pub fn is_goal(&self, index: usize) -> bool {
-        self.goal.get(index).copied().unwrap_or(false)
+        self.cells.get(index).is_some_and(|c| c.goal != 0)
     }
 
-    /// The goal mask the field was solved for.
-    pub fn goal(&self) -> &[bool] {
-        &self.goal
+    /// The unit vector `−∇C/‖∇C‖` of cell `index` (node gradient one-sided towards the
+    /// smaller neighbour, spec W9); zero in goal cells, unreachable cells and past the last
+    /// cell.
+    #[inline]
+    pub fn guide(&self, index: usize) -> [f32; 3] {
+        self.cells.get(index).map_or([0.0; 3], |c| c.guide)
     }
 }
 

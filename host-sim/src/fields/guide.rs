@@ -115,7 +115,7 @@ impl CostField {
 
     /// The stored guide of a cell in `S`.
     fn cell_guide<S: Scalar>(&self, cell: [u32; 3]) -> Vec3<S> {
-        let [x, y, z] = self.guide[self.grid.index(cell)];
+        let [x, y, z] = self.guide(self.grid.index(cell));
         Vec3::from_f32(x, y, z)
     }
 
@@ -142,15 +142,17 @@ impl CostField {
                 (a.upper as usize * stride[k], a.t),
             ]
         });
+        let cells: &[_] = &self.cells;
         let mut sum = Vec3::zero();
         let mut reach = S::ZERO;
         for c in 0..8 {
             let (x, y, z) = (part[0][c & 1], part[1][c >> 1 & 1], part[2][c >> 2 & 1]);
             let w = S::ONE * x.1 * y.1 * z.1;
             let i = x.0 + y.0 + z.0;
-            let [gx, gy, gz] = self.guide[i];
+            let cell = &cells[i];
+            let [gx, gy, gz] = cell.guide;
             sum += Vec3::from_f32(gx, gy, gz) * w;
-            if !self.is_goal(i) {
+            if cell.goal == 0 {
                 reach += w;
             }
         }

@@ -241,11 +241,11 @@ fn assert_no_local_minimum(name: &str, field: &CostField) {
         let c = field.cost[i];
         if field.is_goal(i) {
             assert_eq!(c, 0.0, "{name}: goal cell {:?}", grid.coords(i));
-            assert_eq!(field.guide[i], [0.0; 3]);
+            assert_eq!(field.guide(i), [0.0; 3]);
             continue;
         }
         if !c.is_finite() {
-            assert_eq!(field.guide[i], [0.0; 3]);
+            assert_eq!(field.guide(i), [0.0; 3]);
             continue;
         }
         reachable += 1;
@@ -260,7 +260,7 @@ fn assert_no_local_minimum(name: &str, field: &CostField) {
             "{name}: cell {:?} (C = {c}) is a local minimum",
             grid.coords(i)
         );
-        let g = field.guide[i];
+        let g = field.guide(i);
         let len = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
         assert!(
             (len - 1.0).abs() < 1e-5,
@@ -384,10 +384,8 @@ fn solves_are_deterministic_for_any_thread_count() {
             (
                 sdf.phi.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
                 field.cost.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
-                field
-                    .guide
-                    .iter()
-                    .flat_map(|g| g.map(f32::to_bits))
+                (0..field.grid.len())
+                    .flat_map(|i| field.guide(i).map(f32::to_bits))
                     .collect::<Vec<_>>(),
             )
         };

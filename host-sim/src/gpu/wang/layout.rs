@@ -177,12 +177,10 @@ pub fn field_words(fields: &[(u16, CostField)]) -> (Vec<u32>, Vec<(u16, u32)>) {
         out.push(g.cell.to_bits());
         out.push(guides as u32);
         out.push(goals as u32);
-        out.extend(f.guide.iter().flat_map(|v| v.map(f32::to_bits)));
+        out.extend((0..cells).flat_map(|i| f.guide(i).map(f32::to_bits)));
         let mut bits = vec![0u32; cells.div_ceil(32)];
-        for (i, &on) in f.goal().iter().enumerate() {
-            if on {
-                bits[i / 32] |= 1 << (i % 32);
-            }
+        for i in (0..cells).filter(|&i| f.is_goal(i)) {
+            bits[i / 32] |= 1 << (i % 32);
         }
         out.extend(bits);
     }
