@@ -11,6 +11,8 @@
 //! * [`wang`]: the noise-aware insect swarm of Wang et al. 2014, *Inherent Noise-Aware Insect
 //!   Swarm Simulation* (§4-7, eq. 1-9): bounded curl noise plus a navigation direction, as a
 //!   two-phase `advect` → `separate` (minimum distance enforcement) step;
+//! * [`orca3d`]: 3D ORCA (van den Berg et al. 2009) with RVO2-3D semantics, plus hard static
+//!   obstacle planes, as the ren2016 spec §2.5 prescribes: allocation-free LP1-LP4;
 //! * [`wire`] (feature `serde`): the message types, the frame codec
 //!   `COBS(header ‖ postcard payload ‖ CRC) ‖ 0x00`, the session protocol (handshake,
 //!   configure, ping, statistics) and the device endpoint
@@ -71,6 +73,7 @@ mod check;
 mod error;
 pub mod geom;
 pub mod model;
+pub mod orca3d;
 pub mod rand;
 pub mod scalar;
 pub mod wang;
