@@ -11,8 +11,7 @@
 //! * [`wang`]: the noise-aware insect swarm of Wang et al. 2014, *Inherent Noise-Aware Insect
 //!   Swarm Simulation* (§4-7, eq. 1-9): bounded curl noise plus a navigation direction, as a
 //!   two-phase `advect` → `separate` (minimum distance enforcement) step;
-//! * [`orca3d`]: 3D ORCA (van den Berg et al. 2009) with RVO2-3D semantics, plus hard static
-//!   obstacle planes, as the ren2016 spec §2.5 prescribes: allocation-free LP1-LP4;
+//! * [`orca3d`]: 3D ORCA with RVO2-3D semantics and hard obstacle planes (ren2016 spec §2.5);
 //! * [`wire`] (feature `serde`): the message types, the frame codec
 //!   `COBS(header ‖ postcard payload ‖ CRC) ‖ 0x00`, the session protocol (handshake,
 //!   configure, ping, statistics) and the device endpoint

@@ -244,8 +244,12 @@ fn ring_swap_zero_fallback_is_collision_free() {
         let d = sim.min_distance();
         assert!(d >= 1.0 * (1.0 - 1e-3), "step {step}: overlap {d}");
     }
-    // (A share, not a bound: see the report of R-T8.)
-    assert!(sim.infeasible <= 400 * n);
+    // (A share, not a bound: R-T8 reports it.)
+    std::println!(
+        "zero-velocity fallback: {} infeasible of {} frames",
+        sim.infeasible,
+        400 * n
+    );
 }
 
 /// R-T7: without neighbours v_new = v_pref, clamped to the speed sphere.
@@ -617,6 +621,34 @@ proptest! {
         prop_assert!(out.velocity.check("v").is_ok());
         prop_assert!(out.velocity.length() <= 2.0 * (1.0 + 1e-4));
     }
+
+    /// The same in fixed point, obstacles included: no panic, a velocity within the sphere.
+    #[test]
+    fn solve_is_total_fixed(
+        others in prop::collection::vec((point(5.0), point(3.0), 0.0f32..1.0), 0..8),
+        me in (point(5.0), point(3.0), 0.0f32..1.0),
+        wall in (point(5.0), unit_vec()),
+        pref in point(4.0),
+        lp4 in any::<bool>(),
+    ) {
+        let body = |(p, v, r): (V, V, f32)| Body {
+            pos: to_f32(p).cast::<Fx>(),
+            vel: to_f32(v).cast::<Fx>(),
+            radius: Fx::from_f32(r),
+        };
+        let nb: Vec<Body<Fx>> = others.into_iter().map(body).collect();
+        let fallback = if lp4 { Fallback::Lp4 } else { Fallback::ZeroVelocity };
+        let p = OrcaParams {
+            time_horizon: Fx::from_f32(2.0),
+            dt: Fx::from_f32(0.1),
+            max_speed: Fx::from_f32(2.0),
+            max_neighbors: 10,
+            fallback,
+        };
+        let obstacle = Surface { point: to_f32(wall.0).cast(), normal: to_f32(wall.1).cast() };
+        let out = solve::<Fx, 9>(&body(me), &nb, &[obstacle], to_f32(pref).cast(), &p).unwrap();
+        prop_assert!(out.velocity.length().to_f32() <= 2.0 * (1.0 + 1e-2));
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -750,9 +782,9 @@ impl KdTree {
         let p = coords(pos[me]);
         let dist = |c: &KdNode| {
             let mut s = 0.0f32;
-            for k in 0..3 {
-                let lo = cmax(0.0, c.min[k] - p[k]);
-                let hi = cmax(0.0, p[k] - c.max[k]);
+            for (k, &pk) in p.iter().enumerate() {
+                let lo = cmax(0.0, c.min[k] - pk);
+                let hi = cmax(0.0, pk - c.max[k]);
                 s = s + lo * lo + hi * hi;
             }
             s
@@ -872,7 +904,8 @@ fn sphere_run(kd: bool, steps: usize, tol: f32) {
 // ---------------------------------------------------------------------------------------------
 // Fixed point.
 
-/// Fx runs the head-on pair in small units: no overlap, and within 1e-2 of f32 for 60 steps.
+/// Fx runs the head-on pair in small units: no overlap, and within 1e-3 of f32 for 160 steps
+/// (1.8e-4 measured).
 #[test]
 fn fixed_point_head_on() {
     let (a, goal) = (Vec3::new(-2.0, 0.02, 0.0), Vec3::new(2.0, 0.02, 0.0));
@@ -906,5 +939,5 @@ fn fixed_point_head_on() {
         }
     }
     std::println!("Fx vs f32: largest deviation {worst:e}");
-    assert!(worst < 1e-2, "{worst}");
+    assert!(worst < 1e-3, "{worst}");
 }
