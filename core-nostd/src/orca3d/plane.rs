@@ -3,6 +3,7 @@
 //! {v | (v − (v_A^opt + ½u))·n ≥ 0}, in 3D as RVO2-3D's `Agent::computeNewVelocity`) and the
 //! plane a static obstacle surface induces (ours, ren2016 spec §2.5).
 
+use super::{Body, Surface};
 use crate::{Scalar, Vec3};
 
 wire_type! {
@@ -52,8 +53,8 @@ pub(crate) fn unit<S: Scalar>(v: Vec3<S>) -> Option<Vec3<S>> {
     }
 }
 
-/// The ORCA plane agent `i` (position `pos`, velocity `vel`, radius `radius`) takes from
-/// neighbour `j` (`other_pos`, `other_vel`, `other_radius`), taking half the responsibility
+/// The ORCA plane agent `i` (`agent`) takes from neighbour `j` (`other`), taking half the
+/// responsibility
 /// (ORCA, van den Berg et al. 2009, §5, eq. (6): `point = v_i + ½u`, `normal = n`).
 ///
 /// As RVO2-3D's `computeNewVelocity`, with `p = r_j − r_i`, `u_rel = v_i − v_j`,
@@ -71,22 +72,17 @@ pub(crate) fn unit<S: Scalar>(v: Vec3<S>) -> Option<Vec3<S>> {
 /// `|w|` (an exactly degenerate relative velocity) the normal falls back to `−p̂` (move away
 /// from the neighbour, `u = (R/τ or R/Δt)·n` less the current approach); `None` when the two
 /// agents also coincide (no direction to separate along: the plane is left out).
-#[allow(clippy::too_many_arguments)]
 pub fn neighbour_plane<S: Scalar>(
-    pos: Vec3<S>,
-    vel: Vec3<S>,
-    radius: S,
-    other_pos: Vec3<S>,
-    other_vel: Vec3<S>,
-    other_radius: S,
+    agent: &Body<S>,
+    other: &Body<S>,
     inv_tau: S,
     inv_dt: S,
 ) -> Option<Plane<S>> {
     let half = S::from_f32(0.5);
-    let rel_pos = other_pos - pos;
-    let rel_vel = vel - other_vel;
+    let rel_pos = other.pos - agent.pos;
+    let rel_vel = agent.vel - other.vel;
     let dist_sq = rel_pos.length_sq();
-    let r = radius + other_radius;
+    let r = agent.radius + other.radius;
     let r_sq = r * r;
 
     let (normal, u) = if dist_sq > r_sq {
@@ -119,7 +115,7 @@ pub fn neighbour_plane<S: Scalar>(
             None => away(rel_pos, rel_vel, r * inv_dt)?,
         }
     };
-    Some(Plane::new(vel + u * half, normal))
+    Some(Plane::new(agent.vel + u * half, normal))
 }
 
 /// The degenerate-`w` fallback of [`neighbour_plane`]: normal `−p̂`, and a `u` that makes the
@@ -130,28 +126,27 @@ fn away<S: Scalar>(rel_pos: Vec3<S>, rel_vel: Vec3<S>, speed: S) -> Option<(Vec3
 }
 
 /// The hard plane a static obstacle surface induces (ours, ren2016 spec §2.5): with the
-/// surface's closest point `point`, its outward unit normal `n` and the agent's signed
-/// distance `d = n·(pos − point)`,
+/// surface's closest point `surface.point`, its outward normal `n = surface.normal` (unit
+/// length: [`solve`](super::solve) normalises it) and the agent's signed distance
+/// `d = n·(pos − point)`,
 ///
 /// * `n·v ≥ −(d − radius)/τ` when `d > radius` (the agent may approach the surface but not
 ///   reach it within the time horizon τ);
 /// * `n·v ≥ (radius − d)/Δt` otherwise (leave the penetration within one step).
 ///
 /// Full responsibility (no ½: the obstacle does not move). `inv_tau` is 1/τ, `inv_dt` 1/Δt.
-/// `n` must have unit length (see [`Surface`](super::Surface)).
 pub fn obstacle_plane<S: Scalar>(
-    pos: Vec3<S>,
-    radius: S,
-    point: Vec3<S>,
-    n: Vec3<S>,
+    agent: &Body<S>,
+    surface: &Surface<S>,
     inv_tau: S,
     inv_dt: S,
 ) -> Plane<S> {
-    let d = n.dot(pos - point);
-    let bound = if d > radius {
-        -(d - radius) * inv_tau
+    let n = surface.normal;
+    let d = n.dot(agent.pos - surface.point);
+    let bound = if d > agent.radius {
+        -(d - agent.radius) * inv_tau
     } else {
-        (radius - d) * inv_dt
+        (agent.radius - d) * inv_dt
     };
     Plane::new(n * bound, n)
 }
