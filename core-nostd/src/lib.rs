@@ -14,6 +14,7 @@
 //! * [`fly`]: the force-based flying insect of Ren et al. 2016, *Simulating Flying Insects
 //!   Using Dynamics and Data-Driven Noise Modeling* (Eq. 2-5, Algorithm 1): zone forces,
 //!   friction, stimulus response and curl noise into a preferred velocity;
+//! * [`orca3d`]: 3D ORCA with RVO2-3D semantics and hard obstacle planes (ren2016 spec §2.5);
 //! * [`wire`] (feature `serde`): the message types, the frame codec
 //!   `COBS(header ‖ postcard payload ‖ CRC) ‖ 0x00`, the session protocol (handshake,
 //!   configure, ping, statistics) and the device endpoint
@@ -75,6 +76,7 @@ mod error;
 pub mod fly;
 pub mod geom;
 pub mod model;
+pub mod orca3d;
 pub mod rand;
 pub mod scalar;
 pub mod wang;
