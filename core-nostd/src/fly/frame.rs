@@ -1,6 +1,7 @@
 //! The insect's state and its sensor frame, with input validation (spec §1.4, §1.5 step 1).
 
 use crate::check::{check_unit, check_vec};
+use crate::orca3d::Surface;
 use crate::{Error, Result, Scalar, Vec3};
 
 /// [`Stimulus::kind`]: food or a female, pursued (s_e = 0).
@@ -44,17 +45,6 @@ wire_type! {
         pub kind: u8,
     }
 
-    /// An obstacle surface near the insect: its closest point and the outward unit normal
-    /// there (pointing into the free space the insect is in). ORCA keeps the insect on the
-    /// free side (spec §2.5, ours).
-    #[derive(Clone, Copy, Debug, PartialEq)]
-    pub struct Surface<S> {
-        /// The closest point of the surface.
-        pub point: Vec3<S>,
-        /// The outward unit normal (length 1 ± 1 %).
-        pub normal: Vec3<S>,
-    }
-
     /// The sensor input of one step: up to `N` neighbours (nearest first, ties by id: ORCA's
     /// result depends on their order), the stimulus, up to `O` obstacle surfaces.
     #[derive(Clone, Debug, PartialEq)]
@@ -64,7 +54,9 @@ wire_type! {
         pub neighbours: heapless::Vec<Neighbour<S>, N>,
         /// The stimulus in range, if any.
         pub stimulus: Option<Stimulus<S>>,
-        /// Obstacle surfaces within ORCA's reach.
+        /// Obstacle surfaces within ORCA's reach: the closest point and the outward unit
+        /// normal, pointing into the free space the insect is in (a container's walls point
+        /// inward). ORCA keeps the insect on the free side (spec §2.5, ours).
         pub surfaces: heapless::Vec<Surface<S>, O>,
     }
 }

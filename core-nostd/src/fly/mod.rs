@@ -13,14 +13,15 @@
 pub mod force;
 pub mod frame;
 pub mod params;
+pub mod step;
 
 #[cfg(test)]
 mod tests;
 
-pub use frame::{
-    FlyFrame, FlyState, Neighbour, STIMULUS_PREDATOR, STIMULUS_TARGET, Stimulus, Surface,
-};
+pub use crate::orca3d::Surface;
+pub use frame::{FlyFrame, FlyState, Neighbour, STIMULUS_PREDATOR, STIMULUS_TARGET, Stimulus};
 pub use params::{
     FALLBACK_LP4, FALLBACK_STOP, FlyParams, NOISE_CURL, NOISE_GAUSSIAN, NOISE_NONE, NOISE_PERLIN,
     NOISE_WHITE,
 };
+pub use step::{FlyDecision, step, step_checked};

@@ -271,3 +271,93 @@ fn bad_frames_name_the_field() {
         Err(crate::Error::out_of_range("frame.surfaces.normal").at(0))
     );
 }
+
+/// A frame holding `others` as neighbours (ids 1..), no stimulus, no surfaces.
+fn frame_of(others: &[FlyState<f32>]) -> FlyFrame<f32, 16, 4> {
+    let mut f = FlyFrame::new();
+    for (i, o) in others.iter().enumerate() {
+        f.neighbours
+            .push(Neighbour {
+                id: i as u32 + 1,
+                pos: o.pos,
+                vel: o.vel,
+            })
+            .unwrap();
+    }
+    f
+}
+
+/// Algorithm 1 for a lone insect: v_pref from the forces, ORCA leaves it (within the speed
+/// limit), the insect moves by v·Δt; the same in fixed point within 1e-3.
+#[test]
+fn a_lone_insect_follows_its_forces() {
+    let p = FlyParams::<f32>::midge();
+    let mut s = FlyState::new(Vec3::new(1.0, 2.0, 3.0), Vec3::new(0.5, 0.0, 0.0));
+    let mut s_fx = s.cast::<Fx>();
+    let p_fx = p.cast::<Fx>();
+    for k in 0..200 {
+        let (next, d) = step(&s, &frame_of(&[]), &p, ctx(0, k)).unwrap();
+        let want = s.vel + (friction(s.vel, p.gamma) + noise_force(s.pos, &p, ctx(0, k))) * p.dt;
+        assert!(close(d.pref, want));
+        assert!(!d.infeasible);
+        assert!(next.vel.length() <= p.max_speed * 1.0001);
+        assert_eq!(next.pos, s.pos + next.vel * p.dt);
+        let (next_fx, _) = step(&s_fx, &FlyFrame::<Fx, 16, 4>::new(), &p_fx, ctx(0, k)).unwrap();
+        s = next;
+        s_fx = next_fx;
+    }
+    assert!(
+        (s.pos - s_fx.pos.cast()).length() < 2e-3,
+        "{:?} {:?}",
+        s.pos,
+        s_fx.pos
+    );
+}
+
+/// Two insects flying at each other (attraction pulls them together too) never come closer
+/// than two ORCA radii.
+#[test]
+fn two_insects_head_on_never_overlap() {
+    let p = FlyParams {
+        noise: NOISE_NONE,
+        ..FlyParams::<f32>::fruitfly()
+    };
+    let mut a = FlyState::new(Vec3::new(-1.5, 0.0, 0.0), Vec3::new(3.0, 0.0, 0.0));
+    let mut b = FlyState::new(Vec3::new(1.5, 0.0, 0.01), Vec3::new(-3.0, 0.0, 0.0));
+    for k in 0..500 {
+        let (na, _) = step(&a, &frame_of(&[b]), &p, ctx(0, k)).unwrap();
+        let mut fb = frame_of(&[a]);
+        fb.neighbours[0].id = 0;
+        let (nb, _) = step(&b, &fb, &p, ctx(1, k)).unwrap();
+        (a, b) = (na, nb);
+        let d = (a.pos - b.pos).length();
+        assert!(d >= 2.0 * p.radius * (1.0 - 1e-3), "step {k}: {d}");
+    }
+}
+
+/// An insect driven at a wall stays on its side.
+#[test]
+fn a_wall_holds() {
+    let p = FlyParams {
+        noise: NOISE_NONE,
+        ..FlyParams::<f32>::phototaxis()
+    };
+    let mut s = FlyState::new(Vec3::new(0.0, 0.0, 0.0), Vec3::new(5.0, 0.0, 0.0));
+    let mut f: FlyFrame<f32, 16, 4> = FlyFrame::new();
+    let target = Stimulus {
+        pos: Vec3::new(3.0, 0.0, 0.0),
+        kind: STIMULUS_TARGET,
+    };
+    f.stimulus = Some(target);
+    for k in 0..300 {
+        f.surfaces.clear();
+        f.surfaces
+            .push(Surface {
+                point: Vec3::new(1.0, s.pos.y, s.pos.z),
+                normal: Vec3::new(-1.0, 0.0, 0.0),
+            })
+            .unwrap();
+        s = step(&s, &f, &p, ctx(0, k)).unwrap().0;
+        assert!(s.pos.x <= 1.0 - p.radius + 1e-4, "step {k}: {:?}", s.pos);
+    }
+}
