@@ -14,6 +14,7 @@ pub mod force;
 pub mod frame;
 pub mod params;
 pub mod step;
+mod wire;
 
 #[cfg(test)]
 mod tests;
@@ -25,3 +26,6 @@ pub use params::{
     NOISE_WHITE,
 };
 pub use step::{FlyDecision, step, step_checked};
+pub use wire::{
+    FlyStep, FlyStepReply, FlyStepRequest, WIRE_FLY_NEIGHBOURS, WIRE_FLY_SURFACES, WireFlyFrame,
+};
