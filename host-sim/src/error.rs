@@ -605,6 +605,32 @@ pub enum SimError {
         /// Its agents.
         agents: usize,
     },
+    /// A track file whose times give no frame interval (every track has one sample).
+    #[error(
+        "{}: no two samples of one id at different times: cannot tell the frame interval \
+         (give it with --dt)",
+        path.display()
+    )]
+    TrackInterval {
+        /// The track file.
+        path: PathBuf,
+    },
+    /// A track sample whose time is not on the frame grid.
+    #[error(
+        "{}:{line}: time {time} is not on the frame grid (interval {dt} s from the earliest \
+         time); tracks must share one frame rate",
+        path.display()
+    )]
+    TrackTime {
+        /// The track file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// The row's time.
+        time: f64,
+        /// The frame interval.
+        dt: f64,
+    },
     /// An empty CSV file.
     #[error("{}:1: empty file, expected the CSV header", path.display())]
     CsvEmpty {

@@ -37,6 +37,7 @@ pub mod bench;
 pub mod cli;
 pub mod engine;
 mod error;
+pub mod eval;
 pub mod fields;
 pub mod gpu;
 pub mod grid;
