@@ -62,6 +62,27 @@ enum Command {
         /// The folder a `swarm run` wrote.
         dir: PathBuf,
     },
+    /// Score trajectories against a reference (ren2016's evaluation: seven metrics, their
+    /// z-scored PDFs compared by L1, entropy weights, the score E; and the polarisation).
+    ///
+    /// Each of REFERENCE and CANDIDATES is a track file (CSV with the header `id,time,x,y,z`,
+    /// one row per insect and time) or a run folder written by `swarm run`. With two
+    /// candidates or more, the weights and scores rank them (E in [0, 1], higher is closer to
+    /// the reference); with one, every weight is 1/7 and only the energies tell.
+    Eval {
+        /// The reference trajectories (measured tracks, or a run).
+        reference: PathBuf,
+        /// The trajectories to score.
+        #[arg(required = true)]
+        candidates: Vec<PathBuf>,
+        /// Frame interval of the track files in seconds (default: the smallest time step
+        /// within a track).
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Write the JSON report here (it is printed too).
+        #[arg(long)]
+        json: Option<PathBuf>,
+    },
     /// Measure agent-steps per second on a synthetic world and write JSON.
     Bench {
         /// Which model (`ant`, `bee`; see `swarm models`).
@@ -177,6 +198,31 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 files.png.display(),
                 files.gif.display()
             );
+            Ok(())
+        }
+        Command::Eval {
+            reference,
+            candidates,
+            dt,
+            json,
+        } => {
+            if let Some(dt) = dt
+                && !(dt.is_finite() && dt > 0.0)
+            {
+                return Err(format!("--dt: {dt} is not a positive number of seconds").into());
+            }
+            let open = |p: &PathBuf| crate::eval::Tracks::open(p, dt);
+            let reference_tracks = open(&reference)?;
+            let tracks = candidates.iter().map(open).collect::<Result<Vec<_>, _>>()?;
+            let refs: Vec<&crate::eval::Tracks> = tracks.iter().collect();
+            let e = crate::eval::evaluate(&reference_tracks, &refs);
+            let report = crate::eval::report(&reference, &candidates, &e);
+            println!("{}", crate::eval::table(&candidates, &e));
+            if let Some(path) = json {
+                crate::output::remove_stale_temps(&path);
+                let text = serde_json::to_string_pretty(&report)?;
+                crate::output::write_atomic_bytes(&path, (text + "\n").as_bytes())?;
+            }
             Ok(())
         }
         Command::Bench {

@@ -222,3 +222,65 @@ fn the_gpu_backend_names_its_adapter_and_what_to_install_without_one() {
     );
     assert_eq!(report["scalar"], "I16F16");
 }
+
+/// `swarm eval` scores run folders and track files against a reference, writes its JSON,
+/// and names the line and field of a bad track file.
+#[test]
+fn eval_scores_runs_and_track_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let runs: Vec<PathBuf> = (1..=2)
+        .map(|seed| {
+            let out = dir.path().join(format!("run{seed}"));
+            common::ok(&mut common::run_cmd(
+                "wang-fig10-phototaxis",
+                &out,
+                &["--steps", "60", "--seed", &seed.to_string()],
+            ));
+            out
+        })
+        .collect();
+    // A track file: three insects on straight lines, 0.1 s apart.
+    let tracks = dir.path().join("tracks.csv");
+    let mut text = String::from("id,time,x,y,z\n");
+    for id in 0..3 {
+        for k in 0..40 {
+            text += &format!("{id},{},{},{id},1\n", k as f64 * 0.1, k as f64 * 0.05);
+        }
+    }
+    std::fs::write(&tracks, text).unwrap();
+    let json = dir.path().join("eval.json");
+    let out = common::ok(
+        common::swarm()
+            .arg("eval")
+            .arg(&runs[0])
+            .arg(&runs[1])
+            .arg(&tracks)
+            .arg("--json")
+            .arg(&json),
+    );
+    let table = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        table.contains("score") && table.contains("tracks.csv"),
+        "{table}"
+    );
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let rows = report["candidates"].as_array().unwrap();
+    assert_eq!(rows.len(), 2);
+    // The same model with another seed is closer to the reference than straight lines.
+    let score = |k: usize| rows[k]["score"].as_f64().unwrap();
+    assert!(score(0) > score(1), "{report}");
+    let weights: f64 = report["weights"]
+        .as_object()
+        .unwrap()
+        .values()
+        .map(|v| v.as_f64().unwrap())
+        .sum();
+    assert!((weights - 1.0).abs() < 1e-9);
+    std::fs::write(&tracks, "id,time,x,y,z\n0,0,0,0,0\n0,0.1,0,oops,0\n").unwrap();
+    let err = common::fails(common::swarm().arg("eval").arg(&tracks).arg(&runs[0]));
+    assert!(
+        err.contains("tracks.csv:3") && err.contains("\"y\""),
+        "{err}"
+    );
+}

@@ -97,3 +97,69 @@ pub fn polarisation(tracks: &Tracks) -> f64 {
         values.iter().sum::<f64>() / values.len() as f64
     }
 }
+
+/// The evaluation as JSON: per candidate its path, energies by metric, score and
+/// polarisation; the weights and entropies by metric; the reference's polarisation.
+pub fn report(
+    reference: &std::path::Path,
+    candidates: &[std::path::PathBuf],
+    e: &Evaluation,
+) -> serde_json::Value {
+    let by_metric = |v: &[f64]| -> serde_json::Map<String, serde_json::Value> {
+        METRICS
+            .iter()
+            .zip(v)
+            .map(|(m, x)| ((*m).to_string(), (*x).into()))
+            .collect()
+    };
+    let rows: Vec<serde_json::Value> = candidates
+        .iter()
+        .zip(&e.energies)
+        .zip(&e.weighting.scores)
+        .zip(&e.polarisation.1)
+        .map(|(((path, energies), score), pol)| {
+            serde_json::json!({
+                "path": path.display().to_string(),
+                "energies": by_metric(energies),
+                "score": score,
+                "polarisation": pol,
+            })
+        })
+        .collect();
+    serde_json::json!({
+        "reference": reference.display().to_string(),
+        "reference_polarisation": e.polarisation.0,
+        "weights": by_metric(&e.weighting.weights),
+        "entropy": by_metric(&e.weighting.entropy),
+        "candidates": rows,
+    })
+}
+
+/// The evaluation as a text table: one row per candidate (energies, score, polarisation),
+/// then the weights.
+pub fn table(candidates: &[std::path::PathBuf], e: &Evaluation) -> String {
+    use std::fmt::Write as _;
+    let mut out = format!("{:<32}", "candidate");
+    for m in METRICS {
+        let _ = write!(out, " {m:>7}");
+    }
+    out.push_str("   score  polar.\n");
+    for ((path, energies), (score, pol)) in candidates
+        .iter()
+        .zip(&e.energies)
+        .zip(e.weighting.scores.iter().zip(&e.polarisation.1))
+    {
+        let name = path.display().to_string();
+        let _ = write!(out, "{name:<32}");
+        for x in energies {
+            let _ = write!(out, " {x:>7.3}");
+        }
+        let _ = writeln!(out, " {score:>7.3} {pol:>7.3}");
+    }
+    let _ = write!(out, "{:<32}", "weights");
+    for w in &e.weighting.weights {
+        let _ = write!(out, " {w:>7.3}");
+    }
+    let _ = write!(out, "\nreference polarisation {:.3}", e.polarisation.0);
+    out
+}

@@ -122,6 +122,26 @@ impl Tracks {
         Ok(Tracks::from_samples(dt, samples))
     }
 
+    /// The tracks at `path`: a run folder (`swarm run`'s output: its recorded frames, taken
+    /// as consecutive frames at interval 1, since every metric is z-scored and so free of
+    /// units) or a track file ([`Tracks::read_csv`], interval `dt` or inferred).
+    ///
+    /// # Errors
+    ///
+    /// What [`RunDir::open`](crate::output::RunDir::open) or [`Tracks::read_csv`] refuse.
+    pub fn open(path: &Path, dt: Option<f64>) -> Result<Self> {
+        if !path.is_dir() {
+            return Self::read_csv(path, dt);
+        }
+        let run = crate::output::RunDir::open(path)?;
+        let samples = run.frames.iter().enumerate().flat_map(|(k, f)| {
+            f.agents
+                .iter()
+                .map(move |a| (u64::from(a.id), k as i64, a.pos.map(f64::from)))
+        });
+        Ok(Tracks::from_samples(dt.unwrap_or(1.0), samples))
+    }
+
     /// Every track cut into runs of consecutive frames: (id, first frame, positions).
     pub fn runs(&self) -> Vec<(u64, i64, Vec<[f64; 3]>)> {
         let mut out = Vec::new();
