@@ -298,19 +298,18 @@ mod tests {
     /// Every Table 1 column validates in both scalars, and the absolute radii add up.
     #[test]
     fn table_1_columns_validate() {
-        let columns: [(&str, fn() -> FlyParams<f32>); 9] = [
-            ("midge", FlyParams::midge),
-            ("aggregation", FlyParams::aggregation),
-            ("fruitfly", FlyParams::fruitfly),
-            ("mating", FlyParams::mating),
-            ("escape", FlyParams::escape),
-            ("bats", FlyParams::bats),
-            ("locust", FlyParams::locust),
-            ("phase", FlyParams::phase),
-            ("phototaxis", FlyParams::phototaxis),
+        let columns = [
+            ("midge", FlyParams::<f32>::midge()),
+            ("aggregation", FlyParams::aggregation()),
+            ("fruitfly", FlyParams::fruitfly()),
+            ("mating", FlyParams::mating()),
+            ("escape", FlyParams::escape()),
+            ("bats", FlyParams::bats()),
+            ("locust", FlyParams::locust()),
+            ("phase", FlyParams::phase()),
+            ("phototaxis", FlyParams::phototaxis()),
         ];
         for (name, p) in columns {
-            let p = p();
             assert_eq!(p.validate(), Ok(()), "{name}");
             assert_eq!(p.cast::<Fx>().validate(), Ok(()), "{name} in Fx");
             assert!(p.gamma * p.max_speed * p.dt <= 0.5 + 1e-6, "{name}");

@@ -80,8 +80,8 @@ pub fn polarisation(tracks: &Tracks) -> f64 {
             let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
             if n > 0.0 {
                 let e = frames.entry(first + i as i64).or_default();
-                for k in 0..3 {
-                    e.0[k] += d[k] / n;
+                for (sum, c) in e.0.iter_mut().zip(d) {
+                    *sum += c / n;
                 }
                 e.1 += 1;
             }

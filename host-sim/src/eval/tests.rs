@@ -18,8 +18,8 @@ fn a_straight_line() {
     let s = samples(&t);
     assert_eq!(s.0[0].len(), 99);
     assert!(s.0[0].iter().all(|&v| rel(v, u)), "{:?}", &s.0[0][..3]);
-    for k in 1..5 {
-        assert!(s.0[k].iter().all(|&v| v.abs() < 1e-5), "{}", METRICS[k]);
+    for (set, name) in s.0.iter().zip(METRICS).take(5).skip(1) {
+        assert!(set.iter().all(|&v| v.abs() < 1e-5), "{name}");
     }
     // One insect: no d, no η.
     assert!(s.0[5].is_empty() && s.0[6].is_empty());
@@ -47,15 +47,15 @@ fn a_circle() {
         0.0,
         8.0 * rho * h * h * h / (dt * dt * dt),
     ];
-    for k in 0..5 {
-        assert!(!s.0[k].is_empty());
-        for &v in &s.0[k] {
-            let ok = if want[k] == 0.0 {
+    for ((set, name), want) in s.0.iter().zip(METRICS).zip(want) {
+        assert!(!set.is_empty());
+        for &v in set {
+            let ok = if want == 0.0 {
                 v.abs() < 1e-6
             } else {
-                (v - want[k]).abs() <= 1e-9 * want[k]
+                (v - want).abs() <= 1e-9 * want
             };
-            assert!(ok, "{}: {v} vs {}", METRICS[k], want[k]);
+            assert!(ok, "{name}: {v} vs {want}");
         }
     }
 }
