@@ -772,6 +772,29 @@ mod tests {
         assert_eq!(params_hash(&a), Ok(0x7e34_e3b6_c808_45c3));
     }
 
+    /// docs/protocol.md, section 10.2 (computed with the Python reference, appendix B): the
+    /// default fly preset (the midge) and the escape preset, both scalars.
+    #[test]
+    fn pinned_fly_params_hash() {
+        use crate::fly::FlyParams;
+        let m = FlyParams::<f32>::midge();
+        assert_eq!(FlyParams::<f32>::default(), m);
+        assert_eq!(postcard_bytes(&m).len(), 64);
+        assert_eq!(params_hash(&m), Ok(0x8a43_f9bf_fcfc_b93b));
+        let m = FlyParams::<Fx>::midge();
+        assert_eq!(postcard_bytes(&m).len(), 41);
+        assert_eq!(params_hash(&m), Ok(0xa0cd_3529_1aa1_7eb7));
+        let e = FlyParams::<f32>::escape();
+        assert_eq!(params_hash(&e), Ok(0xb97a_894b_94da_2596));
+        assert_eq!(params_hash(&e.cast::<Fx>()), Ok(0x3dab_61fc_c5d0_8f8f));
+        // Any one field changed, another hash.
+        let n = FlyParams::<f32> {
+            noise: 1,
+            ..m.cast()
+        };
+        assert_ne!(params_hash(&n), params_hash(&FlyParams::<f32>::midge()));
+    }
+
     #[test]
     fn check_accepts_the_same_device_whatever_its_name() {
         let device = ant_identity();

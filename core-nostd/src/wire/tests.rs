@@ -1637,6 +1637,19 @@ mod spec {
             .collect()
     }
 
+    /// The header cells of the table [`table`] finds.
+    fn table_header(text: &str, header: &str) -> Vec<String> {
+        let cells = |line: &str| -> Vec<String> {
+            let line = line.trim().trim_start_matches('|').trim_end_matches('|');
+            line.split('|').map(|c| c.trim().replace('`', "")).collect()
+        };
+        text.lines()
+            .filter(|l| l.starts_with('|'))
+            .map(cells)
+            .find(|c| c.iter().any(|c| c == &header.replace('`', "")))
+            .unwrap_or_else(|| panic!("no table with the column {header:?}"))
+    }
+
     /// The hex bytes of a dump line: its two-digit hex tokens up to the first other token (a
     /// comment), after an optional leading label ending in `()`.
     fn dump_bytes(line: &str) -> Vec<u8> {
@@ -1788,6 +1801,9 @@ mod spec {
     impl Castable for WangParams<f32> {
         type Fx = WangParams<Fx>;
     }
+    impl Castable for FlyParams<f32> {
+        type Fx = FlyParams<Fx>;
+    }
 
     fn hash_of(cell: &str) -> u64 {
         u64::from_str_radix(cell.trim_start_matches("0x"), 16).unwrap()
@@ -1884,6 +1900,50 @@ mod spec {
             assert_eq!(f.cast::<Fx>(), *x, "the Fx preset is the cast f32 preset");
         }
 
+        // FlyParams: fields and the nine presets (Table 1 columns).
+        let rows = table(text, "`FlyParams` field");
+        check_fields::<FlyParams<f32>>(&rows);
+        type Preset = (&'static str, fn() -> FlyParams<f32>, fn() -> FlyParams<Fx>);
+        let fly_presets: [Preset; 9] = [
+            ("FlyParams::midge()", FlyParams::midge, FlyParams::midge),
+            (
+                "FlyParams::aggregation()",
+                FlyParams::aggregation,
+                FlyParams::aggregation,
+            ),
+            (
+                "FlyParams::fruitfly()",
+                FlyParams::fruitfly,
+                FlyParams::fruitfly,
+            ),
+            ("FlyParams::mating()", FlyParams::mating, FlyParams::mating),
+            ("FlyParams::escape()", FlyParams::escape, FlyParams::escape),
+            ("FlyParams::bats()", FlyParams::bats, FlyParams::bats),
+            ("FlyParams::locust()", FlyParams::locust, FlyParams::locust),
+            ("FlyParams::phase()", FlyParams::phase, FlyParams::phase),
+            (
+                "FlyParams::phototaxis()",
+                FlyParams::phototaxis,
+                FlyParams::phototaxis,
+            ),
+        ];
+        let fly = fly_presets.map(|(name, f, x)| (name, f(), x()));
+        for (column, (_, f, x)) in fly.iter().enumerate() {
+            check_values(&rows, 3 + column, f, x);
+            assert_eq!(f.cast::<Fx>(), *x, "the Fx preset is the cast f32 preset");
+        }
+        // The column headers name the presets, in order; the default is the midge.
+        let header = table_header(text, "`FlyParams` field");
+        for (column, (name, _, _)) in fly.iter().enumerate() {
+            assert_eq!(
+                format!("FlyParams::{}", header[3 + column]),
+                *name,
+                "column {column}"
+            );
+        }
+        assert_eq!(FlyParams::<f32>::default(), fly[0].1);
+        assert_eq!(FlyParams::<Fx>::default(), fly[0].2);
+
         // The hash table, both scalars.
         let rows = table(text, "preset");
         let expected = [
@@ -1911,6 +1971,15 @@ mod spec {
             (wang[1].0, params_hash(&wang[1].1), params_hash(&wang[1].2)),
             (wang[2].0, params_hash(&wang[2].1), params_hash(&wang[2].2)),
             (wang[3].0, params_hash(&wang[3].1), params_hash(&wang[3].2)),
+            (fly[0].0, params_hash(&fly[0].1), params_hash(&fly[0].2)),
+            (fly[1].0, params_hash(&fly[1].1), params_hash(&fly[1].2)),
+            (fly[2].0, params_hash(&fly[2].1), params_hash(&fly[2].2)),
+            (fly[3].0, params_hash(&fly[3].1), params_hash(&fly[3].2)),
+            (fly[4].0, params_hash(&fly[4].1), params_hash(&fly[4].2)),
+            (fly[5].0, params_hash(&fly[5].1), params_hash(&fly[5].2)),
+            (fly[6].0, params_hash(&fly[6].1), params_hash(&fly[6].2)),
+            (fly[7].0, params_hash(&fly[7].1), params_hash(&fly[7].2)),
+            (fly[8].0, params_hash(&fly[8].1), params_hash(&fly[8].2)),
         ];
         assert_eq!(rows.len(), expected.len());
         for (row, (name, f, x)) in rows.iter().zip(expected) {
