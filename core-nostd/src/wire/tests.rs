@@ -1168,7 +1168,13 @@ fn fly_device_refuses_bad_input_and_keeps_serving() {
         point: Vec3::zero(),
         normal: Vec3::new(0.0, 1.0, 0.0),
     };
-    let cases: [(FlyStepRequest<f32>, u8, Option<(&str, &str)>); 8] = [
+    // (request, error code, the refusal the controller names)
+    type Case = (
+        FlyStepRequest<f32>,
+        u8,
+        Option<(&'static str, &'static str)>,
+    );
+    let cases: [Case; 8] = [
         (
             with(&|r| r.state.pos.x = f32::NAN),
             ErrorReply::NON_FINITE,
