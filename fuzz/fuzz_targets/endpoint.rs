@@ -8,10 +8,11 @@ use libfuzzer_sys::fuzz_target;
 use swarm_core::Fx;
 use swarm_core::ant::AntParams;
 use swarm_core::bee::BeeParams;
+use swarm_core::fly::FlyParams;
 use swarm_core::wang::WangParams;
 use swarm_core::wire::{
-    self, AntDevice, BeeDevice, Configure, Controller, DeviceEndpoint, Hello, MAX_FRAME, Ping,
-    Pong, WangDevice,
+    self, AntDevice, BeeDevice, Configure, Controller, DeviceEndpoint, FlyDevice, Hello,
+    MAX_FRAME, Ping, Pong, WangDevice,
 };
 
 fn frame<M: wire::Message>(seq: u16, msg: &M) -> Vec<u8> {
@@ -78,7 +79,7 @@ fuzz_target!(|data: &[u8]| {
     };
     let open = mode & 1 != 0;
     let step = usize::from(mode >> 4) + 1;
-    match (mode >> 1) % 6 {
+    match (mode >> 1) % 8 {
         0 => run(
             AntDevice::<f32>::new(AntParams::default(), "fuzz").unwrap(),
             open,
@@ -109,8 +110,20 @@ fuzz_target!(|data: &[u8]| {
             step,
             data,
         ),
-        _ => run(
+        5 => run(
             WangDevice::<Fx>::new(WangParams::default(), "fuzz").unwrap(),
+            open,
+            step,
+            data,
+        ),
+        6 => run(
+            FlyDevice::<f32>::new(FlyParams::default(), "fuzz").unwrap(),
+            open,
+            step,
+            data,
+        ),
+        _ => run(
+            FlyDevice::<Fx>::new(FlyParams::default(), "fuzz").unwrap(),
             open,
             step,
             data,

@@ -10,10 +10,11 @@ use serde::ser::{Serialize, SerializeTuple, Serializer};
 use swarm_core::Fx;
 use swarm_core::ant::AntParams;
 use swarm_core::bee::BeeParams;
+use swarm_core::fly::FlyParams;
 use swarm_core::wang::WangParams;
 use swarm_core::wire::{
-    self, AntDevice, BeeDevice, Configure, Controller, DeviceEndpoint, Hello, MAX_FRAME,
-    WangDevice, kind,
+    self, AntDevice, BeeDevice, Configure, Controller, DeviceEndpoint, FlyDevice, Hello,
+    MAX_FRAME, WangDevice, kind,
 };
 
 /// Serializes as its bytes, with no length prefix.
@@ -29,7 +30,7 @@ impl Serialize for Raw<'_> {
     }
 }
 
-const KINDS: [u8; 16] = [
+const KINDS: [u8; 18] = [
     kind::HELLO,
     kind::CONFIGURE,
     kind::PING,
@@ -39,12 +40,14 @@ const KINDS: [u8; 16] = [
     kind::BEE_STEP_REQUEST,
     kind::WANG_ADVECT_REQUEST,
     kind::WANG_SEPARATE_REQUEST,
+    kind::FLY_STEP_REQUEST,
     kind::ANT_PLAN_REPLY,
     kind::WANG_SEPARATE_REPLY,
+    kind::FLY_STEP_REPLY,
     kind::ERROR_REPLY,
     0x00,
     0x09,
-    0x40,
+    0x42,
     0xff,
 ];
 
@@ -115,7 +118,7 @@ fuzz_target!(|data: &[u8]| {
     let Some((&mode, data)) = data.split_first() else {
         return;
     };
-    match mode % 6 {
+    match mode % 8 {
         0 => run(
             AntDevice::<f32>::new(AntParams::default(), "fuzz").unwrap(),
             data,
@@ -136,8 +139,16 @@ fuzz_target!(|data: &[u8]| {
             WangDevice::<f32>::new(WangParams::default(), "fuzz").unwrap(),
             data,
         ),
-        _ => run(
+        5 => run(
             WangDevice::<Fx>::new(WangParams::default(), "fuzz").unwrap(),
+            data,
+        ),
+        6 => run(
+            FlyDevice::<f32>::new(FlyParams::default(), "fuzz").unwrap(),
+            data,
+        ),
+        _ => run(
+            FlyDevice::<Fx>::new(FlyParams::default(), "fuzz").unwrap(),
             data,
         ),
     }

@@ -26,6 +26,10 @@ pub use params::{
     NOISE_WHITE,
 };
 pub use step::{FlyDecision, step, step_checked};
+#[cfg(feature = "serde")]
+pub use wire::{
+    FlyDevice, MAX_FLY_FRAME, MAX_FLY_PAYLOAD, MAX_FLY_REPLY_FRAME, MAX_FLY_REPLY_PAYLOAD,
+};
 pub use wire::{
     FlyStep, FlyStepReply, FlyStepRequest, WIRE_FLY_NEIGHBOURS, WIRE_FLY_SURFACES, WireFlyFrame,
 };

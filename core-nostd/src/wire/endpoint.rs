@@ -154,8 +154,9 @@ impl<C: Controller, const TX: usize> Core<C, TX> {
 /// * `TX`: the send buffer, at least [`Controller::MAX_REPLY_FRAME`] and
 ///   [`MAX_SESSION_FRAME`] (both checked at compile time).
 ///
-/// [`AntDevice`](crate::ant::AntDevice), [`BeeDevice`](crate::bee::BeeDevice) and
-/// [`WangDevice`](crate::wang::WangDevice) pick both for you.
+/// [`AntDevice`](crate::ant::AntDevice), [`BeeDevice`](crate::bee::BeeDevice),
+/// [`WangDevice`](crate::wang::WangDevice) and [`FlyDevice`](crate::fly::FlyDevice) pick both
+/// for you.
 ///
 /// Behaviour (`docs/protocol.md`, section 10, is the normative version):
 ///

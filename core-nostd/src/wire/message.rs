@@ -19,6 +19,7 @@ use super::frame::max_frame_len;
 use crate::Error;
 use crate::ant::MAX_ANT_PAYLOAD;
 use crate::bee::MAX_BEE_PAYLOAD;
+use crate::fly::MAX_FLY_PAYLOAD;
 use crate::wang::MAX_WANG_PAYLOAD;
 
 const fn max(a: usize, b: usize) -> usize {
@@ -26,7 +27,10 @@ const fn max(a: usize, b: usize) -> usize {
 }
 
 /// The largest payload of any message of the built-in models, for either scalar.
-pub const MAX_PAYLOAD: usize = max(max(MAX_ANT_PAYLOAD, MAX_BEE_PAYLOAD), MAX_WANG_PAYLOAD);
+pub const MAX_PAYLOAD: usize = max(
+    max(MAX_ANT_PAYLOAD, MAX_BEE_PAYLOAD),
+    max(MAX_WANG_PAYLOAD, MAX_FLY_PAYLOAD),
+);
 /// The longest frame of any message of this module, delimiter included: the size of a send
 /// buffer that always suffices, and an [`Accumulator`](super::Accumulator) capacity that
 /// always receives.
@@ -43,7 +47,8 @@ pub const MAX_FRAME: usize = max_frame_len(MAX_PAYLOAD);
 /// | `0x10-0x1F` | ant controller; a reply is its request's kind + 1        |
 /// | `0x20-0x2F` | bee controller; a reply is its request's kind + 1        |
 /// | `0x30-0x3F` | wang controller; a reply is its request's kind + 1       |
-/// | `0x40-0x7F` | reserved                                                 |
+/// | `0x40-0x4F` | fly controller; a reply is its request's kind + 1        |
+/// | `0x50-0x7F` | reserved                                                 |
 /// | `0x80-0xFF` | free for applications and tests; this crate sends none   |
 pub mod kind {
     /// [`Hello`](crate::wire::Hello): host → device, opens the handshake.
@@ -84,6 +89,10 @@ pub mod kind {
     pub const WANG_SEPARATE_REQUEST: u8 = 0x32;
     /// [`SeparateReply`](crate::wang::SeparateReply).
     pub const WANG_SEPARATE_REPLY: u8 = 0x33;
+    /// [`FlyStepRequest`](crate::fly::FlyStepRequest).
+    pub const FLY_STEP_REQUEST: u8 = 0x40;
+    /// [`FlyStepReply`](crate::fly::FlyStepReply).
+    pub const FLY_STEP_REPLY: u8 = 0x41;
 
     /// The message's name, for logs and reports; `None` for a kind this build does not know.
     pub const fn name(kind: u8) -> Option<&'static str> {
@@ -107,6 +116,8 @@ pub mod kind {
             WANG_ADVECT_REPLY => "AdvectReply",
             WANG_SEPARATE_REQUEST => "SeparateRequest",
             WANG_SEPARATE_REPLY => "SeparateReply",
+            FLY_STEP_REQUEST => "FlyStepRequest",
+            FLY_STEP_REPLY => "FlyStepReply",
             _ => return None,
         })
     }
@@ -126,6 +137,7 @@ pub mod kind {
                 | BEE_STEP_REPLY
                 | WANG_ADVECT_REPLY
                 | WANG_SEPARATE_REPLY
+                | FLY_STEP_REPLY
         )
     }
 
@@ -252,6 +264,11 @@ mod tests {
         BeeDecision, BeeNeighbor, BeeParams, BeeState, BeeStepReply, BeeStepRequest, MAX_BEE_FRAME,
         MAX_BEE_REPLY_PAYLOAD, ObstacleSense, WireBeeFrame,
     };
+    use crate::fly::{
+        FlyDecision, FlyState, FlyStepReply, FlyStepRequest, MAX_FLY_FRAME, MAX_FLY_REPLY_PAYLOAD,
+        Neighbour, STIMULUS_PREDATOR, STIMULUS_TARGET, Stimulus, Surface as FlySurface,
+        WireFlyFrame,
+    };
     use crate::wang::{
         AdvectFrame, AdvectReply, AdvectRequest, Boundary, Close, MAX_WANG_FRAME,
         MAX_WANG_REPLY_PAYLOAD, SeparateReply, SeparateRequest, WangParams, WangState,
@@ -284,6 +301,8 @@ mod tests {
             <AdvectReply<f32> as Message>::KIND,
             <SeparateRequest<Fx> as Message>::KIND,
             <SeparateReply<Fx> as Message>::KIND,
+            <FlyStepRequest<f32> as Message>::KIND,
+            <FlyStepReply<Fx> as Message>::KIND,
         ];
         for (i, a) in kinds.iter().enumerate() {
             assert!(kind::name(*a).is_some());
@@ -308,6 +327,12 @@ mod tests {
                 && !kind::is_reply(kind::WANG_SEPARATE_REQUEST)
         );
         assert_eq!(kind::name(0x33), Some("SeparateReply"));
+        assert_eq!(kind::FLY_STEP_REPLY, kind::FLY_STEP_REQUEST + 1);
+        assert_eq!((kind::FLY_STEP_REQUEST, kind::FLY_STEP_REPLY), (0x40, 0x41));
+        assert!(kind::is_reply(kind::FLY_STEP_REPLY) && !kind::is_reply(kind::FLY_STEP_REQUEST));
+        assert_eq!(kind::name(0x40), Some("FlyStepRequest"));
+        assert_eq!(kind::name(0x41), Some("FlyStepReply"));
+        assert_eq!(kind::name(0x42), None);
         assert_eq!(kind::name(0x80), None);
         assert_eq!(kind::name(kind::BEE_STEP_REPLY), Some("BeeStepReply"));
     }
@@ -445,6 +470,45 @@ mod tests {
         assert_eq!(through_the_wire(5, &reply), reply);
     }
 
+    fn fly_round_trip<S: Scalar + Serialize + DeserializeOwned>() {
+        let mut frame = WireFlyFrame::<S>::new();
+        for i in 0..3u32 {
+            let d = i as f32;
+            frame
+                .neighbours
+                .push(Neighbour {
+                    id: 10 + i,
+                    pos: v3(0.3 + d, 1.0, -d),
+                    vel: v3(0.0, 0.1 * d, 1.0),
+                })
+                .unwrap();
+        }
+        frame.stimulus = Some(Stimulus {
+            pos: v3(3.0, 1.0, 0.5),
+            kind: STIMULUS_PREDATOR,
+        });
+        frame
+            .surfaces
+            .push(FlySurface {
+                point: v3(0.0, 0.0, 0.0),
+                normal: v3(0.0, 1.0, 0.0),
+            })
+            .unwrap();
+        let req = FlyStepRequest {
+            state: FlyState::new(v3(0.0, 1.0, 0.0), v3(1.0, 0.0, 0.0)),
+            frame,
+            ctx: StepCtx {
+                seed: 5,
+                agent: 2,
+                step: 40,
+            },
+        };
+        assert_eq!(through_the_wire(6, &req), req);
+        let reply = req.run(&crate::fly::FlyParams::escape()).unwrap();
+        assert!(reply.state.escaping); // the predator within r_res started an episode
+        assert_eq!(through_the_wire(6, &reply), reply);
+    }
+
     #[test]
     fn model_messages_round_trip_in_both_scalars() {
         ant_round_trip::<f32>();
@@ -453,6 +517,8 @@ mod tests {
         bee_round_trip::<Fx>();
         wang_round_trip::<f32>();
         wang_round_trip::<Fx>();
+        fly_round_trip::<f32>();
+        fly_round_trip::<Fx>();
     }
 
     #[test]
@@ -786,6 +852,85 @@ mod tests {
         );
         const { assert!(crate::wang::MAX_WANG_PAYLOAD <= MAX_PAYLOAD) };
         assert_eq!(MAX_WANG_FRAME, 214);
+    }
+
+    /// Payload lengths of the widest instance of both fly messages: step request and reply.
+    fn widest_fly_payloads<S: Widest>() -> [usize; 2] {
+        let ctx = StepCtx {
+            seed: u32::MAX,
+            agent: u32::MAX,
+            step: u32::MAX,
+        };
+        let state = FlyState {
+            pos: w3(),
+            vel: w3(),
+            escape_theta: S::widest(),
+            escaping: true,
+        };
+        let mut frame = WireFlyFrame::<S>::new();
+        while frame
+            .neighbours
+            .push(Neighbour {
+                id: u32::MAX,
+                pos: w3(),
+                vel: w3(),
+            })
+            .is_ok()
+        {}
+        frame.stimulus = Some(Stimulus {
+            pos: w3(),
+            kind: u8::MAX,
+        });
+        while frame
+            .surfaces
+            .push(FlySurface {
+                point: w3(),
+                normal: w3(),
+            })
+            .is_ok()
+        {}
+        [
+            payload_len(&FlyStepRequest { state, frame, ctx }),
+            payload_len(&FlyStepReply {
+                decision: FlyDecision {
+                    pref: w3(),
+                    infeasible: true,
+                },
+                state,
+            }),
+        ]
+    }
+
+    #[test]
+    fn widest_fly_messages_fit_max_fly_payload() {
+        let f = widest_fly_payloads::<f32>();
+        let x = widest_fly_payloads::<Fx>();
+        // Request: state 29 / 36, 1 + 16 neighbours of 29 / 35, stimulus 14 / 17,
+        // 1 + 4 surfaces of 24 / 30, ctx 15. Reply: decision 13 / 16, state 29 / 36.
+        assert_eq!(f, [620, 42]);
+        assert_eq!(x, [750, 52]);
+        assert_eq!(f.iter().chain(&x).max(), Some(&crate::fly::MAX_FLY_PAYLOAD));
+        assert_eq!(f[1].max(x[1]), MAX_FLY_REPLY_PAYLOAD);
+        const { assert!(crate::fly::MAX_FLY_PAYLOAD <= MAX_PAYLOAD) };
+        assert_eq!(MAX_FLY_FRAME, 760);
+        // The worst-case request frame (Fx, full lists) fits a MAX_FLY_FRAME buffer.
+        let mut frame = WireFlyFrame::<Fx>::new();
+        while frame
+            .neighbours
+            .push(Neighbour {
+                id: u32::MAX,
+                pos: w3(),
+                vel: w3(),
+            })
+            .is_ok()
+        {}
+        let req = FlyStepRequest {
+            state: FlyState::new(w3(), w3()),
+            frame,
+            ctx: StepCtx::default(),
+        };
+        assert!(frame_of(1, &req).len() <= MAX_FLY_FRAME);
+        let _ = STIMULUS_TARGET;
     }
 
     /// Payload lengths of the widest instance of every message.

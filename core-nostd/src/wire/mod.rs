@@ -47,12 +47,12 @@
 //! 2. [`Configure`] → [`Configured`]: the host opens a session (the device checks the
 //!    parameter hash once more);
 //! 3. controller requests ([`AntPlanRequest`], [`AntResolveRequest`], [`BeeStepRequest`],
-//!    [`AdvectRequest`], [`SeparateRequest`]),
+//!    [`AdvectRequest`], [`SeparateRequest`], [`FlyStepRequest`]),
 //!    pipelined, each answered by its reply or an [`ErrorReply`] with the same sequence
 //!    number; [`Ping`] → [`Pong`] and [`StatsRequest`] → [`DeviceStats`] at any time.
 //!
 //! The device side is [`DeviceEndpoint`] (aliases [`AntDevice`], [`BeeDevice`],
-//! [`WangDevice`]): bytes in,
+//! [`WangDevice`], [`FlyDevice`]): bytes in,
 //! reply frames out, fixed buffers, for firmware and for a soft device on a host alike.
 //!
 //! ```
@@ -115,6 +115,10 @@ pub use crate::ant::{
 pub use crate::bee::{
     BeeDevice, BeeStepReply, BeeStepRequest, MAX_BEE_FRAME, MAX_BEE_PAYLOAD, MAX_BEE_REPLY_FRAME,
     MAX_BEE_REPLY_PAYLOAD, WIRE_BEE_NEIGHBOURS, WIRE_BEE_TARGETS, WireBeeFrame,
+};
+pub use crate::fly::{
+    FlyDevice, FlyStepReply, FlyStepRequest, MAX_FLY_FRAME, MAX_FLY_PAYLOAD, MAX_FLY_REPLY_FRAME,
+    MAX_FLY_REPLY_PAYLOAD, WIRE_FLY_NEIGHBOURS, WIRE_FLY_SURFACES, WireFlyFrame,
 };
 pub use crate::wang::{
     AdvectReply, AdvectRequest, MAX_WANG_FRAME, MAX_WANG_PAYLOAD, MAX_WANG_REPLY_FRAME,

@@ -15,8 +15,8 @@ const fn max(a: usize, b: usize) -> usize {
 }
 
 /// A model as a device serves it on the wire: implemented next to each model (for
-/// [`AntParams<S>`](crate::ant::AntParams), [`BeeParams<S>`](crate::bee::BeeParams) and
-/// [`WangParams<S>`](crate::wang::WangParams)), as a
+/// [`AntParams<S>`](crate::ant::AntParams), [`BeeParams<S>`](crate::bee::BeeParams),
+/// [`WangParams<S>`](crate::wang::WangParams) and [`FlyParams<S>`](crate::fly::FlyParams)), as a
 /// description only; what a request does is the model's [`Phase::run`], dispatched by
 /// [`Serve`]. The implementing type *is* the parameter set: its postcard encoding is what
 /// [`params_hash`](super::params_hash) hashes.

@@ -31,8 +31,8 @@ pub const MAX_SESSION_PAYLOAD: usize = 71;
 pub const MAX_SESSION_FRAME: usize = max_frame_len(MAX_SESSION_PAYLOAD);
 
 /// Which controller a device runs: a number (a varint on the wire), so that a new model needs
-/// no change here. `0` ant, `1` bee; `2`-`127` are kept for this project's models, `128` and
-/// above are free for applications and tests.
+/// no change here. `0` ant, `1` bee, `2` wang, `3` fly; `4`-`127` are kept for this project's
+/// models, `128` and above are free for applications and tests.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(transparent)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -45,6 +45,8 @@ impl ControllerKind {
     pub const BEE: ControllerKind = ControllerKind(1);
     /// The wang2014 insect ([`crate::wang`]): advect and separate requests.
     pub const WANG: ControllerKind = ControllerKind(2);
+    /// The ren2016 flying insect ([`crate::fly`]): step requests.
+    pub const FLY: ControllerKind = ControllerKind(3);
 }
 
 /// The capacity of each list of a sensor frame the device accepts; 0 for a list its
@@ -52,13 +54,14 @@ impl ControllerKind {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Capacities {
-    /// Neighbours (ant plan and resolve frames, bee frame).
+    /// Neighbours (ant plan and resolve frames, bee frame, wang separate frame, fly frame).
     pub neighbours: u16,
-    /// Environment objects (ant plan frame; 0 for bees).
+    /// Environment objects (ant plan frame; 0 for the others).
     pub objects: u16,
-    /// Target particles (bee frame; 0 for ants).
+    /// Target particles (bee frame; 0 for the others).
     pub targets: u16,
-    /// Obstacle surfaces (ant resolve frame, [`crate::ant::SURFACES`]; 0 for bees).
+    /// Obstacle surfaces (ant resolve frame, [`crate::ant::SURFACES`]; fly frame,
+    /// [`crate::fly::WIRE_FLY_SURFACES`]; 0 for the others).
     pub surfaces: u16,
 }
 
@@ -406,12 +409,13 @@ const fn math_name(m: MathBackend) -> &'static str {
 }
 
 impl fmt::Display for ControllerKind {
-    /// `ant`, `bee`, `wang`, or `controller N` for any other.
+    /// `ant`, `bee`, `wang`, `fly`, or `controller N` for any other.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
             ControllerKind::ANT => f.write_str("ant"),
             ControllerKind::BEE => f.write_str("bee"),
             ControllerKind::WANG => f.write_str("wang"),
+            ControllerKind::FLY => f.write_str("fly"),
             ControllerKind(n) => write!(f, "controller {n}"),
         }
     }
@@ -766,6 +770,29 @@ mod tests {
             )
         );
         assert_eq!(params_hash(&a), Ok(0x7e34_e3b6_c808_45c3));
+    }
+
+    /// docs/protocol.md, section 10.2 (computed with the Python reference, appendix B): the
+    /// default fly preset (the midge) and the escape preset, both scalars.
+    #[test]
+    fn pinned_fly_params_hash() {
+        use crate::fly::FlyParams;
+        let m = FlyParams::<f32>::midge();
+        assert_eq!(FlyParams::<f32>::default(), m);
+        assert_eq!(postcard_bytes(&m).len(), 64);
+        assert_eq!(params_hash(&m), Ok(0x8a43_f9bf_fcfc_b93b));
+        let m = FlyParams::<Fx>::midge();
+        assert_eq!(postcard_bytes(&m).len(), 41);
+        assert_eq!(params_hash(&m), Ok(0xa0cd_3529_1aa1_7eb7));
+        let e = FlyParams::<f32>::escape();
+        assert_eq!(params_hash(&e), Ok(0xb97a_894b_94da_2596));
+        assert_eq!(params_hash(&e.cast::<Fx>()), Ok(0x3dab_61fc_c5d0_8f8f));
+        // Any one field changed, another hash.
+        let n = FlyParams::<f32> {
+            noise: 1,
+            ..m.cast()
+        };
+        assert_ne!(params_hash(&n), params_hash(&FlyParams::<f32>::midge()));
     }
 
     #[test]

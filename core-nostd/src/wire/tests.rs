@@ -13,6 +13,9 @@ use crate::ant::{
     StopTimer, Surface,
 };
 use crate::bee::{self, BeeNeighbor, BeeParams, BeeState, ObstacleSense};
+use crate::fly::{
+    self, FlyParams, FlyState, Neighbour, STIMULUS_PREDATOR, Stimulus, Surface as Surface3,
+};
 use crate::rand::rand;
 use crate::wang::{self, AdvectFrame, Boundary, Close, WangParams, WangState};
 use crate::{Error, Fx, Rect, Scalar, StepCtx, Vec2, Vec3};
@@ -113,6 +116,10 @@ fn bee_device<S: Scalar + Serialize + DeserializeOwned>() -> BeeDevice<S> {
 
 fn wang_device<S: Scalar + Serialize + DeserializeOwned>() -> WangDevice<S> {
     WangDevice::<S>::new(WangParams::default(), "wang-test").unwrap()
+}
+
+fn fly_device<S: Scalar + Serialize + DeserializeOwned>(params: FlyParams<S>) -> FlyDevice<S> {
+    FlyDevice::<S>::new(params, "fly-test").unwrap()
 }
 
 /// A small deterministic generator for test inputs (counter-based, like the controllers).
@@ -286,6 +293,63 @@ fn bee_request<S: Scalar>(g: &mut Gen) -> BeeStepRequest<S> {
         });
     }
     BeeStepRequest { state, frame }
+}
+
+/// A random, mostly valid fly step request: neighbours nearest first (one may carry the
+/// insect's own id), a stimulus of either kind, a ground plane and walls as surfaces.
+fn fly_request<S: Scalar>(g: &mut Gen) -> FlyStepRequest<S> {
+    let pos = g.v3::<S>(-5.0, 5.0) + Vec3::new(S::ZERO, S::from_f32(6.0), S::ZERO);
+    let mut state = FlyState::new(pos, g.v3(-3.0, 3.0));
+    if g.chance(0.3) {
+        state.escaping = true;
+        state.escape_theta = S::from_f32(g.range(-1.57, 0.0));
+    }
+    let agent = g.below(20);
+    let mut frame = WireFlyFrame::new();
+    let mut dist = 0.0;
+    for k in 0..g.below(WIRE_FLY_NEIGHBOURS as u32 + 1) {
+        dist += g.range(0.05, 0.6);
+        let d = g.v3::<f32>(-1.0, 1.0);
+        let len = d.length().max(1e-3);
+        let off = Vec3::new(
+            S::from_f32(d.x / len * dist),
+            S::from_f32(d.y / len * dist),
+            S::from_f32(d.z / len * dist),
+        );
+        let id = if g.chance(0.05) { agent } else { 100 + k };
+        let _ = frame.neighbours.push(Neighbour {
+            id,
+            pos: pos + off,
+            vel: g.v3(-3.0, 3.0),
+        });
+    }
+    if g.chance(0.5) {
+        frame.stimulus = Some(Stimulus {
+            pos: pos + g.v3(-6.0, 6.0),
+            kind: g.below(2) as u8,
+        });
+    }
+    if g.chance(0.5) {
+        let _ = frame.surfaces.push(Surface3 {
+            point: Vec3::new(pos.x, S::ZERO, pos.z),
+            normal: Vec3::new(S::ZERO, S::ONE, S::ZERO),
+        });
+    }
+    for _ in 0..g.below(4) {
+        let _ = frame.surfaces.push(Surface3 {
+            point: pos + Vec3::new(S::from_f32(g.range(0.2, 2.0)), S::ZERO, S::ZERO),
+            normal: Vec3::new(-S::ONE, S::ZERO, S::ZERO),
+        });
+    }
+    FlyStepRequest {
+        state,
+        frame,
+        ctx: StepCtx {
+            seed: g.u32(),
+            agent,
+            step: g.u32(),
+        },
+    }
 }
 
 /// What a device must answer to `req` (kind `M::KIND`, `seq`): the reply frame of the direct
@@ -489,10 +553,13 @@ fn identity_says_what_the_device_runs() {
         ScalarKind::I16F16,
         MathBackend::Integer,
     );
+    let fly = fly_device::<f32>(FlyParams::default()).identity();
+    let fly_runs = (ControllerKind::FLY, ScalarKind::F32, MathBackend::F32);
     for (id, runs, capacities) in [
         (&ant, ant_runs, (8, 4, 0, 6)),
         (&bee, bee_runs, (16, 0, 16, 0)),
         (&wang, wang_runs, (8, 0, 0, 0)),
+        (&fly, fly_runs, (16, 0, 0, 4)),
     ] {
         let c = id.capacities;
         assert_eq!((id.controller, id.scalar, id.math), runs);
@@ -516,6 +583,52 @@ fn identity_says_what_the_device_runs() {
         params_hash(&WangParams::<Fx>::default()).unwrap()
     );
     assert_eq!(usize::from(bee_device::<Fx>().identity().max_frame), 942);
+    assert_eq!((MAX_FLY_FRAME, MAX_FLY_REPLY_FRAME), (760, 79));
+    assert_eq!(usize::from(fly.max_frame), MAX_FLY_FRAME + 1);
+    assert_eq!(
+        (ControllerKind::FLY, ControllerKind::FLY.to_string()),
+        (ControllerKind(3), "fly".to_string())
+    );
+    assert_eq!(
+        (
+            usize::from(fly.capacities.neighbours),
+            usize::from(fly.capacities.surfaces)
+        ),
+        (WIRE_FLY_NEIGHBOURS, WIRE_FLY_SURFACES)
+    );
+    assert_eq!(
+        fly.params_hash,
+        params_hash(&FlyParams::<f32>::midge()).unwrap()
+    );
+    let fly_fx = fly_device::<Fx>(FlyParams::default()).identity();
+    assert_eq!(
+        (fly_fx.controller, fly_fx.scalar, fly_fx.math),
+        (
+            ControllerKind::FLY,
+            ScalarKind::I16F16,
+            MathBackend::Integer
+        )
+    );
+    assert_eq!(
+        fly_fx.params_hash,
+        params_hash(&FlyParams::<f32>::midge().cast::<Fx>()).unwrap()
+    );
+    assert_ne!(fly_fx.params_hash, fly.params_hash);
+    // Another preset, another hash; bad parameters: no device.
+    assert_ne!(
+        fly_device::<f32>(FlyParams::fruitfly())
+            .identity()
+            .params_hash,
+        fly.params_hash
+    );
+    let p = FlyParams::<f32> {
+        max_speed: 10.0, // γ·max_speed·Δt = 1.116 > ½
+        ..FlyParams::midge()
+    };
+    assert_eq!(
+        FlyDevice::<f32>::new(p, "x").err(),
+        Some(Error::BadParam { field: "max_speed" })
+    );
     assert_eq!(ant.name, "ant-test");
     assert_eq!(
         bee.params_hash,
@@ -575,15 +688,22 @@ fn every_kind_that_is_not_a_request_of_this_device() {
             ),
         },
     ));
+    line.extend(frame_of(
+        4,
+        &FlyStepReply::<f32> {
+            decision: fly::FlyDecision::default(),
+            state: FlyState::default(),
+        },
+    ));
     assert!(replies(&mut dev, &line).is_empty());
-    assert_eq!(dev.stats().ignored, 4);
+    assert_eq!(dev.stats().ignored, 5);
     // A bee request to an ant device, and unknown kinds: UnknownKind.
     let mut g = Gen::new(2);
     let mut bee = bee_request::<f32>(&mut g);
     bee.frame.neighbours.clear(); // small enough for an ant device's receive buffer
     bee.frame.targets.clear();
     let mut line = frame_of(5, &bee);
-    for (i, k) in [0x09u8, 0x0e, 0x14, 0x30, 0x80, 0xff]
+    for (i, k) in [0x09u8, 0x0e, 0x14, 0x30, 0x40, 0x42, 0x80, 0xff]
         .into_iter()
         .enumerate()
     {
@@ -593,11 +713,11 @@ fn every_kind_that_is_not_a_request_of_this_device() {
     let codes: Vec<_> = r.iter().map(|f| error_code(f)).collect();
     assert_eq!(
         codes,
-        (5..12)
+        (5..14)
             .map(|s| (s, ErrorReply::UNKNOWN_KIND))
             .collect::<Vec<_>>()
     );
-    assert_eq!(dev.stats().decode_errors, 7);
+    assert_eq!(dev.stats().decode_errors, 9);
 }
 
 fn frame_of_kind<T: Serialize + ?Sized>(kind: u8, seq: u16, msg: &T) -> Vec<u8> {
@@ -962,6 +1082,237 @@ fn wang_endpoint_serves_both_phases_as_direct_calls_in_both_scalars() {
     wang_agrees::<Fx>(32, 200);
 }
 
+fn fly_agrees<S: Scalar + Serialize + DeserializeOwned>(seed: u32, n: usize, params: FlyParams<S>) {
+    let mut dev = fly_device::<S>(params);
+    open(&mut dev, seed);
+    let mut g = Gen::new(seed);
+    let (mut served, mut escaping, mut infeasible) = (0, 0, 0);
+    for i in 0..n {
+        let seq = (i * 5) as u16;
+        let mut req = fly_request::<S>(&mut g);
+        if i % 17 == 0 {
+            // refused: an unknown stimulus kind
+            req.frame.stimulus = Some(Stimulus {
+                pos: req.state.pos,
+                kind: 2,
+            });
+        }
+        if i % 19 == 0 && req.frame.neighbours.len() > 1 {
+            let id = req.frame.neighbours[0].id;
+            req.frame.neighbours[1].id = id; // refused: an id twice
+        }
+        let direct = fly::step(&req.state, &req.frame, &params, req.ctx);
+        if let Ok((state, decision)) = &direct {
+            served += 1;
+            escaping += usize::from(state.escaping);
+            infeasible += usize::from(decision.infeasible);
+        }
+        let reply = reply_to(&mut dev, seq, &req);
+        assert_eq!(
+            reply,
+            expected(
+                seq,
+                direct.map(|(state, decision)| FlyStepReply { decision, state })
+            ),
+            "step {i}"
+        );
+        // And the decoded reply is the direct value, bit for bit.
+        if let Ok((state, decision)) = direct {
+            let (h, got) = decode::<FlyStepReply<S>>(&reply);
+            assert_eq!((h.kind, h.seq), (kind::FLY_STEP_REPLY, seq));
+            assert_eq!(got, FlyStepReply { decision, state });
+        }
+    }
+    assert!(
+        served > n / 2 && served < n,
+        "{served} served of {n} ({escaping} escaping, {infeasible} infeasible)"
+    );
+    if params.chi_res > S::ZERO && params.r_res > S::ZERO {
+        assert!(escaping > 0, "the escape response was exercised");
+    }
+}
+
+#[test]
+fn fly_endpoint_equals_direct_calls_in_both_scalars() {
+    fly_agrees::<f32>(41, 200, FlyParams::default());
+    fly_agrees::<Fx>(42, 200, FlyParams::default());
+    fly_agrees::<f32>(43, 150, FlyParams::escape());
+    fly_agrees::<Fx>(44, 150, FlyParams::<f32>::escape().cast());
+}
+
+/// A fly device answers bad input with the typed `ErrorReply` of the first failed check (or
+/// `Payload`, `UnknownKind`, `NoSession`) and goes on serving.
+#[test]
+fn fly_device_refuses_bad_input_and_keeps_serving() {
+    let params = FlyParams::<f32>::default();
+    let mut dev = fly_device::<f32>(params);
+    let mut g = Gen::new(45);
+    let mut good = fly_request::<f32>(&mut g);
+    while good.run(&params).is_err() {
+        good = fly_request::<f32>(&mut g);
+    }
+    let served = frame_of(1, &good.run(&params).unwrap());
+    // Before the session: NoSession.
+    assert_eq!(
+        error_code(&reply_to(&mut dev, 1, &good)),
+        (1, ErrorReply::NO_SESSION)
+    );
+    open(&mut dev, 5);
+    assert_eq!(reply_to(&mut dev, 1, &good), served);
+    let with = |f: &dyn Fn(&mut FlyStepRequest<f32>)| {
+        let mut r = good.clone();
+        f(&mut r);
+        r
+    };
+    let ground = Surface3 {
+        point: Vec3::zero(),
+        normal: Vec3::new(0.0, 1.0, 0.0),
+    };
+    // (request, error code, the refusal the controller names)
+    type Case = (
+        FlyStepRequest<f32>,
+        u8,
+        Option<(&'static str, &'static str)>,
+    );
+    let cases: [Case; 8] = [
+        (
+            with(&|r| r.state.pos.x = f32::NAN),
+            ErrorReply::NON_FINITE,
+            Some(("NonFinite", "state.pos")),
+        ),
+        (
+            with(&|r| r.state.vel.y = 16_001.0),
+            ErrorReply::OUT_OF_RANGE,
+            Some(("OutOfRange", "state.vel")),
+        ),
+        (
+            with(&|r| r.state.escape_theta = 1.6),
+            ErrorReply::OUT_OF_RANGE,
+            Some(("OutOfRange", "state.escape_theta")),
+        ),
+        (
+            with(&|r| {
+                r.frame.neighbours.clear();
+                let n = Neighbour {
+                    id: 9,
+                    pos: r.state.pos + Vec3::new(1.0, 0.0, 0.0),
+                    vel: Vec3::zero(),
+                };
+                r.frame.neighbours.push(n).unwrap();
+                r.frame.neighbours.push(n).unwrap();
+            }),
+            ErrorReply::INCONSISTENT,
+            Some(("Inconsistent", "frame.neighbours.id")),
+        ),
+        (
+            with(&|r| {
+                r.frame.stimulus = Some(Stimulus {
+                    pos: Vec3::zero(),
+                    kind: 2,
+                })
+            }),
+            ErrorReply::OUT_OF_RANGE,
+            Some(("OutOfRange", "frame.stimulus.kind")),
+        ),
+        (
+            with(&|r| {
+                r.frame.stimulus = Some(Stimulus {
+                    pos: Vec3::new(0.0, f32::INFINITY, 0.0),
+                    kind: STIMULUS_PREDATOR,
+                })
+            }),
+            ErrorReply::NON_FINITE,
+            Some(("NonFinite", "frame.stimulus.pos")),
+        ),
+        (
+            with(&|r| {
+                r.frame.surfaces.clear();
+                r.frame
+                    .surfaces
+                    .push(Surface3 {
+                        normal: Vec3::new(0.0, 1.02, 0.0),
+                        ..ground
+                    })
+                    .unwrap();
+            }),
+            ErrorReply::OUT_OF_RANGE,
+            Some(("OutOfRange", "frame.surfaces.normal")),
+        ),
+        (
+            with(&|r| {
+                r.frame.surfaces.clear();
+                r.frame
+                    .surfaces
+                    .push(Surface3 {
+                        point: Vec3::new(-16_001.0, 0.0, 0.0),
+                        ..ground
+                    })
+                    .unwrap();
+            }),
+            ErrorReply::OUT_OF_RANGE,
+            Some(("OutOfRange", "frame.surfaces.point")),
+        ),
+    ];
+    for (i, (req, code, refused)) in cases.iter().enumerate() {
+        assert_eq!(refusal(req.run(&params)), *refused, "case {i}");
+        let seq = 10 + i as u16;
+        assert_eq!(
+            error_code(&reply_to(&mut dev, seq, req)),
+            (seq, *code),
+            "case {i}"
+        );
+        // And the device goes on serving.
+        assert_eq!(reply_to(&mut dev, 1, &good), served, "after case {i}");
+    }
+    // Lists over their capacity do not decode: Payload.
+    type Wide = fly::FlyFrame<f32, { WIRE_FLY_NEIGHBOURS + 1 }, { WIRE_FLY_SURFACES + 1 }>;
+    let mut over = Wide::new();
+    for k in 0..=WIRE_FLY_NEIGHBOURS as u32 {
+        over.neighbours
+            .push(Neighbour {
+                id: k,
+                pos: good.state.pos + Vec3::new(k as f32 + 1.0, 0.0, 0.0),
+                vel: Vec3::zero(),
+            })
+            .unwrap();
+    }
+    let mut five = Wide::new();
+    while five.surfaces.push(ground).is_ok() {}
+    for (seq, frame) in [(30, over), (31, five)] {
+        let f = frame_of_kind(kind::FLY_STEP_REQUEST, seq, &(good.state, frame, good.ctx));
+        let r = replies(&mut dev, &f);
+        assert_eq!(error_code(&r[0]), (seq, ErrorReply::PAYLOAD));
+    }
+    // Other controllers' requests and the fly reply kind.
+    let mut line = Vec::new();
+    for (i, k) in [
+        kind::ANT_PLAN_REQUEST,
+        kind::ANT_RESOLVE_REQUEST,
+        kind::BEE_STEP_REQUEST,
+        kind::WANG_ADVECT_REQUEST,
+        kind::WANG_SEPARATE_REQUEST,
+        0x42,
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        line.extend(frame_of_kind(k, 40 + i as u16, &()));
+    }
+    line.extend(frame_of(46, &good.run(&params).unwrap()));
+    let codes: Vec<_> = replies(&mut dev, &line)
+        .iter()
+        .map(|f| error_code(f))
+        .collect();
+    assert_eq!(
+        codes,
+        (40..46)
+            .map(|s| (s, ErrorReply::UNKNOWN_KIND))
+            .collect::<Vec<_>>()
+    );
+    assert_eq!(dev.stats().ignored, 1); // the FlyStepReply
+    assert_eq!(reply_to(&mut dev, 1, &good), served);
+}
+
 #[test]
 fn bee_endpoint_equals_direct_calls_in_both_scalars() {
     bee_agrees::<f32>(21, 200);
@@ -1207,6 +1558,45 @@ proptest! {
         open(&mut dev, 1);
         prop_assert_eq!(reply_to(&mut dev, 1, &req), expected(1, req.run(&BeeParams::default())));
     }
+
+    #[test]
+    fn fly_requests_with_any_numbers_never_panic(
+        words in proptest::collection::vec(any::<u32>(), 60),
+        seed: u32,
+        fixed: bool,
+    ) {
+        fn check<S: Scalar + Serialize + DeserializeOwned>(
+            mut req: FlyStepRequest<S>,
+            mut next: impl FnMut() -> S,
+        ) -> bool {
+            let mut v = || Vec3::new(next(), next(), next());
+            req.state.pos = v();
+            req.state.vel = v();
+            for n in req.frame.neighbours.iter_mut() {
+                n.pos = v();
+                n.vel = v();
+            }
+            if let Some(s) = req.frame.stimulus.as_mut() {
+                s.pos = v();
+            }
+            for s in req.frame.surfaces.iter_mut() {
+                s.point = v();
+                s.normal = v();
+            }
+            req.state.escape_theta = next();
+            let params = FlyParams::<f32>::escape().cast::<S>();
+            let mut dev = fly_device::<S>(params);
+            open(&mut dev, 1);
+            reply_to(&mut dev, 1, &req) == expected(1, req.run(&params))
+        }
+        let mut g = Gen::new(seed);
+        let ok = if fixed {
+            check(fly_request::<Fx>(&mut g), arbitrary(&words, |b| Fx::from_bits(b as i32)))
+        } else {
+            check(fly_request::<f32>(&mut g), arbitrary(&words, f32::from_bits))
+        };
+        prop_assert!(ok);
+    }
 }
 
 // ---- docs/protocol.md kept equal to the code ----
@@ -1251,6 +1641,19 @@ mod spec {
             .take_while(|l| l.starts_with('|'))
             .map(cells)
             .collect()
+    }
+
+    /// The header cells of the table [`table`] finds.
+    fn table_header(text: &str, header: &str) -> Vec<String> {
+        let cells = |line: &str| -> Vec<String> {
+            let line = line.trim().trim_start_matches('|').trim_end_matches('|');
+            line.split('|').map(|c| c.trim().replace('`', "")).collect()
+        };
+        text.lines()
+            .filter(|l| l.starts_with('|'))
+            .map(cells)
+            .find(|c| c.iter().any(|c| c == &header.replace('`', "")))
+            .unwrap_or_else(|| panic!("no table with the column {header:?}"))
     }
 
     /// The hex bytes of a dump line: its two-digit hex tokens up to the first other token (a
@@ -1404,6 +1807,9 @@ mod spec {
     impl Castable for WangParams<f32> {
         type Fx = WangParams<Fx>;
     }
+    impl Castable for FlyParams<f32> {
+        type Fx = FlyParams<Fx>;
+    }
 
     fn hash_of(cell: &str) -> u64 {
         u64::from_str_radix(cell.trim_start_matches("0x"), 16).unwrap()
@@ -1500,6 +1906,50 @@ mod spec {
             assert_eq!(f.cast::<Fx>(), *x, "the Fx preset is the cast f32 preset");
         }
 
+        // FlyParams: fields and the nine presets (Table 1 columns).
+        let rows = table(text, "`FlyParams` field");
+        check_fields::<FlyParams<f32>>(&rows);
+        type Preset = (&'static str, fn() -> FlyParams<f32>, fn() -> FlyParams<Fx>);
+        let fly_presets: [Preset; 9] = [
+            ("FlyParams::midge()", FlyParams::midge, FlyParams::midge),
+            (
+                "FlyParams::aggregation()",
+                FlyParams::aggregation,
+                FlyParams::aggregation,
+            ),
+            (
+                "FlyParams::fruitfly()",
+                FlyParams::fruitfly,
+                FlyParams::fruitfly,
+            ),
+            ("FlyParams::mating()", FlyParams::mating, FlyParams::mating),
+            ("FlyParams::escape()", FlyParams::escape, FlyParams::escape),
+            ("FlyParams::bats()", FlyParams::bats, FlyParams::bats),
+            ("FlyParams::locust()", FlyParams::locust, FlyParams::locust),
+            ("FlyParams::phase()", FlyParams::phase, FlyParams::phase),
+            (
+                "FlyParams::phototaxis()",
+                FlyParams::phototaxis,
+                FlyParams::phototaxis,
+            ),
+        ];
+        let fly = fly_presets.map(|(name, f, x)| (name, f(), x()));
+        for (column, (_, f, x)) in fly.iter().enumerate() {
+            check_values(&rows, 3 + column, f, x);
+            assert_eq!(f.cast::<Fx>(), *x, "the Fx preset is the cast f32 preset");
+        }
+        // The column headers name the presets, in order; the default is the midge.
+        let header = table_header(text, "`FlyParams` field");
+        for (column, (name, _, _)) in fly.iter().enumerate() {
+            assert_eq!(
+                format!("FlyParams::{}", header[3 + column]),
+                *name,
+                "column {column}"
+            );
+        }
+        assert_eq!(FlyParams::<f32>::default(), fly[0].1);
+        assert_eq!(FlyParams::<Fx>::default(), fly[0].2);
+
         // The hash table, both scalars.
         let rows = table(text, "preset");
         let expected = [
@@ -1527,6 +1977,15 @@ mod spec {
             (wang[1].0, params_hash(&wang[1].1), params_hash(&wang[1].2)),
             (wang[2].0, params_hash(&wang[2].1), params_hash(&wang[2].2)),
             (wang[3].0, params_hash(&wang[3].1), params_hash(&wang[3].2)),
+            (fly[0].0, params_hash(&fly[0].1), params_hash(&fly[0].2)),
+            (fly[1].0, params_hash(&fly[1].1), params_hash(&fly[1].2)),
+            (fly[2].0, params_hash(&fly[2].1), params_hash(&fly[2].2)),
+            (fly[3].0, params_hash(&fly[3].1), params_hash(&fly[3].2)),
+            (fly[4].0, params_hash(&fly[4].1), params_hash(&fly[4].2)),
+            (fly[5].0, params_hash(&fly[5].1), params_hash(&fly[5].2)),
+            (fly[6].0, params_hash(&fly[6].1), params_hash(&fly[6].2)),
+            (fly[7].0, params_hash(&fly[7].1), params_hash(&fly[7].2)),
+            (fly[8].0, params_hash(&fly[8].1), params_hash(&fly[8].2)),
         ];
         assert_eq!(rows.len(), expected.len());
         for (row, (name, f, x)) in rows.iter().zip(expected) {
@@ -1671,8 +2130,8 @@ mod spec {
     }
 
     /// The kinds a device never answers, whatever the version: 0x00 and the reply kinds.
-    const NEVER_ANSWERED: [u8; 11] = [
-        0x00, 0x02, 0x04, 0x06, 0x08, 0x0f, 0x11, 0x13, 0x21, 0x31, 0x33,
+    const NEVER_ANSWERED: [u8; 12] = [
+        0x00, 0x02, 0x04, 0x06, 0x08, 0x0f, 0x11, 0x13, 0x21, 0x31, 0x33, 0x41,
     ];
 
     /// Sections 5, 10.4, 10.5: a foreign-version frame of kind 0x00 or of a reply kind is
@@ -1701,8 +2160,8 @@ mod spec {
                 .collect();
             assert_eq!(answered, expected, "version {version}");
             let s = dev.stats();
-            assert_eq!((s.link.version_errors, s.errors, s.requests), (256, 245, 0));
-            assert_eq!((s.ignored, s.decode_errors, s.replies), (11, 0, 0));
+            assert_eq!((s.link.version_errors, s.errors, s.requests), (256, 244, 0));
+            assert_eq!((s.ignored, s.decode_errors, s.replies), (12, 0, 0));
         }
         // The same kinds in this version: dropped, counted in requests and ignored.
         let mut dev = ant_device::<f32>();
@@ -1711,7 +2170,7 @@ mod spec {
             assert!(replies(&mut dev, &frame_of_kind(k, 1, &())).is_empty());
         }
         let s = dev.stats();
-        assert_eq!((s.link.frames_ok, s.requests, s.ignored), (11, 11, 11));
+        assert_eq!((s.link.frames_ok, s.requests, s.ignored), (12, 12, 12));
         assert_eq!((s.errors, s.decode_errors, s.replies), (0, 0, 0));
     }
 
