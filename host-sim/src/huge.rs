@@ -5,9 +5,9 @@
 //! three rows and two layers of the grid; on 4 KiB pages a field of a few ten megabytes
 //! misses the TLB at almost every sample. Linux backs an anonymous mapping with 2 MiB pages
 //! when asked (`madvise(MADV_HUGEPAGE)`, honoured under the default `madvise` setting of
-//! `/sys/kernel/mm/transparent_hugepage/enabled`): the same bits, a quarter faster on the
-//! 256k bench world (docs/benchmarks.md). Elsewhere, or when the mapping fails, the array is
-//! an ordinary heap allocation.
+//! `/sys/kernel/mm/transparent_hugepage/enabled`): the same bits, 11 % faster on the 256k
+//! bench world (docs/benchmarks.md). Elsewhere, or when the mapping fails, the array is an
+//! ordinary heap allocation.
 
 use std::fmt;
 use std::marker::PhantomData;
