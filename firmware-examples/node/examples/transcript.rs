@@ -5,7 +5,7 @@
 //! `swarm-hil` harness.
 //!
 //! ```text
-//! cargo run -p fw-node --example transcript -- ant|bee f32|fixed STEPS > transcript.txt
+//! cargo run -p fw-node --example transcript -- ant|bee|fly f32|fixed STEPS > transcript.txt
 //! ```
 //!
 //! One line per request: `<request hex> <reply hex>` (whole frames, delimiter included; the
@@ -16,7 +16,10 @@
 //!   40 × 40 arena; each tick an `AntPlanRequest` per ant, then an `AntResolveRequest` per ant
 //!   with the neighbours' predictions (2 requests per ant and tick);
 //! * bees: 10 bees near a flower (8 target particles), a rock and a goal; one `BeeStepRequest`
-//!   per bee and step.
+//!   per bee and step;
+//! * flies: 10 midges in a cloud against a wall of the self-check scenario's box
+//!   (`fw_scenario::fly::sense`: the nearest neighbours within r_att, the walls within reach as
+//!   ORCA surfaces); one `FlyStepRequest` per insect and step.
 //!
 //! The last two lines are a `Ping` and a `StatsRequest` (whose reply counts the whole session).
 
@@ -25,13 +28,17 @@ use std::io::Write as _;
 use fw_node::swarm_core::ant::{AntObject, AntParams, AntPlan, AntState, PlanFrame, Surface};
 use fw_node::swarm_core::bee::BeeNeighbor;
 use fw_node::swarm_core::bee::{BeeParams, BeeState, ObstacleSense};
+use fw_node::swarm_core::fly::{
+    FlyDevice, FlyParams, FlyState, FlyStepReply, FlyStepRequest, WIRE_FLY_NEIGHBOURS,
+    WIRE_FLY_SURFACES,
+};
 use fw_node::swarm_core::wire::{
     self, AntDevice, AntPlanReply, AntPlanRequest, AntResolveReply, AntResolveRequest, BeeDevice,
     BeeStepReply, BeeStepRequest, Configure, Controller, DeviceEndpoint, Hello, Identity, Message,
     Ping, StatsRequest, WireBeeFrame, WireResolveFrame,
 };
 use fw_node::swarm_core::{Fx, Rect, Scalar, StepCtx, Vec2, Vec3, rand::rand};
-use fw_node::{NodeScalar, ant_device, bee_device};
+use fw_node::{NodeScalar, ant_device, bee_device, fly_device};
 use fw_scenario::ant::neighbour as ant_neighbour;
 
 const SEED: u32 = 5;
@@ -286,6 +293,53 @@ where
     session.close()
 }
 
+fn flies<S: WireScalar>(device: FlyDevice<S>, steps: u32) -> Vec<String>
+where
+    FlyParams<S>: Controller,
+{
+    const N: usize = 10;
+    let v = Vec3::<S>::from_f32;
+    let p = fw_node::fly_params::<S>();
+    let mut flies: Vec<FlyState<S>> = (0..N as u32)
+        .map(|i| {
+            FlyState::new(
+                v(
+                    uniform(i, 10, 8.0, 11.5),
+                    uniform(i, 11, -1.5, 1.5),
+                    uniform(i, 12, -1.5, 1.5),
+                ),
+                v(
+                    uniform(i, 13, -0.5, 1.5),
+                    uniform(i, 14, -0.5, 0.5),
+                    uniform(i, 15, -0.5, 0.5),
+                ),
+            )
+        })
+        .collect();
+    let mut session = Session::open(device);
+    for step in 0..steps {
+        let prev = flies.clone();
+        for i in 0..N {
+            let frame =
+                fw_scenario::fly::sense::<S, WIRE_FLY_NEIGHBOURS, WIRE_FLY_SURFACES>(&prev, i, &p);
+            let req = FlyStepRequest {
+                state: prev[i],
+                frame,
+                ctx: StepCtx {
+                    seed: SEED,
+                    agent: i as u32,
+                    step,
+                },
+            };
+            let reply = session.send(&[], &req);
+            if let Some(r) = decode::<FlyStepReply<S>>(&reply) {
+                flies[i] = r.state;
+            }
+        }
+    }
+    session.close()
+}
+
 /// `device` reporting a receive buffer of `fifo` bytes.
 fn on<C: Controller, const RX: usize, const TX: usize>(
     mut device: DeviceEndpoint<C, RX, TX>,
@@ -297,20 +351,22 @@ fn on<C: Controller, const RX: usize, const TX: usize>(
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let usage = "usage: transcript ant|bee f32|fixed STEPS";
+    let usage = "usage: transcript ant|bee|fly f32|fixed STEPS";
     let [model, scalar, steps] = args.as_slice() else {
         eprintln!("{usage}");
         std::process::exit(2);
     };
     let steps: u32 = steps.parse().expect(usage);
     // The images report their board's UART receive FIFO (`fw_support::uart::RX_FIFO`): 16
-    // bytes on the ant nodes' PL011, 1 on the bee nodes' CMSDK UART. `qemu-serial.sh --check`
-    // compares the images' Identity with these.
+    // bytes on the ant nodes' PL011, 1 on the bee and fly nodes' CMSDK UART.
+    // `qemu-serial.sh --check` compares the images' Identity with these.
     let lines = match (model.as_str(), scalar.as_str()) {
         ("ant", "f32") => ants(on(ant_device::<f32>("ant-node").unwrap(), 16), steps),
         ("ant", "fixed") => ants(on(ant_device::<Fx>("ant-node-fixed").unwrap(), 16), steps),
         ("bee", "f32") => bees(on(bee_device::<f32>("bee-node").unwrap(), 1), steps),
         ("bee", "fixed") => bees(on(bee_device::<Fx>("bee-node-fixed").unwrap(), 1), steps),
+        ("fly", "f32") => flies(on(fly_device::<f32>("fly-node").unwrap(), 1), steps),
+        ("fly", "fixed") => flies(on(fly_device::<Fx>("fly-node-fixed").unwrap(), 1), steps),
         _ => {
             eprintln!("{usage}");
             std::process::exit(2);

@@ -30,10 +30,12 @@
 //! * ants: [`ANT_SCENARIO`] (`ants-fig7a-single-colony`: its group has no `ant` overrides,
 //!   so `AntParams::default()`), see [`ant_params`];
 //! * bees: [`BEE_SCENARIO`] (`bees-fig14-shafts`: preset `optimized`, Table I's optimized
-//!   column = `BeeParams::default()`), see [`bee_params`].
+//!   column = `BeeParams::default()`), see [`bee_params`];
+//! * flies: [`FLY_SCENARIO`] (`fly-fig1-midges`: preset `midge` with no overrides, ren2016
+//!   Table 1's Midge column = `FlyParams::midge()`), see [`fly_params`].
 //!
-//! A node for other parameters only changes these two functions (or passes its own
-//! parameters to [`AntDevice::new`] / [`BeeDevice::new`]).
+//! A node for other parameters only changes these functions (or passes its own parameters
+//! to [`AntDevice::new`] / [`BeeDevice::new`] / [`FlyDevice::new`]).
 #![no_std]
 #![forbid(unsafe_code)]
 
@@ -41,6 +43,7 @@ use embedded_io::{Read, Write};
 use swarm_core::Scalar;
 use swarm_core::ant::AntParams;
 use swarm_core::bee::BeeParams;
+use swarm_core::fly::{FlyDevice, FlyParams};
 use swarm_core::wire::{AntDevice, BeeDevice, Controller, DeviceEndpoint};
 
 pub use embedded_io;
@@ -50,6 +53,8 @@ pub use swarm_core;
 pub const ANT_SCENARIO: &str = "ants-fig7a-single-colony";
 /// The host scenario whose bee parameters [`bee_params`] reproduces.
 pub const BEE_SCENARIO: &str = "bees-fig14-shafts";
+/// The host scenario whose fly parameters [`fly_params`] reproduces.
+pub const FLY_SCENARIO: &str = "fly-fig1-midges";
 
 /// Bytes read from the UART per call (the endpoint takes any chunk size; a larger chunk only
 /// saves calls). Lives on the stack of [`run`].
@@ -111,6 +116,13 @@ pub fn bee_params<S: Scalar>() -> BeeParams<S> {
     BeeParams::<f32>::default().cast::<S>()
 }
 
+/// The fly parameters of [`FLY_SCENARIO`] in scalar `S`: `FlyParams::<f32>::midge()` (ren2016
+/// Table 1, "Midge", with our Δt, ORCA and noise choices) cast to `S`, as the host simulator
+/// does (the scenario names the preset `midge` and overrides nothing).
+pub fn fly_params<S: Scalar>() -> FlyParams<S> {
+    FlyParams::<f32>::midge().cast::<S>()
+}
+
 /// An ant device running [`ant_params`], reporting `name` in its `Identity`.
 ///
 /// # Errors
@@ -135,6 +147,19 @@ where
     S: Scalar,
 {
     BeeDevice::new(bee_params::<S>(), name)
+}
+
+/// A fly device running [`fly_params`], reporting `name` in its `Identity`.
+///
+/// # Errors
+///
+/// `Error::BadParam` for a name longer than 24 bytes (the parameters are valid).
+pub fn fly_device<S>(name: &str) -> swarm_core::Result<FlyDevice<S>>
+where
+    FlyParams<S>: Controller,
+    S: Scalar,
+{
+    FlyDevice::new(fly_params::<S>(), name)
 }
 
 /// One round of the node loop: one `read` (it blocks until at least one byte is there, then

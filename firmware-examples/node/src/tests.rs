@@ -5,6 +5,7 @@ extern crate std;
 use super::*;
 use std::vec;
 use std::vec::Vec;
+use swarm_core::fly::MAX_FLY_FRAME;
 use swarm_core::wire::{
     self, Accumulator, ControllerKind, Event, Hello, Identity, MAX_ANT_FRAME, MAX_BEE_FRAME,
     params_hash,
@@ -146,6 +147,18 @@ fn the_node_parameters_are_the_host_scenarios() {
     );
     assert_eq!(bee_params::<f32>(), BeeParams::default());
     assert_eq!(bee_params::<Fx>(), BeeParams::<f32>::default().cast::<Fx>());
+    // fly-fig1-midges: preset `midge`, no overrides (protocol.md §10.2 pins both hashes).
+    assert_eq!(fly_params::<f32>(), FlyParams::midge());
+    assert_eq!(fly_params::<Fx>(), FlyParams::<f32>::midge().cast::<Fx>());
+    assert_eq!(fly_params::<Fx>(), FlyParams::<Fx>::midge());
+    assert_eq!(
+        params_hash(&fly_params::<f32>()).unwrap(),
+        0x8a43_f9bf_fcfc_b93b
+    );
+    assert_eq!(
+        params_hash(&fly_params::<Fx>()).unwrap(),
+        0xa0cd_3529_1aa1_7eb7
+    );
 }
 
 /// What the images report as `Identity.rx_buffer` (`fw_support::uart::RX_FIFO`, set by
@@ -156,7 +169,7 @@ const MPS2_RX_FIFO: u32 = 1;
 
 #[test]
 fn every_image_identity() {
-    let cases: [(&str, Identity); 4] = [
+    let cases: [(&str, Identity); 6] = [
         (
             "ant-node",
             greet(ant_device::<f32>("ant-node"), LM3S_RX_FIFO),
@@ -173,27 +186,53 @@ fn every_image_identity() {
             "bee-node-fixed",
             greet(bee_device::<Fx>("bee-node-fixed"), MPS2_RX_FIFO),
         ),
+        (
+            "fly-node",
+            greet(fly_device::<f32>("fly-node"), MPS2_RX_FIFO),
+        ),
+        (
+            "fly-node-fixed",
+            greet(fly_device::<Fx>("fly-node-fixed"), MPS2_RX_FIFO),
+        ),
     ];
     let expect = [
         Identity::of(&ant_params::<f32>(), MAX_ANT_FRAME + 1, "ant-node").unwrap(),
         Identity::of(&ant_params::<Fx>(), MAX_ANT_FRAME + 1, "ant-node-fixed").unwrap(),
         Identity::of(&bee_params::<f32>(), MAX_BEE_FRAME + 1, "bee-node").unwrap(),
         Identity::of(&bee_params::<Fx>(), MAX_BEE_FRAME + 1, "bee-node-fixed").unwrap(),
+        Identity::of(&fly_params::<f32>(), MAX_FLY_FRAME + 1, "fly-node").unwrap(),
+        Identity::of(&fly_params::<Fx>(), MAX_FLY_FRAME + 1, "fly-node-fixed").unwrap(),
     ];
-    let rx_fifo = [LM3S_RX_FIFO, LM3S_RX_FIFO, MPS2_RX_FIFO, MPS2_RX_FIFO];
+    let rx_fifo = [
+        LM3S_RX_FIFO,
+        LM3S_RX_FIFO,
+        MPS2_RX_FIFO,
+        MPS2_RX_FIFO,
+        MPS2_RX_FIFO,
+        MPS2_RX_FIFO,
+    ];
     for (((name, got), want), rx_buffer) in cases.iter().zip(expect).zip(rx_fifo) {
         let want = Identity { rx_buffer, ..want };
         assert_eq!(got.name, *name);
         assert_eq!(*got, want, "{name}");
         assert!(got.check(&want).is_ok());
         // A host on a line without flow control keeps one request in flight (its longest
-        // request frame is max_frame - 1: MAX_ANT_FRAME or MAX_BEE_FRAME).
+        // request frame is max_frame - 1: MAX_ANT_FRAME, MAX_BEE_FRAME or MAX_FLY_FRAME).
         assert_eq!(got.window(usize::from(want.max_frame) - 1), 1, "{name}");
     }
     assert_eq!(cases[0].1.capacities.surfaces, 6);
     assert_eq!(cases[1].1.scalar, ScalarKind::I16F16);
     assert_eq!(cases[2].1.controller, ControllerKind::BEE);
     assert_eq!(cases[2].1.capacities.surfaces, 0);
+    assert_eq!(cases[4].1.controller, ControllerKind::FLY);
+    assert_eq!(
+        (
+            cases[4].1.capacities.neighbours,
+            cases[4].1.capacities.surfaces
+        ),
+        (16, 4)
+    );
+    assert_eq!(cases[5].1.scalar, ScalarKind::I16F16);
 }
 
 /// The `Identity` a new device reporting `rx_buffer` answers a `Hello` with.

@@ -81,9 +81,9 @@ pub fn node_build_script(what: &str, f32_words: &[u32], fixed_words: Option<&[u3
     }
 }
 
-/// Writes a node's `build.rs` `main`: runs `fw_scenario::$model::run` (`$model`: `ant` or `bee`)
-/// here on the host in `f32` and, with the node's feature `fixed`, in `Fx`, and passes the words
-/// to [`node_build_script`] (`$what` names the scenario in the tables' doc comments).
+/// Writes a node's `build.rs` `main`: runs `fw_scenario::$model::run` (`$model`: `ant`, `bee` or
+/// `fly`) here on the host in `f32` and, with the node's feature `fixed`, in `Fx`, and passes the
+/// words to [`node_build_script`] (`$what` names the scenario in the tables' doc comments).
 #[macro_export]
 macro_rules! node_build_script {
     ($model:ident, $what:literal) => {

@@ -36,6 +36,7 @@ macro_rules! scalar_tests {
 
 pub mod ant;
 pub mod bee;
+pub mod fly;
 #[cfg(feature = "std")]
 pub mod host;
 

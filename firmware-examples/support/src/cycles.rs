@@ -1,11 +1,13 @@
-//! The measurement images (`ant-node-cycles`, `bee-node-cycles` and their `-fixed` variants):
+//! The measurement images (`ant-node-cycles`, `bee-node-cycles`, `fly-node-cycles` and their
+//! `-fixed` variants):
 //! what one controller step costs on the emulated core, in instructions.
 //!
 //! # What is measured
 //!
-//! `fw_scenario::ant::cost` and `fw_scenario::bee::cost` call the controllers the way a serial
-//! node does per request (`ant::plan_checked`, `ant::resolve_checked`, `bee::step_checked`
-//! with parameters validated once; input validation included; no UART, no decoding or
+//! `fw_scenario::ant::cost`, `fw_scenario::bee::cost` and `fw_scenario::fly::cost` call the
+//! controllers the way a serial node does per request (`ant::plan_checked`,
+//! `ant::resolve_checked`, `bee::step_checked`, `fly::step_checked` with parameters validated
+//! once; input validation included; no UART, no decoding or
 //! encoding), a few hundred times over varied frames, and time every call with a
 //! [`SysTickMeter`]. The images are built with the same release profile and the same
 //! `fw-support` memory routines as the serial nodes.
@@ -45,6 +47,7 @@ use core::hint::black_box;
 use cortex_m::peripheral::{DWT, SYST, syst::SystClkSource};
 use fw_scenario::ant::AntCost;
 use fw_scenario::bee::BeeCost;
+use fw_scenario::fly::FlyCost;
 use fw_scenario::{Meter, Stats};
 
 /// The SysTick counter's mask (a 24-bit down-counter).
@@ -237,6 +240,17 @@ pub fn put_bee(l: &mut Report, c: &BeeCost) -> bool {
     c.errors == 0
 }
 
+/// Appends a fly run's fields; true if every call returned a decision.
+pub fn put_fly(l: &mut Report, c: &FlyCost) -> bool {
+    put_stats(l, "step", &c.step);
+    l.str(" neighbours=").dec(c.neighbours as usize);
+    l.str(" surfaces=").dec(c.surfaces as usize);
+    l.str(" full_frames=").dec(c.full_frames as usize);
+    l.str(" infeasible=").dec(c.infeasible as usize);
+    l.str(" errors=").dec(c.errors as usize);
+    c.errors == 0
+}
+
 /// Runs a measurement image: starts the meter, probes the DWT, times the calibration loops,
 /// then `body` (which runs the cost scenario and appends its fields, returning whether every
 /// call returned a decision), prints the line and exits QEMU (success only if `body` says so
@@ -288,9 +302,10 @@ pub fn run(
 /// Writes a measurement image (`*-cycles`): the handlers of
 /// [`selfcheck_handlers!`](crate::selfcheck_handlers) and a `main` that [`run`]s, as image
 /// `$image`, the cost run of `$model` (`ant`: `ant::plan_checked` and `ant::resolve_checked`;
-/// `bee`: `bee::step_checked` with the wire frame capacities) in scalar `$scalar` (`f32` or
-/// `Fx`) with the serial node's parameters (`fw_node::ant_params`, `fw_node::bee_params`). The
-/// binary depends on `cortex-m-rt` and `fw-node`. Use once, at the top level.
+/// `bee`: `bee::step_checked`, `fly`: `fly::step_checked`, with the wire frame capacities) in
+/// scalar `$scalar` (`f32` or `Fx`) with the serial node's parameters (`fw_node::ant_params`,
+/// `fw_node::bee_params`, `fw_node::fly_params`). The binary depends on `cortex-m-rt` and
+/// `fw-node`. Use once, at the top level.
 #[macro_export]
 macro_rules! cycles_image {
     ($image:literal, $model:ident, f32) => {
@@ -328,6 +343,20 @@ macro_rules! cycles_image {
                 WIRE_BEE_TARGETS,
             >(&params, meter);
             $crate::cycles::put_bee(line, &cost)
+        });
+    };
+    (@ $image:literal, $label:literal, fly, $scalar:ty) => {
+        $crate::cycles_image!(@@ $image, $label, |meter, line| {
+            use fw_node::swarm_core::fly::{WIRE_FLY_NEIGHBOURS, WIRE_FLY_SURFACES};
+            let Ok(params) = fw_node::fly_params::<$scalar>().checked() else {
+                return false;
+            };
+            let cost = $crate::__private::fw_scenario::fly::cost::<
+                $scalar,
+                WIRE_FLY_NEIGHBOURS,
+                WIRE_FLY_SURFACES,
+            >(&params, meter);
+            $crate::cycles::put_fly(line, &cost)
         });
     };
     (@@ $image:literal, $label:literal, $body:expr) => {

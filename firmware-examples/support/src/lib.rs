@@ -1,7 +1,8 @@
 //! Target-side plumbing shared by the node images.
 //!
 //! * [`uart`]: polled `embedded-io` UART drivers for the two QEMU boards (the serial nodes,
-//!   `ant-node`, `bee-node` and their `-fixed` variants, serve `fw_node::run` over them);
+//!   `ant-node`, `bee-node`, `fly-node` and their `-fixed` variants, serve `fw_node::run` over
+//!   them);
 //! * [`node_handlers!`]: the panic and HardFault handlers of a serial node (reset the MCU: the
 //!   host sees `NoSession` and handshakes again);
 //! * [`check`] and [`selfcheck_handlers!`]: the self-check images (`*-selfcheck`). [`check`]
@@ -251,9 +252,9 @@ pub mod __private {
     pub use fw_scenario;
 }
 
-/// Writes a serial node image (`ant-node`, `bee-node`, their `-fixed` and `-other` variants):
-/// the handlers of [`node_handlers!`] and a `main` that paints the stack, takes the board's
-/// UART0 ([`uart::take_uart0`]), builds the device with `$device` (a
+/// Writes a serial node image (`ant-node`, `bee-node`, `fly-node`, their `-fixed` and `-other`
+/// variants): the handlers of [`node_handlers!`] and a `main` that paints the stack, takes the
+/// board's UART0 ([`uart::take_uart0`]), builds the device with `$device` (a
 /// `swarm_core::Result<DeviceEndpoint<..>>`, e.g. `fw_node::ant_device::<f32>("ant-node")`)
 /// and serves it with `fw_node::run` forever. A UART taken before or a device error resets the
 /// MCU. The binary depends on `cortex-m-rt` and `fw-node`. Use once, at the top level.
@@ -280,8 +281,8 @@ macro_rules! serial_node {
 /// Writes a self-check image (`*-selfcheck`): the handlers of [`selfcheck_handlers!`], the
 /// expected table the node's `build.rs` wrote for the scalar (`OUT_DIR/expected_f32.rs` or
 /// `expected_fixed.rs`), and a `main` that runs [`check`] labelled `$name` over
-/// `fw_scenario::$model::run` (`$model`: `ant` or `bee`; `$scalar`: `f32` or `Fx`). The binary
-/// depends on `cortex-m-rt`. Use once, at the top level.
+/// `fw_scenario::$model::run` (`$model`: `ant`, `bee` or `fly`; `$scalar`: `f32` or `Fx`). The
+/// binary depends on `cortex-m-rt`. Use once, at the top level.
 #[macro_export]
 macro_rules! selfcheck_image {
     ($name:literal, $model:ident, f32) => {
