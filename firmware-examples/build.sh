@@ -1,19 +1,24 @@
 #!/usr/bin/env bash
 # Builds the firmware images (serial nodes and self-checks) and reports their sizes.
 #
-#   firmware-examples/build.sh [--fetch] [--offline] [--enforce-budgets] [--only ant|bee]
+#   firmware-examples/build.sh [--fetch] [--offline] [--enforce-budgets] [--only ant|bee|fly]
 #
 # Images (ELF, under firmware-examples/target/<triple>/release/):
 #   ant-node                  thumbv7m-none-eabi     QEMU lm3s6965evb (Cortex-M3)   f32 (libm)
 #   ant-node-fixed            thumbv7m-none-eabi     QEMU lm3s6965evb (Cortex-M3)   Fx (I16F16)
 #   bee-node                  thumbv7em-none-eabihf  QEMU mps2-an386  (Cortex-M4F)  f32 (libm)
 #   bee-node-fixed            thumbv7em-none-eabihf  QEMU mps2-an386  (Cortex-M4F)  Fx (I16F16)
+#   fly-node                  thumbv7em-none-eabihf  QEMU mps2-an386  (Cortex-M4F)  f32 (libm)
+#   fly-node-fixed            thumbv7em-none-eabihf  QEMU mps2-an386  (Cortex-M4F)  Fx (I16F16)
 # are the serial nodes (the device endpoint on UART0; scripts/qemu-serial.sh runs them), and
-#   ant-node-selfcheck, ant-node-fixed-selfcheck, bee-node-selfcheck, bee-node-fixed-selfcheck
+#   ant-node-selfcheck, ant-node-fixed-selfcheck, bee-node-selfcheck, bee-node-fixed-selfcheck,
+#   fly-node-selfcheck, fly-node-fixed-selfcheck
 # the self-check images (replay a scenario, compare with the host; scripts/qemu-run.sh), and
-#   ant-node-cycles, ant-node-fixed-cycles, bee-node-cycles, bee-node-fixed-cycles
+#   ant-node-cycles, ant-node-fixed-cycles, bee-node-cycles, bee-node-fixed-cycles,
+#   fly-node-cycles, fly-node-fixed-cycles
 # the measurement images (time the controller call by call; scripts/qemu-cycles.sh).
-# (ant-node-other and bee-node-other serve other parameters: scripts/hil-qemu.sh's refusal test.)
+# (ant-node-other, bee-node-other and fly-node-other serve other parameters:
+# scripts/hil-qemu.sh's refusal test.)
 #
 # Toolchain, per target: rustup's cargo if `rustup target list --installed` has the target;
 # otherwise Debian's rustc/cargo (packages rustc-web cargo-web rust-web-src lld) with
@@ -28,7 +33,9 @@
 #   flash      = .vector_table + .text + .rodata + .data (the initial values of .data live in flash)
 #   ram_static = .data + .bss + .uninit (the stack is not included; qemu-run.sh reports its peak)
 # Budgets (see README.md), for the serial nodes: ant-node-fixed <= 16 KiB flash / 4 KiB RAM;
-# bee-node, bee-node-fixed <= 32 KiB / 8 KiB. The self-check images carry their scenario and
+# bee-node, bee-node-fixed <= 32 KiB / 8 KiB; fly-node, fly-node-fixed <= 48 KiB / 16 KiB (RAM
+# including the stack: static RAM is checked here, static RAM + stack peak by
+# scripts/qemu-serial.sh --stack). The self-check images carry their scenario and
 # its expected-decision table on top, the measurement images their scenario and timing code;
 # neither has a budget.
 # Over budget is a warning, or an error with --enforce-budgets (or FW_ENFORCE_BUDGETS=1).
@@ -46,7 +53,7 @@ while [ $# -gt 0 ]; do
         --offline) OFFLINE=(--offline) ;;
         --fetch) FETCH=1 ;;
         --enforce-budgets) ENFORCE=1 ;;
-        --only) ONLY=${2:?--only needs ant or bee}; shift ;;
+        --only) ONLY=${2:?--only needs ant, bee or fly}; shift ;;
         -h|--help) awk 'NR > 1 && /^set /{exit} NR > 1' "$HERE/build.sh"; exit 0 ;;
         *) echo "build.sh: unknown argument '$1' (try --help)" >&2; exit 2 ;;
     esac
@@ -65,6 +72,10 @@ DEBIAN_RUSTC=/usr/bin/rustc
 DEBIAN_CARGO=/usr/bin/cargo
 
 die() { echo "build.sh: error: $*" >&2; exit 1; }
+case "$ONLY" in
+    ""|ant|bee|fly) ;;
+    *) die "--only takes ant, bee or fly (got '$ONLY')" ;;
+esac
 
 # The toolchain rustup would use here (empty without rustup).
 rustup_toolchain() {
@@ -176,6 +187,9 @@ if [ -z "$ONLY" ] || [ "$ONLY" = ant ]; then
 fi
 if [ -z "$ONLY" ] || [ "$ONLY" = bee ]; then
     node bee-node thumbv7em-none-eabihf mps2-an386 "32768 8192" "32768 8192"
+fi
+if [ -z "$ONLY" ] || [ "$ONLY" = fly ]; then
+    node fly-node thumbv7em-none-eabihf mps2-an386 "49152 16384" "49152 16384"
 fi
 
 # --- sizes ------------------------------------------------------------------------------------
