@@ -5,12 +5,13 @@
 #
 #   scripts/qemu-cycles.sh [--build] [--self-test] [--shift N] [--timeout SECONDS] [IMAGE...]
 #
-# IMAGE is ant-node, ant-node-fixed, bee-node or bee-node-fixed (default: all four): the
-# measurement image of that node, firmware-examples/target/<triple>/release/<IMAGE>-cycles
-# (the `-cycles` suffix may be given too). Each times its controller call by call as the serial
-# node runs it (ant: plan_checked and resolve_checked per ant-step, 24 ants × 16 ticks; bee:
-# step_checked, 20 bees × 16 steps; see fw_support::cycles and fw_scenario's `cost`), with
-# SysTick on the processor clock, and prints one line of ticks over semihosting.
+# IMAGE is ant-node, ant-node-fixed, bee-node, bee-node-fixed, fly-node or fly-node-fixed
+# (default: all six): the measurement image of that node,
+# firmware-examples/target/<triple>/release/<IMAGE>-cycles (the `-cycles` suffix may be given
+# too). Each times its controller call by call as the serial node runs it (ant: plan_checked
+# and resolve_checked per ant-step, 24 ants × 16 ticks; bee: step_checked, 20 bees × 16 steps;
+# fly: step_checked, 24 insects × 16 steps; see fw_support::cycles and fw_scenario's `cost`),
+# with SysTick on the processor clock, and prints one line of ticks over semihosting.
 #
 # Conversion: QEMU runs with `-icount shift=N` (default 7), so virtual time advances exactly
 # 2^N ns per guest instruction, and SysTick counts virtual time at the board's system clock
@@ -95,7 +96,7 @@ END {
         print "PHASE", names[k], s[1], sprintf("%.0f", s[2] * f), sprintf("%.1f", s[4] / s[1] * f), sprintf("%.0f", s[3] * f)
     }
     if (!("step" in v)) { ok = 0; why = why " no step figures" }
-    split("overhead dwt_ctrl dwt_cyccnt neighbours targets full_frames avoiding errors overflows", keys, " ")
+    split("overhead dwt_ctrl dwt_cyccnt neighbours targets surfaces full_frames avoiding infeasible errors overflows", keys, " ")
     for (k in keys) if (keys[k] in v) print "INFO", keys[k], v[keys[k]]
     # overflows= comes last: without it the line was cut short.
     if (!("errors" in v) || !("overflows" in v)) { ok = 0; why = why " incomplete line" }
@@ -171,6 +172,7 @@ run_one() {
         if (img ~ /^ant/ && name == "step") name = "ant-step"
         else if (img ~ /^ant/ && name == "moving") name = "ant-step, moving ants"
         else if (img ~ /^bee/ && name == "step") name = "bee-step"
+        else if (img ~ /^fly/ && name == "step") name = "fly-step"
         printf "  %-24s %-10s %-7s %-22s %5s %8s %10s %8s\n", img "-cycles", cpu, scalar, name, $3, $4, $5, $6 }')
     ROWS+=("$names"$'\n'"    cross-check: $cal_txt; $dwt_txt")
 }

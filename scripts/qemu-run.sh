@@ -3,9 +3,10 @@
 #
 #   scripts/qemu-run.sh [--build] [--self-test] [--timeout SECONDS] [IMAGE...]
 #
-# IMAGE is ant-node, ant-node-fixed, bee-node or bee-node-fixed (default: all four): the
-# self-check image of that node, firmware-examples/target/<triple>/release/<IMAGE>-selfcheck
-# (the `-selfcheck` suffix may be given too). Each replays its scenario on the emulated MCU,
+# IMAGE is ant-node, ant-node-fixed, bee-node, bee-node-fixed, fly-node or fly-node-fixed
+# (default: all six): the self-check image of that node,
+# firmware-examples/target/<triple>/release/<IMAGE>-selfcheck (the `-selfcheck` suffix may be
+# given too). Each replays its scenario on the emulated MCU,
 # compares every decision word bit for bit with the values the host computed at build time,
 # prints one line over semihosting and exits QEMU with status 0 only if all matched.
 # (The serial node images themselves, without the suffix, run with scripts/qemu-serial.sh.)

@@ -3,10 +3,11 @@
 # optionally talks to it (no swarm-hil needed).
 #
 #   scripts/qemu-serial.sh [options] IMAGE          one image
-#   scripts/qemu-serial.sh --check [options]        all four images: --hello --replay --stack
+#   scripts/qemu-serial.sh --check [options]        all six images: --hello --replay --stack
 #
-# IMAGE: ant-node, ant-node-fixed (QEMU lm3s6965evb, Cortex-M3) or bee-node, bee-node-fixed
-# (QEMU mps2-an386, Cortex-M4F): firmware-examples/target/<triple>/release/IMAGE.
+# IMAGE: ant-node, ant-node-fixed (QEMU lm3s6965evb, Cortex-M3) or bee-node, bee-node-fixed,
+# fly-node, fly-node-fixed (QEMU mps2-an386, Cortex-M4F):
+# firmware-examples/target/<triple>/release/IMAGE.
 #
 # Where the UART goes:
 #   --tcp PORT      a TCP server on 127.0.0.1:PORT (default; PORT 0 or none = a free port)
@@ -23,7 +24,9 @@
 #                   QEMU's UART holds the sender back when full, so the line has flow control
 #                   and W is not bound by the Identity's rx_buffer)
 #   --stack         after --hello/--replay, read the painted stack's peak through QEMU's
-#                   monitor (the images paint the free stack at boot; fw_support::paint_stack)
+#                   monitor (the images paint the free stack at boot; fw_support::paint_stack);
+#                   for a node with a RAM budget (ant-node-fixed 4 KiB, bee-node* 8 KiB,
+#                   fly-node* 16 KiB) static RAM + stack peak must fit it
 #   --print-cmd     print the QEMU command line and exit
 # Other:
 #   --build         run firmware-examples/build.sh first
@@ -195,12 +198,15 @@ if args.get("hello") == "1":
     phash, i = varint(p, i)
     n, i = varint(p, i)
     name = p[i:i + n].decode()
-    want_ctrl = 0 if img.startswith("ant") else 1
+    # controller, capacities (neighbours, objects, targets, surfaces), max_frame, rx_buffer (the
+    # UART's receive FIFO: PL011 on the lm3s6965evb, CMSDK UART on the mps2-an386)
+    want_ctrl, want_caps, want_max, want_rx = {
+        "ant": (0, [8, 4, 0, 6], 451, 16),
+        "bee": (1, [16, 0, 16, 0], 942, 1),
+        "fly": (3, [16, 0, 0, 4], 761, 1),
+    }[img.split("-")[0]]
     want_scal = 1 if img.endswith("fixed") else 0
     want_math = 2 if want_scal else 0
-    want_caps = [8, 4, 0, 6] if want_ctrl == 0 else [16, 0, 16, 0]
-    want_max = 451 if want_ctrl == 0 else 942
-    want_rx = 16 if want_ctrl == 0 else 1          # the UART's receive FIFO: PL011, CMSDK UART
     got = (proto, ctrl, scal, math, caps, max_frame, rx_buffer, name)
     want = (3, want_ctrl, want_scal, want_math, want_caps, want_max, want_rx, img)
     if got != want: fail(f"identity {got} != expected {want}")
@@ -208,7 +214,7 @@ if args.get("hello") == "1":
         pinned = bytes.fromhex("04 03 02 02 02 03 01 01 03 08 04 19 06 c3 03 10 c3 8b a1 c0 ec f6 b8 9a 7e"
                                " 08 61 6e 74 2d 6e 6f 64 65 c4 0b 00")
         if reply != pinned: fail("Identity differs from docs/protocol.md section 11")
-    print(f"ok    {img}: Hello -> Identity (controller {['Ant','Bee'][ctrl]}, scalar "
+    print(f"ok    {img}: Hello -> Identity (controller {['Ant','Bee','Wang','Fly'][ctrl]}, scalar "
           f"{['F32','I16F16'][scal]}, math {['Libm','Micromath','Integer'][math]}, capacities {caps}, "
           f"max_frame {max_frame}, rx_buffer {rx_buffer}, params_hash {phash:#018x}, name {name!r}); "
           f"first reply "
@@ -220,7 +226,7 @@ if args.get("hello") == "1":
 if args.get("replay"):
     pairs = [l.split() for l in open(args["replay"]) if l.strip()]
     window = int(args.get("window", "1"))
-    decisions = sum(1 for _, d in pairs if unframe(bytes.fromhex(d))[0] in (0x11, 0x13, 0x21))
+    decisions = sum(1 for _, d in pairs if unframe(bytes.fromhex(d))[0] in (0x11, 0x13, 0x21, 0x41))
     t = time.time()
     sent = 0
     for k, (h, d) in enumerate(pairs):
@@ -275,9 +281,25 @@ if args.get("monitor"):
     capped = k == 0
     print(f"ok    {img}: stack peak {'>=' if capped else ''}{peak} B (painted stack read through the QEMU monitor)")
     result.update(stack_peak=peak)
+    budget = int(args.get("ram_budget") or 0)
+    if budget:
+        ram = peak + floor - int(args["ram_origin"], 16)
+        if capped or ram > budget:
+            fail(f"static RAM + stack peak {'>=' if capped else ''}{ram} B is over the budget of {budget} B")
+        print(f"ok    {img}: static RAM + stack peak {ram} B within the budget of {budget} B")
+        result.update(ram_with_stack=ram)
 
 print("RESULT " + " ".join(f"{k}={v}" for k, v in result.items()))
 PY
+}
+
+# The serial nodes' RAM budgets (README.md "Sizes"), static RAM and stack together; none: empty.
+ram_budget() {
+    case "$1" in
+        ant-node-fixed) echo 4096 ;;
+        bee-node|bee-node-fixed) echo 8192 ;;
+        fly-node|fly-node-fixed) echo 16384 ;;
+    esac
 }
 
 sym() {  # sym ELF NAME -> hex address
@@ -337,7 +359,8 @@ for img in "${SELECTED[@]}"; do
            window="$WINDOW")
     [ -n "$trfile" ] && cargs+=(replay="$trfile")
     if [ "$STACK" = 1 ]; then
-        cargs+=(monitor="$WORK/qmp.sock" top="$(sym "$elf" _stack_start)" floor="$(sym "$elf" _stack_end)")
+        cargs+=(monitor="$WORK/qmp.sock" top="$(sym "$elf" _stack_start)" floor="$(sym "$elf" _stack_end)"
+                ram_origin="$(sym "$elf" __sdata)" ram_budget="$(ram_budget "$img")")
     fi
     client "${cargs[@]}" || FAILED=1
     if ! kill -0 "$QEMU_PID" 2>/dev/null; then

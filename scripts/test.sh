@@ -88,7 +88,7 @@ stage "cargo test --workspace (unit, property, integration, doc tests)" cargo te
 if ((QUICK == 1)); then
     warn "--quick: SKIPPING the firmware build and QEMU tests"
 elif ((firmware_ok == 1)); then
-    stage "firmware: build ant-node and bee-node (f32, fixed) for Cortex-M, within their size budgets" firmware-examples/build.sh --enforce-budgets
+    stage "firmware: build ant-node, bee-node and fly-node (f32, fixed) for Cortex-M, within their size budgets" firmware-examples/build.sh --enforce-budgets
     stage "firmware: scenario branch coverage (host)" bash -c 'cd firmware-examples && cargo test -q -p fw-scenario --features std,fixed && cargo test -q -p fw-scenario --features std'
     stage "firmware: node loop and parameters (host)" bash -c 'cd firmware-examples && cargo test -q -p fw-node'
     stage "firmware: every image in qemu-system-arm equals the host, and a corrupted table fails" scripts/qemu-run.sh --self-test

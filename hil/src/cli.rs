@@ -154,7 +154,8 @@ enum Command {
     /// Start a firmware image in QEMU with its UART on a pseudo-terminal and mirror it there
     /// (QEMU is stopped whatever happens).
     Qemu {
-        /// The node: `ant-node` or `bee-node` (`--scalar fixed` picks the fixed-point image).
+        /// The node: `ant-node`, `bee-node` or `fly-node` (`--scalar fixed` picks the
+        /// fixed-point image).
         #[arg(long)]
         firmware: String,
         /// The ELF to run (default: firmware-examples/target/<triple>/release/<image>).
@@ -296,7 +297,7 @@ fn run(cli: Cli) -> Result<Verdict, Stop> {
                 Some(e) => e,
                 None => QemuRun::elf_of(Path::new("."), &image).ok_or_else(|| {
                     usage(format!(
-                        "unknown firmware `{firmware}` (ant-node, bee-node)"
+                        "unknown firmware `{firmware}` (ant-node, bee-node, fly-node)"
                     ))
                 })?,
             };

@@ -130,7 +130,10 @@ pub enum HilError {
         problem: String,
     },
     /// A firmware name no board is known for.
-    #[error("unknown firmware `{0}` (ant-node, ant-node-fixed, bee-node, bee-node-fixed)")]
+    #[error(
+        "unknown firmware `{0}` (ant-node, ant-node-fixed, bee-node, bee-node-fixed, fly-node, \
+         fly-node-fixed)"
+    )]
     UnknownFirmware(String),
     /// QEMU did not start the board as expected.
     #[error("qemu-system-arm did not open a pseudo-terminal; it said: {0}")]

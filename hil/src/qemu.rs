@@ -28,7 +28,8 @@ pub struct Board {
     pub triple: &'static str,
 }
 
-/// The board of a node image: `ant-node*` on `lm3s6965evb`, `bee-node*` on `mps2-an386`.
+/// The board of a node image: `ant-node*` on `lm3s6965evb`, `bee-node*` and `fly-node*` on
+/// `mps2-an386`.
 pub fn board_of(image: &str) -> Option<Board> {
     if image.starts_with("ant-node") {
         Some(Board {
@@ -36,7 +37,7 @@ pub fn board_of(image: &str) -> Option<Board> {
             cpu: "cortex-m3",
             triple: "thumbv7m-none-eabi",
         })
-    } else if image.starts_with("bee-node") {
+    } else if image.starts_with("bee-node") || image.starts_with("fly-node") {
         Some(Board {
             machine: "mps2-an386",
             cpu: "cortex-m4",
@@ -201,6 +202,8 @@ mod tests {
             board_of("bee-node").unwrap().triple,
             "thumbv7em-none-eabihf"
         );
+        assert_eq!(board_of("fly-node-fixed").unwrap().machine, "mps2-an386");
+        assert_eq!(board_of("fly-node").unwrap().cpu, "cortex-m4");
         assert!(board_of("wasp-node").is_none());
     }
 
@@ -217,7 +220,8 @@ mod tests {
 /// A mirror run against a firmware image in QEMU.
 #[derive(Clone, Debug)]
 pub struct QemuRun {
-    /// The image name (`ant-node`, `ant-node-fixed`, `bee-node`, `bee-node-fixed`).
+    /// The image name (`ant-node`, `ant-node-fixed`, `bee-node`, `bee-node-fixed`, `fly-node`,
+    /// `fly-node-fixed`).
     pub image: String,
     /// Its ELF file.
     pub elf: PathBuf,

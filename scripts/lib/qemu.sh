@@ -12,7 +12,7 @@ SUFFIX=${2:-}
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 FW="$ROOT/firmware-examples"
 # The serial nodes; each has a -selfcheck and a -cycles image.
-NODES=(ant-node ant-node-fixed bee-node bee-node-fixed)
+NODES=(ant-node ant-node-fixed bee-node bee-node-fixed fly-node fly-node-fixed)
 BUILD=0
 TIMEOUT=60
 SELECTED=()
@@ -39,7 +39,8 @@ parse_args() {
 
 # common_arg ARG [VALUE...]: the arguments every script takes: --build, --timeout S, -h/--help,
 # --self-test where the script set SELFTEST, and a node (ant-node, ant-node-fixed, bee-node,
-# bee-node-fixed, or one of them with SUFFIX), added to SELECTED. Exits 2 on any other argument.
+# bee-node-fixed, fly-node, fly-node-fixed, or one of them with SUFFIX), added to SELECTED.
+# Exits 2 on any other argument.
 common_arg() {
     case "$1" in
         --build) BUILD=1; return ;;
@@ -74,7 +75,7 @@ prepare() {
 board() {
     case "$1" in
         ant-node*) echo "thumbv7m-none-eabi lm3s6965evb cortex-m3" ;;
-        bee-node*) echo "thumbv7em-none-eabihf mps2-an386 cortex-m4" ;;
+        bee-node*|fly-node*) echo "thumbv7em-none-eabihf mps2-an386 cortex-m4" ;;
     esac
 }
 
