@@ -72,6 +72,30 @@ fn chase() -> Scenario {
     short(sc)
 }
 
+/// ren2016 Fig. 8 with the predator added at step 2 beside the swarm and moved into it at
+/// step 5: the flies that see it escape (issue 16).
+fn escape() -> Scenario {
+    let mut sc = scenario::builtin("fly-fig8-escape").unwrap();
+    sc.events = vec![
+        event(2, Action::Add("predator".into())),
+        Event {
+            step: 2,
+            action: Action::Move {
+                object: "predator".into(),
+                to: vec![22.0, 10.0, 10.0],
+            },
+        },
+        Event {
+            step: 5,
+            action: Action::Move {
+                object: "predator".into(),
+                to: vec![28.0, 10.0, 10.0],
+            },
+        },
+    ];
+    short(sc)
+}
+
 /// `sc` run for [`STEPS`] steps, recording only the trajectories.
 fn short(mut sc: Scenario) -> Scenario {
     sc.set_steps(STEPS);
@@ -193,14 +217,20 @@ fn a_mirrored_scenario_applies_its_events_and_ends_where_its_run_ends() {
         ),
         ("chase", chase(), ScalarType::F32, Backend::Cpu),
         ("chase-fixed", chase(), ScalarType::Fixed, Backend::Cpu),
+        ("escape", escape(), ScalarType::F32, Backend::Cpu),
+        ("escape-fixed", escape(), ScalarType::Fixed, Backend::Cpu),
     ];
     for (name, sc, scalar, backend) in cases {
         let model = sc.groups[0].model.to_string();
         let mut sc = with_scalar(&sc, scalar);
         sc.backend = backend;
         let dir = scratch(name);
+        let phases = swarm_sim::models::engine(&sc, sc.seed)
+            .unwrap()
+            .phases()
+            .len() as u64;
         let (r, frame) = mirrored(&sc);
-        assert_eq!(r.decisions, 25 * 2 * u64::from(STEPS), "{name}");
+        assert_eq!(r.decisions, 25 * phases * u64::from(STEPS), "{name}");
         assert_eq!(r.mismatches, 0, "{name}: {}", r.human());
         assert!(r.passed(), "{name}: {}", r.human());
         assert_eq!(r.model, model, "{name}");

@@ -39,6 +39,7 @@ pub mod engine;
 mod error;
 pub mod eval;
 pub mod fields;
+pub mod fly;
 pub mod gpu;
 pub mod grid;
 pub mod huge;

@@ -8,6 +8,7 @@ use crate::ants::{AntSim, bench_ant_world};
 use crate::bees::{BeeSim, bench_bee_world};
 use crate::engine::Engine;
 use crate::error::{Result, SimError};
+use crate::fly::{FlySim, bench_fly_world};
 use crate::gpu::Gpu;
 use crate::gpu::ant::engine::GpuAntSim;
 use crate::gpu::wang::engine::GpuWangSim;
@@ -118,6 +119,15 @@ pub const BUILTIN: &[ModelEntry] = &[
                 )?))
             },
         }),
+    },
+    ModelEntry {
+        name: "fly",
+        about: "force-based flying insects with 3D ORCA (ren2016), 3D",
+        dim: 3,
+        check: crate::fly::scenario::check,
+        engine: |sc, seed| Ok(Box::new(FlySim::from_scenario(sc, seed)?)),
+        bench_world: |n, seed, scalar| Box::new(bench_fly_world(n, seed, scalar)),
+        gpu: None,
     },
 ];
 

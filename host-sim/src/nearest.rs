@@ -28,6 +28,8 @@ pub(crate) struct Selected<const K: usize> {
     pub(crate) items: [(u64, u32); K],
     /// How many were selected.
     pub(crate) len: usize,
+    /// How many entries were within the range (more than `K`: the selection was truncated).
+    pub(crate) within: usize,
 }
 
 impl<const K: usize> Selected<K> {
@@ -36,6 +38,7 @@ impl<const K: usize> Selected<K> {
         Selected {
             items: [(0, 0); K],
             len: 0,
+            within: 0,
         }
     }
 
@@ -92,6 +95,7 @@ pub(crate) fn select<S: SimScalar, const K: usize>(
         }
         let d = (at(j, q) - me).length_sq();
         if d < r2 {
+            out.within += 1;
             buf[len] = (d.order_bits(), j);
             len += 1;
             if len == SCAN {

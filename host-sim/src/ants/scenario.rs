@@ -33,6 +33,7 @@ pub(crate) fn check(c: &GroupCheck<'_>) -> std::result::Result<(), Problem> {
         ));
     };
     c.object_of_kind("nest", nest, "nest")?;
+    c.no_threat()?;
     c.not_given(
         "goal",
         g.goal.is_some(),

@@ -51,6 +51,7 @@ pub fn bee_params(g: &Group) -> Result<BeeParams<f32>> {
 /// parameters the controller accepts (in fixed point too for a fixed group).
 pub(crate) fn check(c: &GroupCheck<'_>) -> std::result::Result<(), Problem> {
     let g = c.group;
+    c.no_threat()?;
     c.not_given(
         "nest",
         g.nest.is_some(),

@@ -70,6 +70,25 @@ pub fn evaluate(reference: &Tracks, candidates: &[&Tracks]) -> Evaluation {
     }
 }
 
+/// The polarisation of one frame, Φ = ‖mean of the unit velocities‖ (0: no common heading,
+/// 1: all aligned); insects at rest count as zero vectors.
+pub fn frame_polarisation(vel: &[[f64; 3]]) -> f64 {
+    if vel.is_empty() {
+        return 0.0;
+    }
+    let mut sum = [0.0f64; 3];
+    for v in vel {
+        let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        if len > 0.0 {
+            for k in 0..3 {
+                sum[k] += v[k] / len;
+            }
+        }
+    }
+    let n = vel.len() as f64;
+    (sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]).sqrt() / n
+}
+
 /// The mean over frames of ‖(1/N) Σ v̂_i‖, velocities by forward differences (frames where
 /// no insect moves are skipped).
 pub fn polarisation(tracks: &Tracks) -> f64 {

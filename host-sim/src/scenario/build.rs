@@ -195,6 +195,7 @@ impl RawGroup {
             spawn: self.spawn.convert().map_err(|p| p.under("spawn"))?,
             nest: self.nest,
             goal: self.goal,
+            threat: self.threat,
             params,
         })
     }
@@ -243,6 +244,7 @@ impl From<Group> for RawGroup {
             spawn: g.spawn.into(),
             nest: g.nest,
             goal: g.goal,
+            threat: g.threat,
             other,
         }
     }

@@ -52,6 +52,8 @@ builtins! {
     "wang-fig10-phototaxis" => "wang2014 Fig. 10: 30 moths drawn to a street lamp",
     "wang-fig1a-locusts" => "wang2014 Fig. 1a: 5000 locusts cross a hamlet",
     "wang-fig13-noise-compare" => "wang2014 Fig. 11/13: curl vs Perlin vs random noise",
+    "fly-fig1-midges" => "ren2016 Fig. 1: 100 midges swarming in a glass box",
+    "fly-fig8-escape" => "ren2016 Fig. 8: 100 flies escape a predator crossing the swarm",
 }
 
 /// The names of the built-in scenarios (their summaries: [`BUILTINS`]).

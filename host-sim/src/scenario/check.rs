@@ -82,6 +82,20 @@ impl<'a> GroupCheck<'a> {
         Ok(())
     }
 
+    /// Refuses a `threat` (an object the agents flee) in a group of a model that has none.
+    ///
+    /// # Errors
+    ///
+    /// A problem at `threat` naming the model.
+    pub fn no_threat(&self) -> Result<(), Problem> {
+        let model = self.group.model.as_str();
+        self.not_given(
+            "threat",
+            self.group.threat.is_some(),
+            &format!("`threat` (an object the agents flee) is not part of the {model} model"),
+        )
+    }
+
     /// The group's parameter table (under the model's name) read as `T`, the model's override
     /// type; `T::default()` when there is none.
     ///

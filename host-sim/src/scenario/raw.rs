@@ -58,12 +58,14 @@ pub(crate) struct RawGroup {
     pub spawn: RawSpawn,
     pub nest: Option<String>,
     pub goal: Option<String>,
+    pub threat: Option<String>,
     pub other: Vec<(String, toml::Value)>,
 }
 
 /// The fixed keys of a group, in the order they are written.
-pub(crate) const GROUP_FIELDS: &[&str] =
-    &["name", "model", "count", "scalar", "spawn", "nest", "goal"];
+pub(crate) const GROUP_FIELDS: &[&str] = &[
+    "name", "model", "count", "scalar", "spawn", "nest", "goal", "threat",
+];
 
 impl Serialize for RawGroup {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -73,7 +75,11 @@ impl Serialize for RawGroup {
         map.serialize_entry("count", &self.count)?;
         map.serialize_entry("scalar", &self.scalar)?;
         map.serialize_entry("spawn", &self.spawn)?;
-        for (key, value) in [("nest", &self.nest), ("goal", &self.goal)] {
+        for (key, value) in [
+            ("nest", &self.nest),
+            ("goal", &self.goal),
+            ("threat", &self.threat),
+        ] {
             if let Some(v) = value {
                 map.serialize_entry(key, v)?;
             }
@@ -99,7 +105,7 @@ impl<'de> Deserialize<'de> for RawGroup {
             fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<RawGroup, A::Error> {
                 let (mut name, mut model, mut count, mut scalar, mut spawn) =
                     (None, None, None, None, None);
-                let (mut nest, mut goal, mut other) = (None, None, Vec::new());
+                let (mut nest, mut goal, mut threat, mut other) = (None, None, None, Vec::new());
                 while let Some(key) = map.next_key::<String>()? {
                     match key.as_str() {
                         "name" => name = Some(map.next_value()?),
@@ -109,6 +115,7 @@ impl<'de> Deserialize<'de> for RawGroup {
                         "spawn" => spawn = Some(map.next_value()?),
                         "nest" => nest = Some(map.next_value()?),
                         "goal" => goal = Some(map.next_value()?),
+                        "threat" => threat = Some(map.next_value()?),
                         _ => {
                             let value = map.next_value()?;
                             other.push((key, value));
@@ -123,6 +130,7 @@ impl<'de> Deserialize<'de> for RawGroup {
                     spawn: spawn.ok_or_else(|| de::Error::missing_field("spawn"))?,
                     nest,
                     goal,
+                    threat,
                     other,
                 })
             }

@@ -278,6 +278,8 @@ pub struct Group {
     pub nest: Option<String>,
     /// The object the group heads for, for models that have one (bees: a `target`, optional).
     pub goal: Option<String>,
+    /// The object the group flees, for models that have one (ren2016: a predator, optional).
+    pub threat: Option<String>,
     /// The model's parameter table, under the model's name in the file (`ant = { w0 = 0.6 }`,
     /// `[groups.bee]`), as written; the model reads it ([`Group::params_as`]) and its rules
     /// check it.

@@ -33,24 +33,7 @@ pub struct Metrics {
     pub counts: Counts,
 }
 
-/// Polarisation Φ = ‖mean of the unit velocities‖ (0: no common heading, 1: all aligned);
-/// insects at rest count as zero vectors.
-pub fn polarisation(vel: &[[f64; 3]]) -> f64 {
-    if vel.is_empty() {
-        return 0.0;
-    }
-    let mut sum = [0.0f64; 3];
-    for v in vel {
-        let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-        if len > 0.0 {
-            for k in 0..3 {
-                sum[k] += v[k] / len;
-            }
-        }
-    }
-    let n = vel.len() as f64;
-    (sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]).sqrt() / n
-}
+pub use crate::eval::frame_polarisation as polarisation;
 
 /// The mean speed ‖V‖.
 pub fn mean_speed(vel: &[[f64; 3]]) -> f64 {

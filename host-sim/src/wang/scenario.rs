@@ -59,6 +59,7 @@ pub(crate) const GOAL_KINDS: [&str; 5] = ["zone", "region", "sphere", "box", "sh
 /// fixed point too for a fixed group).
 pub(crate) fn check(c: &GroupCheck<'_>) -> std::result::Result<(), Problem> {
     let g = c.group;
+    c.no_threat()?;
     c.not_given(
         "nest",
         g.nest.is_some(),

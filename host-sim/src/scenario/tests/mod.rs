@@ -119,6 +119,8 @@ fn every_builtin_loads() {
             ("ants-", 3000..=6000)
         } else if *model == Model::new("bee") {
             ("bees-", 1000..=2000)
+        } else if *model == Model::new("fly") {
+            ("fly-", 1000..=10000)
         } else {
             ("wang-", 1000..=10000)
         };
