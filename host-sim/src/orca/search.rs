@@ -8,13 +8,16 @@
 //!   copied once into a worker's [`Block`] (struct of arrays) and serve every agent of the
 //!   cell (the crowd keeps its agents in grid order, so they come one after the other);
 //! * the squared distances to the whole block are computed in one loop the compiler
-//!   vectorises, and only the candidates below the current bound are looked at, sixteen
-//!   comparisons to a bit mask;
-//! * like RVO2-3D's kd-tree query, once `k` are kept the bound shrinks to the farthest of
-//!   them; and the first bound may be a hint (the crowd passes the distance of last step's
-//!   `k`-th neighbour plus what two agents can have moved since): only if fewer than `k` lie
-//!   within it are the candidates looked at again with the whole range. The result does not
-//!   depend on the hint: a search that keeps `k` within a bound has seen every agent closer.
+//!   vectorises, and only the candidates within the bound are looked at (sixteen comparisons
+//!   to a bit mask);
+//! * the bound is first a hint (the crowd passes the distance of last step's `k`-th
+//!   neighbour plus what two agents can have moved since), and only if fewer than `k` lie
+//!   within it is the whole range looked at. The result does not depend on the hint: a
+//!   search that keeps `k` within a bound has seen every agent closer;
+//! * the few candidates within the bound (about `k`, thanks to the hint) are ranked all at
+//!   once, without a branch on the data; when there are many (a first step, a dense crowd),
+//!   they are kept one by one with a bound that shrinks to the `k`-th kept, as RVO2-3D's
+//!   kd-tree query does.
 
 use swarm_core::Vec3;
 
@@ -91,12 +94,12 @@ impl Search {
         block.distances(me);
         let hint2 = hint * hint;
         if hint2 < self.range2 {
-            let found = block.keep(Found::new(cap, hint2), skip, ids);
+            let found = block.keep(cap, hint2, skip, ids);
             if found.len == cap {
                 return found;
             }
         }
-        block.keep(Found::new(cap, self.range2), skip, ids)
+        block.keep(cap, self.range2, skip, ids)
     }
 
     /// Makes `block` hold the agents of the 3×3×3 cells around the cell of `p`.
@@ -190,15 +193,48 @@ impl Block {
         self.d2[n..].fill(f32::INFINITY);
     }
 
+    /// The `cap` nearest candidates strictly within the squared distance `bound2`, `skip`
+    /// excluded: ranked all at once when there are at most [`RANKED`] within the bound,
+    /// else one by one with a shrinking bound.
+    #[inline]
+    fn keep(&self, cap: usize, bound2: f32, skip: u32, ids: &[u32]) -> Found {
+        let mut near = Near::new(bound2);
+        if self.collect(&mut near, skip, ids) {
+            near.ranked(cap)
+        } else {
+            self.offer_all(Found::new(cap, bound2), skip, ids)
+        }
+    }
+
+    /// Collects the candidates within `near`'s bound; `false` if more than [`RANKED`].
+    #[inline]
+    fn collect(&self, near: &mut Near, skip: u32, ids: &[u32]) -> bool {
+        let limit = f32::from_bits((near.bound >> 32) as u32);
+        for (chunk, d2) in self.d2.chunks_exact(LANES).enumerate() {
+            let mut mask = within(d2, limit);
+            while mask != 0 {
+                let i = chunk * LANES + mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                let (Some(&d), Some(&slot)) = (self.d2.get(i), self.slots.get(i)) else {
+                    continue;
+                };
+                let Some(&id) = ids.get(slot as usize) else {
+                    continue;
+                };
+                let key = (u64::from(d.to_bits()) << 32) | u64::from(id);
+                if slot != skip && key < near.bound && !near.push(key, slot) {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
     /// Offers `found` every candidate whose squared distance is below its bound.
     #[inline]
-    fn keep(&self, mut found: Found, skip: u32, ids: &[u32]) -> Found {
+    fn offer_all(&self, mut found: Found, skip: u32, ids: &[u32]) -> Found {
         for (chunk, d2) in self.d2.chunks_exact(LANES).enumerate() {
-            let limit = found.limit();
-            let mut mask = d2
-                .iter()
-                .enumerate()
-                .fold(0u32, |m, (j, &d)| m | (u32::from(d <= limit) << j));
+            let mut mask = within(d2, found.limit());
             while mask != 0 {
                 let i = chunk * LANES + mask.trailing_zeros() as usize;
                 mask &= mask - 1;
@@ -207,6 +243,65 @@ impl Block {
                 }
             }
         }
+        found
+    }
+}
+
+/// Bit `j` set where `d2[j] ≤ limit`.
+#[inline]
+fn within(d2: &[f32], limit: f32) -> u32 {
+    d2.iter()
+        .enumerate()
+        .fold(0u32, |m, (j, &d)| m | (u32::from(d <= limit) << j))
+}
+
+/// The most candidates [`Block::keep`] ranks all at once.
+const RANKED: usize = 48;
+
+/// Candidates within a bound, in the order met, to be ranked.
+struct Near {
+    keys: [u64; RANKED],
+    slots: [u32; RANKED],
+    len: usize,
+    /// Keys at or above this are not candidates.
+    bound: u64,
+}
+
+impl Near {
+    fn new(bound2: f32) -> Near {
+        Near {
+            keys: [u64::MAX; RANKED],
+            slots: [0; RANKED],
+            len: 0,
+            bound: u64::from(bound2.to_bits()) << 32,
+        }
+    }
+
+    /// Adds a candidate; `false` if full.
+    #[inline]
+    fn push(&mut self, key: u64, slot: u32) -> bool {
+        let (Some(k), Some(s)) = (self.keys.get_mut(self.len), self.slots.get_mut(self.len)) else {
+            return false;
+        };
+        (*k, *s) = (key, slot);
+        self.len += 1;
+        true
+    }
+
+    /// The `cap` smallest keys, each put where its rank (the number of smaller keys; keys
+    /// are unique) says: no branch on the data, and a loop the compiler vectorises.
+    #[inline]
+    fn ranked(&self, cap: usize) -> Found {
+        let mut found = Found::new(cap, 0.0);
+        let keys = &self.keys[..self.len];
+        // Rank `MAX_NEIGHBORS` and beyond lands in the spare last item.
+        let mut items = [(0u64, 0u32); MAX_NEIGHBORS + 1];
+        for (&key, &slot) in keys.iter().zip(&self.slots) {
+            let rank: usize = keys.iter().map(|&k| usize::from(k < key)).sum();
+            items[rank.min(MAX_NEIGHBORS)] = (key, slot);
+        }
+        found.len = self.len.min(cap);
+        found.items.copy_from_slice(&items[..MAX_NEIGHBORS]);
         found
     }
 }
@@ -271,7 +366,7 @@ impl Found {
     /// The distance of the farthest one kept if `k` were found, else infinity.
     pub(crate) fn reach(&self) -> f32 {
         if self.len == self.cap && self.cap > 0 {
-            self.limit().sqrt()
+            f32::from_bits((self.items[self.cap - 1].0 >> 32) as u32).sqrt()
         } else {
             f32::INFINITY
         }
