@@ -17,17 +17,19 @@
 # Spacing 8 by default: at the lattice spacing 4 (the C++ driver's default) RVO2-3D itself
 # lets agents overlap. Our side runs with a safety margin of 0.01 added to the radius in the
 # ORCA planes (CrowdParams::margin; not in the overlap count): ORCA steers agents onto each
-# other's boundary, where f32 rounding leaves pairs a few 1e-6 inside two radii (what the
-# overlaps of both sides at spacing 8 are in the default runs), and its fallback program,
-# over longer runs, up to a few 1e-3. --margin 0 runs RVO2-3D's parameters exactly (and
-# counts as many overlaps as RVO2-3D).
+# other's boundary, where f32 rounding leaves pairs a few 1e-6 inside two radii (most of the
+# 13 overlaps of a default 10k run with --margin 0), and where the planes cannot all be met
+# its fallback program spreads the penetration (1e-2 deep at most over 200 steps of 10k
+# agents). --margin 0 runs RVO2-3D's parameters exactly (and counts as many overlaps as
+# RVO2-3D).
 #
 # RVO2-3D is built from source with g++ -O3 -fopenmp (plus --cxxflags, e.g. "-march=native
 # -flto" for the peer at its best) from $RVO2_3D (default /work/shared/peers/RVO2-3D);
 # OMP_NUM_THREADS and --threads both get --threads.
 set -euo pipefail
-usage() { sed -n '2,27p' "$0" | sed 's/^# \{0,1\}//'; }
-cmd="scripts/bench-orca.sh${*:+ $*}"
+usage() { sed -n '2,28p' "$0" | sed 's/^# \{0,1\}//'; }
+cmd="scripts/bench-orca.sh"
+[[ $# -eq 0 ]] || cmd+=$(printf ' %q' "$@")
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/.." && pwd)"
 

@@ -12,7 +12,7 @@
 //! decision reads the previous step's positions and velocities only). The result is the same
 //! bits on any number of threads (tested).
 //!
-//! Speed (issue 16: about 5× RVO2-3D's agent-steps per second on two threads,
+//! Speed (issue 16: 5-6× RVO2-3D's agent-steps per second on two threads,
 //! `docs/benchmarks.md`): the agents' memory slots follow the grid's cells, so the agents of a
 //! cell share one copy of their candidate neighbours, whose distances are computed in
 //! vectorised loops; the search for the `k` nearest starts from last step's `k`-th distance
@@ -53,8 +53,9 @@ pub struct CrowdParams {
     pub orca: OrcaParams<f32>,
     /// A safety margin (≥ 0) added to every agent's radius in ORCA's planes, never in
     /// [`OrcaCrowd::overlaps`]. ORCA steers agents onto each other's boundary, where `f32`
-    /// rounding leaves pairs a few ulps inside two radii, and its fallback may leave them
-    /// slightly deeper; a margin keeps them strictly apart (`docs/benchmarks.md`, issue 16).
+    /// rounding leaves pairs a few ulps inside two radii, and where its planes cannot all be
+    /// met (LP4) or two agents are not among each other's nearest it lets them in deeper; a
+    /// margin keeps them apart (0.01 for radius 1.5: `docs/benchmarks.md`, issue 16).
     pub margin: f32,
 }
 
