@@ -135,6 +135,51 @@ impl Grid {
         })
     }
 
+    /// The grid coordinates of the cell holding `p` (as [`Grid::cell_of`] finds it).
+    #[inline]
+    pub fn coords(&self, p: [f32; 3]) -> [u32; 3] {
+        self.coord(p)
+    }
+
+    /// The number of cells along each axis.
+    pub fn dims(&self) -> [u32; 3] {
+        self.dims
+    }
+
+    /// The index of the cell of coordinates `c` (row-major: `x` fastest, as
+    /// [`Grid::cell_of`] numbers cells).
+    #[inline]
+    pub fn index_of(&self, c: [u32; 3]) -> usize {
+        self.index(c)
+    }
+
+    /// The agents of the cells `first..=last` (cell indices; one contiguous range of the
+    /// grid's order, nothing beyond the last cell): their indices and positions.
+    #[inline]
+    pub fn cells_agents(&self, first: usize, last: usize) -> (&[u32], &[[f32; 3]]) {
+        let n = self.starts.len().saturating_sub(1);
+        if first > last || last >= n {
+            return (&[], &[]);
+        }
+        let (a, b) = (self.starts[first] as usize, self.starts[last + 1] as usize);
+        (&self.order[a..b], &self.sorted[a..b])
+    }
+
+    /// The agent indices of the last [`Grid::rebuild`], sorted by cell then index.
+    pub fn order(&self) -> &[u32] {
+        &self.order
+    }
+
+    /// Tells the grid that the caller renumbered its agents in the grid's order (agent
+    /// `order()[k]` is now agent `k`, as [`permuted`] by [`Grid::order`] does): the grid
+    /// then holds the same cells without a rebuild.
+    pub fn renumber_in_order(&mut self) {
+        self.order
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(k, o)| *o = k as u32);
+    }
+
     fn index(&self, c: [u32; 3]) -> usize {
         (c[2] as usize * self.dims[1] as usize + c[1] as usize) * self.dims[0] as usize
             + c[0] as usize
@@ -319,6 +364,42 @@ mod tests {
             }
             assert!(grid.cell_center([min[0] - 1.0, min[1], min[2]]).is_none());
         }
+    }
+
+    #[test]
+    fn cell_ranges_list_their_agents_and_survive_a_renumbering() {
+        let pts: Vec<[f32; 3]> = (0..500u32)
+            .map(|i| {
+                let u = |k| swarm_core::rand::rand(3, i, 0, k) as f32 / 4_294_967_296.0;
+                [10.0 * u(0), 6.0 * u(1), 4.0 * u(2)]
+            })
+            .collect();
+        let mut grid = Grid::new([0.0; 3], [10.0, 6.0, 4.0], 2.0);
+        assert_eq!(grid.dims(), [5, 3, 2]);
+        grid.rebuild(&pts, |p| *p);
+        // Row (y, z) = (1, 1), cells x = 1..=3.
+        let (first, last) = (grid.index_of([1, 1, 1]), grid.index_of([3, 1, 1]));
+        let (ids, at) = grid.cells_agents(first, last);
+        let mut want: Vec<u32> = (0..pts.len() as u32)
+            .filter(|&i| {
+                let c = grid.coords(pts[i as usize]);
+                c[1] == 1 && c[2] == 1 && (1..=3).contains(&c[0])
+            })
+            .collect();
+        let mut got = ids.to_vec();
+        got.sort();
+        want.sort();
+        assert_eq!(got, want);
+        assert!(ids.iter().zip(at).all(|(&i, q)| pts[i as usize] == *q));
+        assert_eq!(grid.cells_agents(last, first).0.len(), 0);
+        assert_eq!(grid.cells_agents(0, grid.cells()).0.len(), 0);
+
+        // Renumbered in the grid's order, the agents keep their cells.
+        let moved = permuted(&pts, grid.order());
+        grid.renumber_in_order();
+        let (ids, at) = grid.cells_agents(first, last);
+        assert!(ids.iter().zip(at).all(|(&i, q)| moved[i as usize] == *q));
+        assert!(grid.order().iter().enumerate().all(|(k, &o)| o == k as u32));
     }
 
     #[test]

@@ -12,6 +12,8 @@
 //! * [`ants`], [`bees`]: each model's world, sensing and deterministic parallel CPU engine;
 //! * [`fields`]: global fields on a grid of cells (signed distance, a fast-marching cost field
 //!   and its descent direction) for the field-based models;
+//! * [`orca`]: crowds avoiding each other with 3D ORCA, stepped in parallel (RVO2-3D's
+//!   `doStep` on a grid), and the random-cube benchmark scenario;
 //! * [`run`]: `swarm run`, a scenario from its first tick to its last into one output folder
 //!   ([`output`]: CSV, `.npy`, JSON, PNG, GIF); [`mod@bench`]: `swarm bench`.
 //!
@@ -45,6 +47,7 @@ pub mod grid;
 pub mod huge;
 pub mod models;
 pub(crate) mod nearest;
+pub mod orca;
 pub mod output;
 mod par;
 pub mod run;
