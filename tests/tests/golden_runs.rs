@@ -247,6 +247,30 @@ const PINNED: &[(&str, &str, u64, u64)] = &[
         0xbebb441ddda518a5,
         0x6996358bf032572f,
     ),
+    (
+        "fly-fig1-midges",
+        "f32",
+        0xa7646dfab07cacf5,
+        0x9eda6d744768ee0f,
+    ),
+    (
+        "fly-fig1-midges",
+        "fixed",
+        0xf1dbc4e69f9544df,
+        0xa45f5850f19c2a9c,
+    ),
+    (
+        "fly-fig8-escape",
+        "f32",
+        0x832dc2cc294373dc,
+        0xc71debf7595b64ae,
+    ),
+    (
+        "fly-fig8-escape",
+        "fixed",
+        0xad7d8d92ea06aab7,
+        0x0cae8585cd332075,
+    ),
 ];
 
 /// The summary without what depends on the machine and the moment.
