@@ -32,6 +32,10 @@ pub const FALLBACK_LP4: u8 = 1;
 /// The Δt of every Table 1 column (spec §2.2, ours: the 100 frames/s of the midge data).
 pub const DT: f32 = 0.01;
 
+/// ORCA's safety margin of every Table 1 column ([`FlyParams::margin`], ours): 1 % of the
+/// radius.
+pub const MARGIN: f32 = 0.01;
+
 /// The speed limit of ORCA unless friction bounds it lower (spec R4, ours): 10 units/s.
 pub const MAX_SPEED: f32 = 10.0;
 
@@ -72,6 +76,11 @@ wire_type! {
         /// ORCA radius of an insect (ours: 0.25·r_rep, so the repulsion zone acts before ORCA
         /// does).
         pub radius: S,
+        /// ORCA's safety margin (ours 0.01): ORCA plans every insect as a sphere of
+        /// radius·(1 + margin), so that the few contacts a jam leaves (an LP's planes are
+        /// exact only in exact arithmetic, and an infeasible program's fallback penetrates
+        /// by design) stay outside 2·radius, the distance R-T8 counts as a collision.
+        pub margin: S,
         /// ORCA time horizon τ (s; ours 0.5).
         pub tau: S,
         /// ORCA speed limit (units/s; ours min(10, 0.5/(γΔt)), so that the explicit friction
@@ -169,7 +178,8 @@ impl<S: Scalar> FlyParams<S> {
         Self::column([1.40, 0.42, 1.0, 3.0, 0.2, 0.0, 0.0, 8.0, 10.0, 1.0, 5.0])
     }
 
-    /// A Table 1 column plus our constants: Δt [`DT`], ORCA radius 0.25·r_rep, τ 0.5 s,
+    /// A Table 1 column plus our constants: Δt [`DT`], ORCA radius 0.25·r_rep with the
+    /// [`MARGIN`], τ 0.5 s,
     /// speed limit min([`MAX_SPEED`], 0.5/(γΔt)), 16 ORCA neighbours, curl noise, the
     /// paper's zero-velocity fallback, one-sided escape.
     pub fn column(c: Column) -> Self {
@@ -202,6 +212,7 @@ impl<S: Scalar> FlyParams<S> {
             r_res: f(r_res),
             dt: f(DT),
             radius: f(0.25 * r_rep),
+            margin: f(MARGIN),
             tau: f(0.5),
             max_speed: f(MAX_SPEED.min(0.5 / (gamma * DT))),
             orca_neighbours: 16,
@@ -228,6 +239,7 @@ impl<S: Scalar> FlyParams<S> {
             r_res: c(self.r_res),
             dt: c(self.dt),
             radius: c(self.radius),
+            margin: c(self.margin),
             tau: c(self.tau),
             max_speed: c(self.max_speed),
             orca_neighbours: self.orca_neighbours,
@@ -235,6 +247,11 @@ impl<S: Scalar> FlyParams<S> {
             fallback: self.fallback,
             escape_sides: self.escape_sides,
         }
+    }
+
+    /// The radius ORCA plans with: radius·(1 + margin).
+    pub fn orca_radius(&self) -> S {
+        self.radius * (S::ONE + self.margin)
     }
 
     /// The parameters, validated once (see [`Checked`](crate::Checked)).
@@ -280,6 +297,7 @@ model_params! {
         r_res: real = Range::closed(0.0, 1000.0), "units";
         dt: real = Range::above(0.0, 1.0), "s";
         radius: real = Range::closed(0.0, 100.0), "units";
+        margin: real = Range::closed(0.0, 1.0), "share of radius";
         tau: real = Range::above(0.0, 100.0), "s";
         max_speed: real = Range::above(0.0, 1000.0), "units/s, with γ·max_speed·dt ≤ ½";
         orca_neighbours: int(u8) = Range::int(0, 64), "";

@@ -29,7 +29,7 @@ wire_type! {
 /// 6. ORCA ([`orca3d::solve`]) with the obstacle surfaces first, then the first
 ///    min(`orca_neighbours`, `N` − surfaces) neighbours of the frame (nearest first; an
 ///    entry with the insect's own id is skipped), every insect of radius
-///    [`FlyParams::radius`], τ, Δt and the speed limit of the parameters; an infeasible
+///    [`FlyParams::radius`]·(1 + [`FlyParams::margin`]), τ, Δt and the speed limit of the parameters; an infeasible
 ///    program gives zero velocity (the paper) or RVO2-3D's least-penetration velocity;
 /// 7. r ← r + v_new·Δt, v ← v_new.
 ///
@@ -62,11 +62,8 @@ pub fn step_checked<S: Scalar, const N: usize, const O: usize>(
     let f_xi = noise_force(state.pos, p, ctx);
     let pref = state.vel + (f_int + f_fric + f_res + f_xi) * p.dt;
 
-    let body = |pos, vel| Body {
-        pos,
-        vel,
-        radius: p.radius,
-    };
+    let radius = p.orca_radius();
+    let body = |pos, vel| Body { pos, vel, radius };
     let room = N.saturating_sub(frame.surfaces.len());
     let mut others: heapless::Vec<Body<S>, N> = heapless::Vec::new();
     for n in frame

@@ -779,14 +779,14 @@ mod tests {
         use crate::fly::FlyParams;
         let m = FlyParams::<f32>::midge();
         assert_eq!(FlyParams::<f32>::default(), m);
-        assert_eq!(postcard_bytes(&m).len(), 64);
-        assert_eq!(params_hash(&m), Ok(0x8a43_f9bf_fcfc_b93b));
+        assert_eq!(postcard_bytes(&m).len(), 68);
+        assert_eq!(params_hash(&m), Ok(0xa9a8_1f58_e176_86cf));
         let m = FlyParams::<Fx>::midge();
-        assert_eq!(postcard_bytes(&m).len(), 41);
-        assert_eq!(params_hash(&m), Ok(0xa0cd_3529_1aa1_7eb7));
+        assert_eq!(postcard_bytes(&m).len(), 43);
+        assert_eq!(params_hash(&m), Ok(0x75c3_9c61_449a_9cbb));
         let e = FlyParams::<f32>::escape();
-        assert_eq!(params_hash(&e), Ok(0xb97a_894b_94da_2596));
-        assert_eq!(params_hash(&e.cast::<Fx>()), Ok(0x3dab_61fc_c5d0_8f8f));
+        assert_eq!(params_hash(&e), Ok(0xe0a6_03f2_7093_8292));
+        assert_eq!(params_hash(&e.cast::<Fx>()), Ok(0x138d_bc6f_48a3_925f));
         // Any one field changed, another hash.
         let n = FlyParams::<f32> {
             noise: 1,

@@ -153,11 +153,11 @@ fn the_node_parameters_are_the_host_scenarios() {
     assert_eq!(fly_params::<Fx>(), FlyParams::<Fx>::midge());
     assert_eq!(
         params_hash(&fly_params::<f32>()).unwrap(),
-        0x8a43_f9bf_fcfc_b93b
+        0xa9a8_1f58_e176_86cf
     );
     assert_eq!(
         params_hash(&fly_params::<Fx>()).unwrap(),
-        0xa0cd_3529_1aa1_7eb7
+        0x75c3_9c61_449a_9cbb
     );
 }
 

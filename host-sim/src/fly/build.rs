@@ -32,7 +32,7 @@ impl FlySim {
         let range = params.iter().map(|p| p.r_att).fold(0.0, f32::max);
         let far = params
             .iter()
-            .map(|p| reach(p.radius, p.tau, p.max_speed))
+            .map(|p| reach(p.orca_radius(), p.tau, p.max_speed))
             .fold(0.0, f32::max);
         let mut world = FlyWorld::new(min, max, range, far);
         for (id, o) in scenario.objects.iter().enumerate() {
@@ -196,7 +196,7 @@ where
 {
     let side = 20.0 * (n.max(1) as f32 / 100.0).cbrt();
     let params = FlyParams::<f32>::midge();
-    let far = reach(params.radius, params.tau, params.max_speed);
+    let far = reach(params.orca_radius(), params.tau, params.max_speed);
     let mut w = FlyWorld::new([0.0; 3], [side; 3], params.r_att, far);
     let c = side / 2.0;
     let ball = Shape3::Sphere {

@@ -56,7 +56,7 @@ pub fn fly_frame<S: SimScalar>(
         });
     }
     frame.stimulus = stimulus(w, me, p.r_res, stimuli);
-    frame.surfaces = w.surfaces(me, reach(p.radius, p.tau, p.max_speed));
+    frame.surfaces = w.surfaces(me, reach(p.orca_radius(), p.tau, p.max_speed));
     (frame, near.within > N)
 }
 
