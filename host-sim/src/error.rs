@@ -137,6 +137,23 @@ pub enum SimError {
         /// The controller's complaint (which parameter).
         source: swarm_core::Error,
     },
+    /// A group's spawn region has no room for its agents kept apart (ren2016 insects start
+    /// at least two ORCA radii apart).
+    #[error(
+        "group `{group}`: agent {agent} found no place at least {distance} from the agents \
+         before it in {attempts} tries: the spawn region is too small for the group (enlarge \
+         `spawn` or lower `count`)"
+    )]
+    SpawnCrowded {
+        /// The group.
+        group: String,
+        /// The agent (its index in the group) that found no place.
+        agent: u32,
+        /// The distance kept.
+        distance: f32,
+        /// Places tried.
+        attempts: u32,
+    },
     /// A worker-thread count of zero.
     #[error("threads: must be at least 1")]
     NoThreads,

@@ -83,28 +83,48 @@ pub(crate) fn select<S: SimScalar, const K: usize>(
     at: impl Fn(u32, [f32; 3]) -> Vec3<S>,
     tie: impl Fn(u32) -> u32,
 ) -> Selected<K> {
+    let [near] = select_bands::<S, K, 1>(grid, me, [range], skip, at, tie);
+    near
+}
+
+/// [`select`] in `B` distance bands at once: band `b` holds the `K` nearest entries with
+/// `bounds[b − 1] ≤ distance < bounds[b]` (band 0 from 0), the bounds ascending, each band's
+/// `within` counting its own entries. One grid query serves every band.
+pub(crate) fn select_bands<S: SimScalar, const K: usize, const B: usize>(
+    grid: &Grid,
+    me: Vec3<S>,
+    bounds: [f32; B],
+    skip: u32,
+    at: impl Fn(u32, [f32; 3]) -> Vec3<S>,
+    tie: impl Fn(u32) -> u32,
+) -> [Selected<K>; B] {
     let p = me.to_f32();
     let p = [p.x, p.y, p.z];
-    let (r2, loose) = (squared::<S>(range), loose2(range));
-    let mut out = Selected::new();
-    let mut buf = [(0u32, 0u32); SCAN];
-    let mut len = 0usize;
+    let range = bounds[B - 1];
+    let r2 = bounds.map(squared::<S>);
+    let loose = loose2(range);
+    let mut out = core::array::from_fn::<_, B, _>(|_| Selected::new());
+    let mut buf = [[(0u32, 0u32); SCAN]; B];
+    let mut len = [0usize; B];
     grid.for_each_candidate(p, range + MARGIN, |j, q| {
         if j == skip || d2f(q, p) >= loose {
             return;
         }
         let d = (at(j, q) - me).length_sq();
-        if d < r2 {
-            out.within += 1;
-            buf[len] = (d.order_bits(), j);
-            len += 1;
-            if len == SCAN {
-                out.merge(&buf[..SCAN], &tie);
-                len = 0;
-            }
+        let Some(b) = r2.iter().position(|&r2| d < r2) else {
+            return;
+        };
+        out[b].within += 1;
+        buf[b][len[b]] = (d.order_bits(), j);
+        len[b] += 1;
+        if len[b] == SCAN {
+            out[b].merge(&buf[b], &tie);
+            len[b] = 0;
         }
     });
-    out.merge(&buf[..len], &tie);
+    for b in 0..B {
+        out[b].merge(&buf[b][..len[b]], &tie);
+    }
     out
 }
 

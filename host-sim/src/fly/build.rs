@@ -13,7 +13,7 @@ use crate::output::{AgentSample, Frame};
 use crate::scalar::SimScalar;
 use crate::scenario::{Action, Group, ScalarType, Scenario};
 use crate::space::{BeeObstacle, Shape3};
-use crate::spawn::{draw, point3};
+use crate::spawn::{draw, spaced3};
 use crate::{Result, SimError};
 
 impl FlySim {
@@ -112,7 +112,8 @@ impl FlySim {
 }
 
 /// The insects of group `g`, ids `first..`, spawned uniformly in its region (box, or ball
-/// around an object's centre) with the scenario's counter-based random numbers, at rest.
+/// around an object's centre) with the scenario's counter-based random numbers, at rest, at
+/// least two ORCA radii apart ([`spaced3`]): ORCA keeps apart only insects that start apart.
 fn spawn<S: SimScalar>(
     scenario: &Scenario,
     g: &Group,
@@ -128,12 +129,9 @@ fn spawn<S: SimScalar>(
             group: g.name.clone(),
             source,
         })?;
-    let states = (0..g.count)
-        .map(|k| {
-            let id = (first + k as usize) as u32;
-            let pos = point3(scenario, &g.spawn.region, seed, id);
-            FlyState::new(Vec3::from_f32(pos[0], pos[1], pos[2]), Vec3::zero())
-        })
+    let states = spaced3(scenario, g, seed, first, 2.0 * params.orca_radius())?
+        .into_iter()
+        .map(|p| FlyState::new(Vec3::from_f32(p[0], p[1], p[2]), Vec3::zero()))
         .collect();
     Ok(FlyGroup::new(
         g.name.clone(),

@@ -1,7 +1,8 @@
 //! The sensor frame of a ren2016 insect, built from the world as a drone would sense it (spec
-//! §1.5 step 1): the nearest neighbours within r_att with their broadcast position and
-//! velocity (nearest first, ties by id, at most [`N`]: the wire's capacity, so every run can be
-//! mirrored on a device), the stimulus in range (a predator before a target), and the obstacle
+//! §1.5 step 1): neighbours within r_att with their broadcast position and velocity (nearest
+//! first, ties by id, at most [`N`]: the wire's capacity, so every run can be mirrored on a
+//! device; when more are in range, every zone of Eq. 5 keeps its nearest members, see
+//! [`zone_shares`]), the stimulus in range (a predator before a target), and the obstacle
 //! surfaces within ORCA's reach. The HIL harness feeds devices with this same function.
 
 use swarm_core::Vec3;
@@ -11,7 +12,7 @@ use swarm_core::fly::{
 };
 
 use super::world::{FlyWorld, reach};
-use crate::nearest::select;
+use crate::nearest::select_bands;
 use crate::scalar::{SimScalar, v3};
 use crate::space::at;
 
@@ -22,6 +23,23 @@ pub const O: usize = WIRE_FLY_SURFACES;
 
 /// The sensor frame of the simulator (and of the wire).
 pub type FlySimFrame<S> = FlyFrame<S, N, O>;
+
+/// Entries a truncated frame keeps for each of the alignment and attraction zones that has
+/// members (ours): Eq. 5 averages each zone over its members, so a frame of the nearest [`N`]
+/// alone would leave out the farther zones of a dense swarm, and with them its cohesion.
+pub const ZONE_QUOTA: usize = 4;
+
+/// How many of each zone's nearest members a frame holds, from the zones' member counts
+/// `[repulsion, alignment, attraction]` (spec R15, ours): every member when they all fit in
+/// [`N`]; else the alignment and attraction zones keep min([`ZONE_QUOTA`], members) each
+/// and the rest goes to the nearer zones first.
+pub fn zone_shares(n: [usize; 3]) -> [usize; 3] {
+    let quota = |z: usize| n[z].min(ZONE_QUOTA);
+    let rep = n[0].min(N - quota(1) - quota(2));
+    let ali = n[1].min(N - rep - quota(2));
+    let att = n[2].min(N - rep - ali);
+    [rep, ali, att]
+}
 
 /// The stimulus sources a group responds to (object ids).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -34,6 +52,8 @@ pub struct Stimuli {
 
 /// The frame of the insect in slot `slot` with parameters `p` responding to `stimuli`, and
 /// whether more than [`N`] insects were within r_att (the frame was truncated: spec §2.1).
+/// Neighbours are banded by squared distance into the zones of Eq. 5 (`[0, r_rep)`,
+/// `[r_rep, r_ali)`, `[r_ali, r_att)`) and each band gives its nearest [`zone_shares`].
 pub fn fly_frame<S: SimScalar>(
     w: &FlyWorld,
     slot: usize,
@@ -43,11 +63,16 @@ pub fn fly_frame<S: SimScalar>(
     let me = v3::<S>(w.sensed.pos[slot]);
     let ids = &w.sensed.id;
     let pos = |j: u32, q: [f32; 3]| S::sensed3(q, || w.sensed.pos[j as usize]);
-    let near = select::<S, N>(&w.grid, me, p.r_att.to_f32(), slot as u32, pos, |j| {
-        ids[j as usize]
-    });
+    let bounds = [p.r_rep, p.r_ali, p.r_att].map(|r| r.to_f32());
+    let zones = select_bands::<S, N, 3>(&w.grid, me, bounds, slot as u32, pos, |j| ids[j as usize]);
+    let within = zones.each_ref().map(|z| z.within);
+    let shares = zone_shares(within);
     let mut frame = FlySimFrame::new();
-    for j in near.slots() {
+    let near = zones
+        .iter()
+        .zip(shares)
+        .flat_map(|(z, k)| z.slots().take(k));
+    for j in near {
         // At most N selected: no push can fail.
         let _ = frame.neighbours.push(Neighbour {
             id: ids[j],
@@ -57,7 +82,7 @@ pub fn fly_frame<S: SimScalar>(
     }
     frame.stimulus = stimulus(w, me, p.r_res, stimuli);
     frame.surfaces = w.surfaces(me, reach(p.orca_radius(), p.tau, p.max_speed));
-    (frame, near.within > N)
+    (frame, within.iter().sum::<usize>() > N)
 }
 
 /// The stimulus of an insect at `me` with visual range `r_res` (spec §2.3, R12): the threat
@@ -74,4 +99,37 @@ fn stimulus<S: SimScalar>(
         ((c - me).length_sq() <= r2).then_some(Stimulus { pos: c, kind })
     };
     sensed(stimuli.threat, STIMULUS_PREDATOR).or_else(|| sensed(stimuli.goal, STIMULUS_TARGET))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every member when all fit; else the farther zones keep their quota and the nearer ones
+    /// take what is left, always [`N`] in all.
+    #[test]
+    fn zone_shares_keep_every_zone() {
+        assert_eq!(zone_shares([3, 5, 8]), [3, 5, 8]);
+        assert_eq!(zone_shares([0, 0, 40]), [0, 0, 16]);
+        assert_eq!(zone_shares([30, 0, 40]), [12, 0, 4]);
+        assert_eq!(zone_shares([30, 40, 40]), [8, 4, 4]);
+        assert_eq!(zone_shares([2, 40, 40]), [2, 10, 4]);
+        assert_eq!(zone_shares([2, 40, 1]), [2, 13, 1]);
+        assert_eq!(zone_shares([20, 2, 1]), [13, 2, 1]);
+        for n in [
+            [0, 0, 0],
+            [16, 0, 0],
+            [17, 17, 17],
+            [1, 1, 100],
+            [100, 1, 1],
+        ] {
+            let s = zone_shares(n);
+            assert!(s.iter().zip(n).all(|(&s, n)| s <= n), "{n:?}");
+            assert_eq!(
+                s.iter().sum::<usize>(),
+                n.iter().sum::<usize>().min(N),
+                "{n:?}"
+            );
+        }
+    }
 }

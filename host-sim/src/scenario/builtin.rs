@@ -53,6 +53,10 @@ builtins! {
     "wang-fig1a-locusts" => "wang2014 Fig. 1a: 5000 locusts cross a hamlet",
     "wang-fig13-noise-compare" => "wang2014 Fig. 11/13: curl vs Perlin vs random noise",
     "fly-fig1-midges" => "ren2016 Fig. 1: 100 midges swarming in a glass box",
+    "fly-fig2-fruitfly" => "ren2016 Fig. 2: 100 fruit flies swarming in a glass box",
+    "fly-fig3-aggregation" => "ren2016 Fig. 3: 500 midges aggregating at 9,470 /m³",
+    "fly-fig3-aggregation-3000" => "ren2016 Fig. 3: 3000 midges aggregating at 56,818 /m³",
+    "fly-fig5-mating" => "ren2016 Fig. 5: 100 males pursue a female flying through the swarm",
     "fly-fig8-escape" => "ren2016 Fig. 8: 100 flies escape a predator crossing the swarm",
 }
 

@@ -1,0 +1,275 @@
+//! The ren2016 behaviours (issue 16, spec §4 R-T8, R-T17, R-T19, R-T22) on the built-in fly
+//! scenarios with their fixed seeds (or `SWARM_TEST_SEED`), through the whole simulator
+//! (scenario → world → frames → the swarm-core step with ORCA). The numbers quoted in the
+//! comments were measured with these seeds. A behaviour is measured against a control run of
+//! the same scenario without the response it is about (χ_res = 0), so a test fails when the
+//! response stops acting, not when the swarm happens to be elsewhere.
+
+use swarm_core::model::ParamValue;
+use swarm_sim::engine::{Engine, apply_due_events};
+use swarm_sim::fly::{FlyParamsOverride, FlySim, fly_params};
+use swarm_sim::scenario::{self, Scenario, builtin_names};
+
+fn load(name: &str) -> Scenario {
+    scenario::builtin(name).expect("built-in scenario")
+}
+
+/// `sc` with parameter `name` of every group set to `value` (a control run).
+fn with_param(sc: &Scenario, name: &str, value: f32) -> Scenario {
+    let mut sc = sc.clone();
+    for g in &mut sc.groups {
+        let mut o: FlyParamsOverride = g.params_as().expect("fly parameters");
+        assert!(o.overrides.set(name, ParamValue::Real(value)), "{name}");
+        g.set_params(&o).expect("a table");
+    }
+    sc
+}
+
+/// Runs `sc` (its seed, or `SWARM_TEST_SEED`) for `steps` ticks with its events, calling
+/// `each` after every tick.
+fn run(sc: &Scenario, steps: u32, mut each: impl FnMut(&FlySim)) -> FlySim {
+    let mut sim = FlySim::from_scenario(sc, swarm_tests::seed(sc.seed)).expect("builds");
+    for _ in 0..steps {
+        apply_due_events(&mut sim, sc);
+        Engine::tick(&mut sim).expect("tick");
+        sim.measure();
+        each(&sim);
+    }
+    sim
+}
+
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
+}
+
+fn centroid(pos: &[[f64; 3]]) -> [f64; 3] {
+    let n = pos.len().max(1) as f64;
+    std::array::from_fn(|k| pos.iter().map(|p| p[k]).sum::<f64>() / n)
+}
+
+/// Radius of gyration: the root mean square distance to the centroid.
+fn gyration(pos: &[[f64; 3]]) -> f64 {
+    let c = centroid(pos);
+    (pos.iter().map(|&p| dist(p, c).powi(2)).sum::<f64>() / pos.len().max(1) as f64).sqrt()
+}
+
+/// The closest distance between two of `pos` (sweep along x).
+fn closest_pair(pos: &[[f64; 3]]) -> f64 {
+    let mut sorted = pos.to_vec();
+    sorted.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    let mut best = f64::INFINITY;
+    for (i, &p) in sorted.iter().enumerate() {
+        for &q in &sorted[i + 1..] {
+            if q[0] - p[0] >= best {
+                break;
+            }
+            best = best.min(dist(p, q));
+        }
+    }
+    best
+}
+
+/// The centre of the active stimulus source `name`, if it is active.
+fn source(sim: &FlySim, name: &str) -> Option<[f64; 3]> {
+    let s = sim.world.sources.iter().find(|s| s.name == name)?;
+    s.active.then(|| s.center.map(f64::from))
+}
+
+/// R-T8 and R-T9 in every built-in fly scenario: with the LP4 fallback no two insects come
+/// closer than 2·radius·(1 − 1e-3) at any step (they spawn apart); with the paper's
+/// zero-velocity fallback (the midges) the share of infeasible programs is reported and stays
+/// below 5 % (measured 3.2 %: Table 1's Midge column contracts the swarm until ORCA jams,
+/// docs/models.md, so the spec's guess of 1 % does not hold); the world's backstop never has
+/// to move an insect out of an obstacle or back into the box.
+#[test]
+fn orca_keeps_every_scenario_collision_free() {
+    let names: Vec<&str> = builtin_names()
+        .iter()
+        .copied()
+        .filter(|n| n.starts_with("fly-"))
+        .collect();
+    assert!(names.len() >= 5, "{names:?}");
+    for name in names {
+        let sc = load(name);
+        let p = fly_params(&sc.groups[0]).expect("parameters");
+        let lp4 = p.fallback == 1;
+        let floor = 2.0 * f64::from(p.radius) * (1.0 - 1e-3);
+        let mut closest = f64::INFINITY;
+        let sim = run(&sc, sc.steps, |sim| {
+            if lp4 {
+                closest = closest.min(closest_pair(&sim.positions_by_id()));
+            }
+        });
+        let t = sim.total;
+        let infeasible = t.infeasible as f64 / (u64::from(sc.steps) * sim.agents() as u64) as f64;
+        eprintln!(
+            "{name}: closest {closest:.4} (floor {floor:.4}), infeasible {:.3} %, world \
+             corrections {} + {}",
+            100.0 * infeasible,
+            t.obstacle,
+            t.bounds
+        );
+        assert_eq!((t.obstacle, t.bounds), (0, 0), "{name}: world corrections");
+        if lp4 {
+            assert!(closest >= floor, "{name}: closest pair {closest} < {floor}");
+        } else {
+            assert!(infeasible < 0.05, "{name}: infeasible share {infeasible}");
+        }
+    }
+}
+
+/// R-T17, Fig. 3: the two swarms have the paper's densities by construction (1 unit = one
+/// body length of 0.01 m: 9,469.7 and 56,818.2 /m³), and "the swarm center hardly changes":
+/// the centroid drifts less than 10 % of the box side (measured 0.65 units of 37.51 for 500
+/// midges, 0.07 for 3,000).
+#[test]
+fn fig3_the_aggregating_swarm_stays_where_it_is() {
+    for (name, density) in [
+        ("fly-fig3-aggregation", 9_469.7),
+        ("fly-fig3-aggregation-3000", 56_818.2),
+    ] {
+        let sc = load(name);
+        let (min, max) = sc.bounds::<3>("fly").expect("3D");
+        let metres = 0.01f64;
+        let volume: f64 = (0..3)
+            .map(|k| f64::from(max[k] - min[k]) * metres)
+            .product();
+        let n: u32 = sc.groups.iter().map(|g| g.count).sum();
+        let got = f64::from(n) / volume;
+        assert!((got / density - 1.0).abs() < 1e-3, "{name}: {got} /m³");
+        let side = f64::from(max[0] - min[0]);
+        let mut start = None;
+        let mut drift = 0.0f64;
+        run(&sc, sc.steps, |sim| {
+            let c = centroid(&sim.positions_by_id());
+            drift = drift.max(dist(c, *start.get_or_insert(c)));
+        });
+        eprintln!("{name}: centroid drift {drift:.3} units (box {side})");
+        assert!(drift < 0.1 * side, "{name}: centroid drifted {drift}");
+    }
+}
+
+/// What a fly group does near a moving stimulus over a run: insect-steps within `range` of
+/// it, and the mean distance from the swarm's centroid to it, over the steps it is active
+/// from `from` on.
+struct Around {
+    within: u64,
+    centroid_distance: f64,
+    steps: u64,
+}
+
+fn around(sc: &Scenario, name: &str, range: f64, from: u32) -> Around {
+    let mut a = Around {
+        within: 0,
+        centroid_distance: 0.0,
+        steps: 0,
+    };
+    run(sc, sc.steps, |sim| {
+        let Some(c) = source(sim, name).filter(|_| sim.step >= from) else {
+            return;
+        };
+        let pos = sim.positions_by_id();
+        a.within += pos.iter().filter(|&&p| dist(p, c) <= range).count() as u64;
+        a.centroid_distance += dist(centroid(&pos), c);
+        a.steps += 1;
+    });
+    a.centroid_distance /= a.steps.max(1) as f64;
+    a
+}
+
+/// R-T19, Fig. 5 (ours, measured against a control without pursuit): over the second half
+/// of the run the males within r_res = 2 of the female are at least three times as many as
+/// without the pursuit (measured 4.6 % against 0.9 %), and the swarm's centroid stays closer
+/// to her (4.6 against 6.0 units). The spec's "more than 50 % within r_res" cannot hold with
+/// the Mating column: its repulsion zone (r_rep = 1.48) leaves room for about ten males in
+/// a ball of radius 2.
+#[test]
+fn fig5_the_males_pursue_the_female() {
+    let sc = load("fly-fig5-mating");
+    let r_res = f64::from(fly_params(&sc.groups[0]).expect("parameters").r_res);
+    let half = sc.steps / 2;
+    let pursuit = around(&sc, "female", r_res, half);
+    let control = around(&with_param(&sc, "chi_res", 0.0), "female", r_res, half);
+    let share = |a: &Around| a.within as f64 / (a.steps as f64 * 100.0);
+    eprintln!(
+        "within r_res: {:.3} (control {:.3}); centroid to female {:.2} (control {:.2})",
+        share(&pursuit),
+        share(&control),
+        pursuit.centroid_distance,
+        control.centroid_distance
+    );
+    assert!(
+        pursuit.within >= 3 * control.within.max(1),
+        "pursuit {} vs control {}",
+        pursuit.within,
+        control.within
+    );
+    assert!(pursuit.centroid_distance < control.centroid_distance);
+}
+
+/// R-T22, Fig. 8 (ours, against a control without the escape response): a fly within r_res
+/// of the predator flies away from it (the angle between its velocity and the direction to
+/// the predator is over 90°) in at least 90 % of the insect-steps (measured 97 %; the control
+/// 63 %); the predator passes fewer flies within r_res than without the response (at most
+/// 90 %: measured 80 %); 10 s after it is removed the swarm's radius of gyration is within
+/// 25 % of its value before the threat (measured +5 %).
+#[test]
+fn fig8_the_flies_escape_the_predator_and_gather_again() {
+    let sc = load("fly-fig8-escape");
+    let r_res = f64::from(fly_params(&sc.groups[0]).expect("parameters").r_res);
+    let add = sc
+        .events
+        .iter()
+        .find(|e| e.action.verb() == "add")
+        .expect("the predator appears")
+        .step;
+    let removed = sc
+        .events
+        .iter()
+        .find(|e| e.action.verb() == "remove")
+        .expect("the predator goes")
+        .step;
+    assert!(removed + 1000 <= sc.steps, "10 s after the removal");
+
+    let mut exposure = 0u64;
+    let (mut away, mut seen) = (0u64, 0u64);
+    let (mut before, mut after) = (0.0, 0.0);
+    run(&sc, sc.steps, |sim| {
+        let pos = sim.positions_by_id();
+        if sim.step == add {
+            before = gyration(&pos);
+        }
+        if sim.step == removed + 1000 {
+            after = gyration(&pos);
+        }
+        if let Some(c) = source(sim, "predator") {
+            for (p, v) in pos.iter().zip(sim.velocities_by_id()) {
+                let to = [c[0] - p[0], c[1] - p[1], c[2] - p[2]];
+                if dist(*p, c) <= r_res {
+                    exposure += 1;
+                    seen += 1;
+                    away += u64::from(to[0] * v[0] + to[1] * v[1] + to[2] * v[2] < 0.0);
+                }
+            }
+        }
+    });
+    let control = around(&with_param(&sc, "chi_res", 0.0), "predator", r_res, 0);
+    let away = away as f64 / seen.max(1) as f64;
+    eprintln!(
+        "away {:.1} % of {seen}; exposure {exposure} (control {}); gyration {before:.2} → \
+         {after:.2}",
+        100.0 * away,
+        control.within
+    );
+    assert!(seen > 0, "the predator met the swarm");
+    assert!(away >= 0.9, "flying away in {away} of the insect-steps");
+    assert!(
+        (exposure as f64) <= 0.9 * control.within as f64,
+        "exposure {exposure} vs control {}",
+        control.within
+    );
+    assert!(
+        (after / before - 1.0).abs() <= 0.25,
+        "gyration {before} before, {after} 10 s after"
+    );
+}
