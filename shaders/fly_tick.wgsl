@@ -152,7 +152,8 @@ struct FlyNear {
 fn fly_tick_near(i: u32, me: vec3<S>, r_att: S, r2: S) -> FlyNear {
     let g = bee_world_grid(BEE_WORLD_H_GRID);
     let q = bee_sense_query(g, me, s_add(r_att, g.margin));
-    var out: FlyNear;
+    var near: BeeSenseSelected;
+    var within = 0u;
     for (var z = q.lo.z; z <= q.hi.z; z = z + 1u) {
         for (var y = q.lo.y; y <= q.hi.y; y = y + 1u) {
             let row = bee_world_cell_key(g, vec3<u32>(q.lo.x, y, z));
@@ -164,13 +165,13 @@ fn fly_tick_near(i: u32, me: vec3<S>, r_att: S, r2: S) -> FlyNear {
                 }
                 let d = geom_vec3_length_sq(geom_vec3_sub(fly_tick_pos(j), me));
                 if (d < r2) {
-                    out.within = out.within + 1u;
-                    bee_sense_offer(&out.near, FLY_NEIGHBOURS, d, fly_tick_id(j), j);
+                    within = within + 1u;
+                    bee_sense_offer(&near, FLY_NEIGHBOURS, d, fly_tick_id(j), j);
                 }
             }
         }
     }
-    return out;
+    return FlyNear(near, within);
 }
 
 // stimulus (sense.rs): source `id`'s centre if it is active and within r_res (squared in S,
