@@ -244,7 +244,8 @@ fn a_refusal_is_the_cpus() {
 }
 
 /// `f32` on the GPU is measured, not promised: after 50 ticks of the bench world the positions
-/// stay within a small distance of the CPU's (printed: `--nocapture`).
+/// stay within 1e-4 units of the CPU's (measured on lavapipe: under 1e-6; printed with
+/// `--nocapture`).
 #[test]
 fn f32_stays_near_the_cpu() {
     let make = || bench_fly_world(1000, 9, ScalarType::F32);
@@ -264,7 +265,7 @@ fn f32_stays_near_the_cpu() {
             let (ia, ib) = (cpu.total.infeasible, gpu.sim().total.infeasible);
             println!("f32: tick {t}: largest difference {worst:e}, infeasible {ia} / {ib}");
             if t == 50 {
-                assert!(worst < 1e-3, "{worst}");
+                assert!(worst < 1e-4, "{worst}");
             }
         }
     }
