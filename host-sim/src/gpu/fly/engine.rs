@@ -65,7 +65,10 @@ pub const WGSL_SHARED: &[(&str, u32)] = &[
     ("FLY_SHARED_KEPT_STEP", SHARED_KEPT_STEP as u32),
     ("FLY_SHARED_KEPT_SLOT", SHARED_KEPT_SLOT as u32),
     ("FLY_SHARED_KEPT_STATUS", SHARED_KEPT_STATUS as u32),
-    ("FLY_SHARED_TOTAL_INFEASIBLE", SHARED_TOTAL_INFEASIBLE as u32),
+    (
+        "FLY_SHARED_TOTAL_INFEASIBLE",
+        SHARED_TOTAL_INFEASIBLE as u32,
+    ),
     ("FLY_SHARED_TOTAL_TRUNCATED", SHARED_TOTAL_TRUNCATED as u32),
     ("FLY_SHARED_TOTAL_OBSTACLE", SHARED_TOTAL_OBSTACLE as u32),
     ("FLY_SHARED_TOTAL_BOUNDS", SHARED_TOTAL_BOUNDS as u32),
@@ -394,7 +397,12 @@ impl GpuFlySim {
                 what: "refusal",
             });
         };
-        Err(SimError::controller("fly step", w[SHARED_KEPT_STEP], agent, e))
+        Err(SimError::controller(
+            "fly step",
+            w[SHARED_KEPT_STEP],
+            agent,
+            e,
+        ))
     }
 
     /// Records the kernels of one phase over every insect (at least one thread: thread 0 of the
@@ -407,14 +415,18 @@ impl GpuFlySim {
             enc.clear_buffer(&self.b.shared, 0, Some(SHARED_PER_TICK));
             {
                 let mut pass = enc.begin_compute_pass(&Default::default());
-                self.k.cells.dispatch(&mut pass, &self.bound.cells, n.max(1));
+                self.k
+                    .cells
+                    .dispatch(&mut pass, &self.bound.cells, n.max(1));
             }
             self.grid.record(&self.gpu, &mut enc, &self.b.cells, n)?;
             let mut pass = enc.begin_compute_pass(&Default::default());
             self.k.step.dispatch(&mut pass, &self.bound.step, n.max(1));
         } else {
             let mut pass = enc.begin_compute_pass(&Default::default());
-            self.k.commit.dispatch(&mut pass, &self.bound.commit, n.max(1));
+            self.k
+                .commit
+                .dispatch(&mut pass, &self.bound.commit, n.max(1));
         }
         self.gpu.queue.submit([enc.finish()]);
         Ok(())

@@ -142,9 +142,7 @@ pub fn write_group<S: Word + SimScalar>(out: &mut Vec<u32>, p: &FlyParams<S>, st
         ]
         .map(Word::to_word),
     );
-    out.extend(
-        [p.orca_neighbours, p.noise, p.fallback, p.escape_sides].map(u32::from),
-    );
+    out.extend([p.orca_neighbours, p.noise, p.fallback, p.escape_sides].map(u32::from));
     let source = |id: Option<u16>| id.map_or(NO_SOURCE, u32::from);
     out.extend([source(stimuli.goal), source(stimuli.threat)]);
     out.push(crate::nearest::squared::<S>(p.r_att.to_f32()).to_word());

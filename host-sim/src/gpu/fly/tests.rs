@@ -175,9 +175,18 @@ fn jammed(n: usize, seed: u32, tune: impl Fn(&mut FlyParams<Fx>)) -> FlySim {
 #[test]
 fn the_bench_world_is_the_cpus() {
     let c = same_run("bench", || jammed(400, 5, |_| {}), 40, 8, None);
-    assert!(c.infeasible > 0, "ORCA must be infeasible for this test to test it");
-    assert!(c.truncated > 0, "frames must be truncated for this test to test it");
-    assert!(c.corrected > 0, "the world must correct for this test to test it");
+    assert!(
+        c.infeasible > 0,
+        "ORCA must be infeasible for this test to test it"
+    );
+    assert!(
+        c.truncated > 0,
+        "frames must be truncated for this test to test it"
+    );
+    assert!(
+        c.corrected > 0,
+        "the world must correct for this test to test it"
+    );
 }
 
 /// LP4's fallback, alignment, white noise; Gaussian, Perlin and no noise.
@@ -217,7 +226,10 @@ fn the_fly_scenarios_are_the_cpus() {
         let make = || FlySim::from_scenario(&sc, sc.seed).unwrap();
         let c = same_run(name, make, 300, 25, Some(&sc));
         if !sc.events.is_empty() {
-            assert!(c.escaping > 0, "{name}: the flies must escape for this test to test it");
+            assert!(
+                c.escaping > 0,
+                "{name}: the flies must escape for this test to test it"
+            );
         }
     }
 }
@@ -298,18 +310,22 @@ fn the_shaders_constants_are_rusts() {
         ("RAND_FLY_NOISE_Z", stream::FLY_NOISE_Z),
     ];
     assert_constants(FLY_STEP.source, step, true);
-    assert_eq!(u32::from(NOISE_NONE), 4, "fly_step.wgsl: anything else is no noise");
+    assert_eq!(
+        u32::from(NOISE_NONE),
+        4,
+        "fly_step.wgsl: anything else is no noise"
+    );
     // The f32 constants, as Rust prints them (WGSL reads the same f32 back).
     for (name, v) in [
-        (
-            "FLY_THETA_LIMIT",
-            core::f32::consts::FRAC_PI_2 + 1e-3,
-        ),
+        ("FLY_THETA_LIMIT", core::f32::consts::FRAC_PI_2 + 1e-3),
         ("FLY_RVO_EPSILON", RVO_EPSILON),
         ("FLY_GAUSS_NORM", 0.866_025_4),
     ] {
         let decl = format!("const {name}: f32 = {v}f;");
-        assert!(FLY_STEP.source.contains(&decl), "{decl} is not in fly_step.wgsl");
+        assert!(
+            FLY_STEP.source.contains(&decl),
+            "{decl} is not in fly_step.wgsl"
+        );
     }
     // The group's words follow the parameters' fields.
     let p = FlyParams::<Fx>::escape();
@@ -324,7 +340,10 @@ fn the_shaders_constants_are_rusts() {
     assert_eq!(w[15], p.max_speed.to_bits() as u32);
     assert_eq!(w[layout::GROUP_GOAL], layout::NO_SOURCE);
     assert_eq!(w[layout::GROUP_THREAT], 3);
-    assert_eq!(w[layout::GROUP_RANGE2], (p.r_att * p.r_att).to_bits() as u32);
+    assert_eq!(
+        w[layout::GROUP_RANGE2],
+        (p.r_att * p.r_att).to_bits() as u32
+    );
 }
 
 #[test]
