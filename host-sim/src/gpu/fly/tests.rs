@@ -234,6 +234,28 @@ fn the_fly_scenarios_are_the_cpus() {
     }
 }
 
+/// Fig. 8 with escape angles drawn on both sides (`escape_sides` 1, U[−π/2, π/2]).
+#[test]
+fn both_escape_sides_are_the_cpus() {
+    let sc = fixed("fly-fig8-escape", 150);
+    let make = || {
+        let mut sim = FlySim::from_scenario(&sc, sc.seed).unwrap();
+        for g in &mut sim.groups {
+            if let ByScalar::Fixed(g) = g {
+                let mut p: FlyParams<Fx> = *g.params;
+                p.escape_sides = 1;
+                g.params = p.checked().unwrap();
+            }
+        }
+        sim
+    };
+    let c = same_run("fig8, both sides", make, 150, 25, Some(&sc));
+    assert!(
+        c.escaping > 0,
+        "the flies must escape for this test to test it"
+    );
+}
+
 /// A refusal on the GPU is the CPU's error: the same step, insect and field.
 #[test]
 fn a_refusal_is_the_cpus() {
