@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Mirrors every firmware image in QEMU through `swarm-hil qemu` (issues 5 and 16): each node ×
-# scalar type mirrors at least 2,000 decisions with zero mismatches (the ant and bee nodes in
-# fixed point also against the GPU backend's decisions; the fly model has no GPU engine yet);
+# scalar type mirrors at least 2,000 decisions with zero mismatches (every node in fixed point
+# also against the GPU backend's decisions);
 # each node survives 64 KiB of random bytes on its UART and a reset of the board mid-run
 # (re-handshake, reset reported); an image built with other parameters (<node>-other) is refused
 # at the handshake, naming the difference.
@@ -30,11 +30,6 @@ scenario_of() {
 # 2,000 decisions: ants plan + resolve for 20 ants × 50 steps; bees 40 bees × 50 steps; flies
 # (midges) 40 insects × 50 steps.
 agents_of() { case "$1" in ant-node) echo 20 ;; bee-node|fly-node) echo 40 ;; esac; }
-# Whether the node's model has a GPU engine to mirror against (`--backend gpu`): the ant and
-# bee models do (issue 14); the fly model (ren2016 with ORCA) has none yet, so fly-node is
-# mirrored against the CPU engine only.
-has_gpu_engine() { case "$1" in ant-node|bee-node) return 0 ;; *) return 1 ;; esac; }
-
 field() { grep -o "\"$2\": *[0-9]*" "$1" | head -n1 | grep -o '[0-9]*$'; }
 
 check() { # label, json, want_decisions, want_resets
@@ -61,11 +56,9 @@ for node in ant-node bee-node fly-node; do
         fi
     done
     # The promise end to end: the firmware in fixed point against decisions made on the GPU
-    # (issue 14: the ant and bee models have a GPU engine; the fly model not yet, skipped).
+    # (every model has a GPU engine: ants and bees, issue 14; the fly model, ren2016 with ORCA).
     json="$OUT/$node-fixed-gpu.json"
-    if ! has_gpu_engine $node; then
-        echo "SKIP  $node fixed against the GPU backend: the fly model has no GPU engine yet"
-    elif "$HIL" qemu --firmware $node --scalar fixed --backend gpu --scenario "$sc" --agents "$k" \
+    if "$HIL" qemu --firmware $node --scalar fixed --backend gpu --scenario "$sc" --agents "$k" \
         --steps 50 --timeout-ms 500 --quiet --json "$json" >"$OUT/$node-fixed-gpu.log" 2>&1; then
         check "$node fixed against the GPU backend" "$json" 2000
     else

@@ -11,6 +11,7 @@ use crate::error::{Result, SimError};
 use crate::fly::{FlySim, bench_fly_world};
 use crate::gpu::Gpu;
 use crate::gpu::ant::engine::GpuAntSim;
+use crate::gpu::fly::engine::GpuFlySim;
 use crate::gpu::wang::engine::GpuWangSim;
 use crate::scenario::{Backend, GroupCheck, Problem, ScalarType, Scenario};
 use crate::wang::{WangSim, bench_wang_world};
@@ -127,7 +128,20 @@ pub const BUILTIN: &[ModelEntry] = &[
         check: crate::fly::scenario::check,
         engine: |sc, seed| Ok(Box::new(FlySim::from_scenario(sc, seed)?)),
         bench_world: |n, seed, scalar| Box::new(bench_fly_world(n, seed, scalar)),
-        gpu: None,
+        gpu: Some(GpuEntry {
+            engine: |sc, seed, gpu| {
+                Ok(Box::new(GpuFlySim::new(
+                    FlySim::from_scenario(sc, seed)?,
+                    gpu,
+                )?))
+            },
+            bench_world: |n, seed, scalar, gpu| {
+                Ok(Box::new(GpuFlySim::new(
+                    bench_fly_world(n, seed, scalar),
+                    gpu,
+                )?))
+            },
+        }),
     },
 ];
 

@@ -132,8 +132,23 @@ gpu_is_cpu! {
     wang_fig13: "wang-fig13-noise-compare",
 }
 
+/// Every built-in fly scenario (`fly-*`), found by its name: a fly scenario added to
+/// `scenarios/` is compared without a line here.
+#[test]
+fn fly_scenarios_are_the_cpus_bytes() {
+    let names: Vec<&str> = scenario::builtin_names()
+        .iter()
+        .copied()
+        .filter(|n| n.starts_with("fly-"))
+        .collect();
+    assert!(names.contains(&"fly-fig1-midges"), "{names:?}");
+    for name in names {
+        same_bytes_on_the_gpu(name);
+    }
+}
+
 /// Every built-in scenario is covered: a model's scenarios join the list above when its GPU
-/// engine lands.
+/// engine lands (the fly model's by their prefix, `fly_scenarios_are_the_cpus_bytes`).
 #[test]
 fn every_built_in_scenario_is_compared() {
     let here = include_str!("gpu_runs.rs");

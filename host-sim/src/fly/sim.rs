@@ -61,7 +61,7 @@ pub struct FlyGroup<S> {
     pub truncated: Vec<bool>,
     /// What the world corrected at the last step, by slot: bit 0 an obstacle, bit 1 a wall.
     pub corrected: Vec<u8>,
-    next: Vec<FlyState<S>>,
+    pub(crate) next: Vec<FlyState<S>>,
 }
 
 impl<S: SimScalar> FlyGroup<S> {

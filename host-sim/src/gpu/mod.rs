@@ -19,6 +19,7 @@
 pub mod ant;
 pub mod bee;
 mod context;
+pub mod fly;
 pub mod grid;
 pub mod kernel;
 pub mod shaders;

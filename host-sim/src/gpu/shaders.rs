@@ -350,6 +350,30 @@ pub const WANG_TICK: Module = Module {
     over_scalar: true,
 };
 
+/// The ren2016 insect: [`swarm_core::fly`] (`core-nostd/src/fly/`: the frame's validation, the
+/// zone forces of Eq. 5, friction, the stimulus response with its escape draw, the noise
+/// sources; the step of Algorithm 1) and the 3D ORCA it calls (`core-nostd/src/orca3d/`: the
+/// neighbour and obstacle planes, RVO2-3D's `linearProgram1..4`, `solve`) over the scalar
+/// (`fly_step_checked`), on the bee model's curl noise and number checks and wang's unit check
+/// (`check_unit`); bit for bit over `Fx`.
+pub const FLY_STEP: Module = Module {
+    name: "fly_step",
+    source: include_str!("../../../shaders/fly_step.wgsl"),
+    uses: &[&WANG_STEP],
+    over_scalar: true,
+};
+
+/// The ren2016 tick of the GPU engine ([`GpuFlySim`](crate::gpu::fly::engine::GpuFlySim)): the
+/// kernels `fly_tick_cells_main` (the grid's cells), `fly_tick_step_main` (the frame of
+/// `host-sim/src/fly/sense.rs` on the GPU grid and the world's words, then `fly_step_checked`)
+/// and `fly_tick_commit_main` (the world's corrections, counted; the first refusal kept).
+pub const FLY_TICK: Module = Module {
+    name: "fly_tick",
+    source: include_str!("../../../shaders/fly_tick.wgsl"),
+    uses: &[&DISPATCH, &FLY_STEP, &BEE_SENSE, &SPACE],
+    over_scalar: true,
+};
+
 /// The neighbour grid's kernels: agents sorted by cell (count, multi-level exclusive scan, a
 /// stable radix sort), driven by [`GpuGrid`](super::grid::GpuGrid).
 pub const GRID: Module = Module {
@@ -393,6 +417,8 @@ pub const ALL: &[&Module] = &[
     &SPACE,
     &WANG_STEP,
     &WANG_TICK,
+    &FLY_STEP,
+    &FLY_TICK,
     &GRID,
 ];
 

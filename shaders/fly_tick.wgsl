@@ -1,0 +1,374 @@
+// The ren2016 tick of the GPU engine (host-sim/src/gpu/shaders.rs, FLY_TICK;
+// host-sim/src/gpu/fly/engine.rs drives it): host-sim/src/fly/sim.rs's step, one thread per
+// insect, over the scalar `S`, the states staying on the GPU between ticks. A tick is
+//
+// 1. `fly_tick_cells_main`: the cell of every insect's position (bee_world.wgsl's grid);
+// 2. the grid's sort (`GpuGrid`);
+// 3. `fly_tick_step_main`: the frame of host-sim/src/fly/sense.rs (`fly_frame`: the
+//    FLY_NEIGHBOURS nearest insects within r_att by exact key, nearest first, ties by id, and
+//    whether more were in range; the stimulus, a threat before a goal, within r_res; the
+//    surfaces within ORCA's reach, `FlyWorld::surfaces`), then `fly_step_checked`; the status,
+//    the next state as the controller gave it and the decision written, the infeasible programs
+//    and truncated frames counted;
+// 4. `fly_tick_commit_main`: the world's corrections (`space_confine`, `FlyWorld::confine`),
+//    counted, the state made current; thread 0 keeps the tick's first refusal for the host.
+//
+// Bindings (group 0), besides the world (1, bee_world.wgsl: the container, the obstacles, the
+// stimulus sources as targets, the grid), the grid's `starts` and `order` (4, 5, bee_sense.wgsl)
+// and the confinement boxes (15, space.wgsl): 6 the cells, 7 the tick's parameters, 8 the states,
+// 9 the next states, 10 the decisions, 11 the groups' words, 12 each slot's group and id, 13 the
+// tick's atomics, 14 each slot's flags, 16 each slot's status word.
+
+struct FlyTickParams {
+    n: u32,
+    step: u32,
+    seed: u32,
+    // SURFACE_OFFSET (space.rs) in S, as `confine` converts it.
+    offset: u32,
+}
+
+@group(0) @binding(6) var<storage, read_write> fly_cells: array<u32>;
+@group(0) @binding(7) var<uniform> fly_tick: FlyTickParams;
+@group(0) @binding(8) var<storage, read_write> fly_states: array<u32>;
+@group(0) @binding(9) var<storage, read_write> fly_next: array<u32>;
+@group(0) @binding(10) var<storage, read_write> fly_decisions: array<u32>;
+@group(0) @binding(11) var<storage, read> fly_groups: array<u32>;
+@group(0) @binding(12) var<storage, read> fly_slots: array<u32>;
+@group(0) @binding(13) var<storage, read_write> fly_shared: array<atomic<u32>>;
+@group(0) @binding(14) var<storage, read_write> fly_flags: array<u32>;
+@group(0) @binding(16) var<storage, read_write> fly_status: array<u32>;
+
+// Words of a state (position, velocity, escape_theta, escaping) and of a decision (pref,
+// infeasible) (host-sim/src/gpu/fly/layout.rs).
+const FLY_STATE_WORDS: u32 = 8u;
+const FLY_DECISION_WORDS: u32 = 4u;
+
+// A group's words (layout.rs, GROUP_*): the sixteen parameters in S in FlyParams' order, then
+// orca_neighbours, noise, fallback, escape_sides, the goal's and the threat's object ids
+// (FLY_NO_SOURCE: none) and r_att squared in S.
+const FLY_GROUP_WORDS: u32 = 24u;
+const FLY_GROUP_ORCA_NEIGHBOURS: u32 = 16u;
+const FLY_GROUP_GOAL: u32 = 20u;
+const FLY_GROUP_THREAT: u32 = 21u;
+const FLY_GROUP_RANGE2: u32 = 22u;
+const FLY_NO_SOURCE: u32 = 0xffffffffu;
+
+// A slot's flags (layout.rs, FLAG_*): what the world corrected (bit 0 an obstacle, bit 1 the
+// container), whether the frame was truncated.
+const FLY_FLAG_TRUNCATED: u32 = 4u;
+
+// The words of `fly_shared` (engine.rs, SHARED_*): this tick's lowest refused slot (n − slot,
+// 0 for none), infeasible programs, truncated frames, corrections (obstacle, bounds), cleared
+// by the host every tick; the first refusal kept (a flag, its step, slot and status word); the
+// counts since the start, each a u64 as two words.
+const FLY_SHARED_REFUSED: u32 = 0u;
+const FLY_SHARED_INFEASIBLE: u32 = 1u;
+const FLY_SHARED_TRUNCATED: u32 = 2u;
+const FLY_SHARED_OBSTACLE: u32 = 3u;
+const FLY_SHARED_BOUNDS: u32 = 4u;
+const FLY_SHARED_KEPT: u32 = 5u;
+const FLY_SHARED_KEPT_STEP: u32 = 6u;
+const FLY_SHARED_KEPT_SLOT: u32 = 7u;
+const FLY_SHARED_KEPT_STATUS: u32 = 8u;
+const FLY_SHARED_TOTAL_INFEASIBLE: u32 = 10u;
+const FLY_SHARED_TOTAL_TRUNCATED: u32 = 12u;
+const FLY_SHARED_TOTAL_OBSTACLE: u32 = 14u;
+const FLY_SHARED_TOTAL_BOUNDS: u32 = 16u;
+
+// ---- the buffers' values ----
+
+fn fly_s(w: u32) -> S {
+    return s_from_word(w);
+}
+
+fn fly_state_at(b: u32, from_next: bool) -> FlyState {
+    var w: array<u32, 8>;
+    for (var k = 0u; k < FLY_STATE_WORDS; k = k + 1u) {
+        w[k] = select(fly_states[b + k], fly_next[b + k], from_next);
+    }
+    return FlyState(vec3<S>(fly_s(w[0]), fly_s(w[1]), fly_s(w[2])),
+                     vec3<S>(fly_s(w[3]), fly_s(w[4]), fly_s(w[5])), fly_s(w[6]), w[7] != 0u);
+}
+
+// The current state of slot i.
+fn fly_tick_state(i: u32) -> FlyState {
+    return fly_state_at(i * FLY_STATE_WORDS, false);
+}
+
+fn fly_tick_pos(j: u32) -> vec3<S> {
+    let b = j * FLY_STATE_WORDS;
+    return vec3<S>(fly_s(fly_states[b]), fly_s(fly_states[b + 1u]), fly_s(fly_states[b + 2u]));
+}
+
+fn fly_tick_vel(j: u32) -> vec3<S> {
+    let b = j * FLY_STATE_WORDS + 3u;
+    return vec3<S>(fly_s(fly_states[b]), fly_s(fly_states[b + 1u]), fly_s(fly_states[b + 2u]));
+}
+
+fn fly_state_words(s: FlyState) -> array<u32, 8> {
+    return array<u32, 8>(
+        s_to_word(s.pos.x), s_to_word(s.pos.y), s_to_word(s.pos.z),
+        s_to_word(s.vel.x), s_to_word(s.vel.y), s_to_word(s.vel.z),
+        s_to_word(s.escape_theta), select(0u, 1u, s.escaping),
+    );
+}
+
+fn fly_group_s(g: u32, k: u32) -> S {
+    return fly_s(fly_groups[g * FLY_GROUP_WORDS + k]);
+}
+
+fn fly_group_u(g: u32, k: u32) -> u32 {
+    return fly_groups[g * FLY_GROUP_WORDS + k];
+}
+
+// The parameters of group g (validated on the host: `Checked`).
+fn fly_group_params(g: u32) -> FlyParams {
+    var s: array<S, 16>;
+    for (var k = 0u; k < 16u; k = k + 1u) {
+        s[k] = fly_group_s(g, k);
+    }
+    let o = FLY_GROUP_ORCA_NEIGHBOURS;
+    return FlyParams(s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], s[10], s[11],
+                     s[12], s[13], s[14], s[15], fly_group_u(g, o), fly_group_u(g, o + 1u),
+                     fly_group_u(g, o + 2u), fly_group_u(g, o + 3u));
+}
+
+// The id of the insect in slot i.
+fn fly_tick_id(i: u32) -> u32 {
+    return fly_slots[fly_tick.n + i];
+}
+
+// ---- the frame (host-sim/src/fly/sense.rs, world.rs) ----
+
+// The selection of the frame's neighbours and how many insects were within range.
+struct FlyNear {
+    near: BeeSenseSelected,
+    within: u32,
+}
+
+// select::<S, 16> (nearest.rs): the FLY_NEIGHBOURS insects nearest to slot i (at `me`)
+// strictly within r_att (squared distance in S below `r2`), nearest first, ties by id, and how
+// many were within it (more than FLY_NEIGHBOURS: the frame is truncated).
+fn fly_tick_near(i: u32, me: vec3<S>, r_att: S, r2: S) -> FlyNear {
+    let g = bee_world_grid(BEE_WORLD_H_GRID);
+    let q = bee_sense_query(g, me, s_add(r_att, g.margin));
+    var near: BeeSenseSelected;
+    var within = 0u;
+    for (var z = q.lo.z; z <= q.hi.z; z = z + 1u) {
+        for (var y = q.lo.y; y <= q.hi.y; y = y + 1u) {
+            let row = bee_world_cell_key(g, vec3<u32>(q.lo.x, y, z));
+            let end = bee_grid_starts[row + q.hi.x - q.lo.x + 1u];
+            for (var s = bee_grid_starts[row]; s < end; s = s + 1u) {
+                let j = bee_grid_order[s];
+                if (j == i) {
+                    continue;
+                }
+                let d = geom_vec3_length_sq(geom_vec3_sub(fly_tick_pos(j), me));
+                if (d < r2) {
+                    within = within + 1u;
+                    bee_sense_offer(&near, FLY_NEIGHBOURS, d, fly_tick_id(j), j);
+                }
+            }
+        }
+    }
+    return FlyNear(near, within);
+}
+
+// stimulus (sense.rs): source `id`'s centre if it is active and within r_res (squared in S,
+// H(0) = 1).
+fn fly_tick_source(f: ptr<function, FlyFrame>, id: u32, kind: u32, me: vec3<S>, r2: S) -> bool {
+    if (id == FLY_NO_SOURCE) {
+        return false;
+    }
+    let c = bee_world_target_center(id);
+    if (!c.is_some || !(geom_vec3_length_sq(geom_vec3_sub(c.value, me)) <= r2)) {
+        return false;
+    }
+    (*f).has_stimulus = true;
+    (*f).stimulus_pos = c.value;
+    (*f).stimulus_kind = kind;
+    return true;
+}
+
+// Nearest::offer (world.rs): keeps the FLY_SURFACES nearest surfaces offered, nearest first, the
+// earlier offer first on ties.
+fn fly_offer(f: ptr<function, FlyFrame>, keys: ptr<function, array<S, 4>>, d: S, s: FlySurface) {
+    let len = (*f).surfaces_len;
+    var at = len;
+    for (var k = 0u; k < len; k = k + 1u) {
+        if (d < (*keys)[k]) {
+            at = k;
+            break;
+        }
+    }
+    if (at >= FLY_SURFACES) {
+        return;
+    }
+    var last = len;
+    if (len == FLY_SURFACES) {
+        last = len - 1u;
+    }
+    for (var k = last; k > at; k = k - 1u) {
+        (*keys)[k] = (*keys)[k - 1u];
+        (*f).surfaces[k] = (*f).surfaces[k - 1u];
+    }
+    (*keys)[at] = d;
+    (*f).surfaces[at] = s;
+    (*f).surfaces_len = last + 1u;
+}
+
+// FlyWorld::surfaces: the closest point and outward normal of every active obstacle (distance 0
+// inside) and every container wall (inward normal; walls −x, +x, −y, +y, −z, +z) nearer than
+// `reach`, nearest first, at most FLY_SURFACES. (The CPU skips obstacles whose bounding box is
+// beyond the world's reach in f64: none of them could be nearer than `reach`.)
+fn fly_tick_surfaces(f: ptr<function, FlyFrame>, p: vec3<S>, reach: S) {
+    var keys: array<S, 4>;
+    for (var k = 0u; k < bee_world_obstacles(); k = k + 1u) {
+        let o = bee_world_obstacle(k);
+        if (!o.present) {
+            continue;
+        }
+        let s = bee_world_surface(o, p);
+        let d = select(s.distance, S_ZERO, s.inside);
+        if (d < reach) {
+            fly_offer(f, &keys, d, FlySurface(s.point, s.normal));
+        }
+    }
+    let lo = bee_world_min();
+    let hi = bee_world_max();
+    for (var k = 0u; k < 3u; k = k + 1u) {
+        for (var side = 0u; side < 2u; side = side + 1u) {
+            let w = select(lo[k], hi[k], side == 1u);
+            let sign = select(S_ONE, s_neg(S_ONE), side == 1u);
+            let d = s_max(s_mul(s_sub(p[k], w), sign), S_ZERO);
+            if (d < reach) {
+                var point = p;
+                point[k] = w;
+                // `with_axis(Vec3::zero(), k, sign)`, each component chosen (bee_world.wgsl).
+                let normal = vec3<S>(select(S_ZERO, sign, k == 0u), select(S_ZERO, sign, k == 1u),
+                                     select(S_ZERO, sign, k == 2u));
+                fly_offer(f, &keys, d, FlySurface(point, normal));
+            }
+        }
+    }
+}
+
+// fly_frame (sense.rs) of the insect in slot i of group g; returns whether it was truncated.
+fn fly_tick_frame(f: ptr<function, FlyFrame>, i: u32, g: u32, p: FlyParams, me: vec3<S>) -> bool {
+    let near = fly_tick_near(i, me, p.r_att, fly_group_s(g, FLY_GROUP_RANGE2));
+    (*f).neighbours_len = near.near.len;
+    for (var k = 0u; k < near.near.len; k = k + 1u) {
+        let j = near.near.slots[k];
+        (*f).neighbours[k] = FlyNeighbour(near.near.ties[k], fly_tick_pos(j), fly_tick_vel(j));
+    }
+    let r2 = s_mul(p.r_res, p.r_res);
+    if (!fly_tick_source(f, fly_group_u(g, FLY_GROUP_THREAT), FLY_STIMULUS_PREDATOR, me, r2)) {
+        fly_tick_source(f, fly_group_u(g, FLY_GROUP_GOAL), FLY_STIMULUS_TARGET, me, r2);
+    }
+    fly_tick_surfaces(f, me, fly_reach(p));
+    return near.within > FLY_NEIGHBOURS;
+}
+
+// ---- counts ----
+
+// Adds one to the u64 of words `at` (low) and `at + 1` (high).
+fn fly_count64(at: u32) {
+    if (atomicAdd(&fly_shared[at], 1u) == 0xffffffffu) {
+        atomicAdd(&fly_shared[at + 1u], 1u);
+    }
+}
+
+// Counts one of this tick's `at` and of the totals' `total`.
+fn fly_count(at: u32, total: u32) {
+    atomicAdd(&fly_shared[at], 1u);
+    fly_count64(total);
+}
+
+// ---- the kernels ----
+
+// The cell of every insect's position in the grid.
+@compute @workgroup_size(WORKGROUP)
+fn fly_tick_cells_main(@builtin(global_invocation_id) id: vec3<u32>,
+                       @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = thread_index(id, groups);
+    if (i >= fly_tick.n) {
+        return;
+    }
+    fly_cells[i] = bee_world_cell(fly_tick_pos(i));
+}
+
+// FlyGroup::decide: the frame, the step; the next state and decision as the controller gave
+// them (what the mirror compares), the counts.
+@compute @workgroup_size(WORKGROUP)
+fn fly_tick_step_main(@builtin(global_invocation_id) id: vec3<u32>,
+                      @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = thread_index(id, groups);
+    if (i >= fly_tick.n) {
+        return;
+    }
+    let g = fly_slots[i];
+    let p = fly_group_params(g);
+    let s = fly_tick_state(i);
+    var f: FlyFrame;
+    let truncated = fly_tick_frame(&f, i, g, p, s.pos);
+    let c = StepCtx(fly_tick.seed, fly_tick_id(i), fly_tick.step);
+    let r = fly_step_checked(s, &f, p, c);
+    fly_status[i] = r.status;
+    if (r.status != BEE_OK) {
+        // The lowest slot refused is the one reported (for_each_agent, par.rs).
+        atomicMax(&fly_shared[FLY_SHARED_REFUSED], fly_tick.n - i);
+    }
+    let w = fly_state_words(r.next);
+    for (var k = 0u; k < FLY_STATE_WORDS; k = k + 1u) {
+        fly_next[i * FLY_STATE_WORDS + k] = w[k];
+    }
+    let d = i * FLY_DECISION_WORDS;
+    fly_decisions[d] = s_to_word(r.pref.x);
+    fly_decisions[d + 1u] = s_to_word(r.pref.y);
+    fly_decisions[d + 2u] = s_to_word(r.pref.z);
+    fly_decisions[d + 3u] = select(0u, 1u, r.infeasible);
+    fly_flags[i] = select(0u, FLY_FLAG_TRUNCATED, truncated);
+    if (r.infeasible) {
+        fly_count(FLY_SHARED_INFEASIBLE, FLY_SHARED_TOTAL_INFEASIBLE);
+    }
+    if (truncated) {
+        fly_count(FLY_SHARED_TRUNCATED, FLY_SHARED_TOTAL_TRUNCATED);
+    }
+}
+
+// FlyGroup::commit: the world's corrections of the next state, counted, made current; thread 0
+// keeps the tick's refusal if none is kept yet.
+@compute @workgroup_size(WORKGROUP)
+fn fly_tick_commit_main(@builtin(global_invocation_id) id: vec3<u32>,
+                        @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = thread_index(id, groups);
+    let n = fly_tick.n;
+    if (i == 0u && atomicLoad(&fly_shared[FLY_SHARED_KEPT]) == 0u) {
+        let refused = atomicLoad(&fly_shared[FLY_SHARED_REFUSED]);
+        if (refused != 0u) {
+            let slot = n - refused;
+            atomicStore(&fly_shared[FLY_SHARED_KEPT], 1u);
+            atomicStore(&fly_shared[FLY_SHARED_KEPT_STEP], fly_tick.step);
+            atomicStore(&fly_shared[FLY_SHARED_KEPT_SLOT], slot);
+            atomicStore(&fly_shared[FLY_SHARED_KEPT_STATUS], fly_status[slot]);
+        }
+    }
+    if (i >= n) {
+        return;
+    }
+    let s = fly_state_at(i * FLY_STATE_WORDS, true);
+    var pos = s.pos;
+    var vel = s.vel;
+    let fix = space_confine(&pos, &vel, s_from_word(fly_tick.offset));
+    fly_flags[i] = fly_flags[i] | fix;
+    if ((fix & 1u) != 0u) {
+        fly_count(FLY_SHARED_OBSTACLE, FLY_SHARED_TOTAL_OBSTACLE);
+    }
+    if ((fix & 2u) != 0u) {
+        fly_count(FLY_SHARED_BOUNDS, FLY_SHARED_TOTAL_BOUNDS);
+    }
+    let w = fly_state_words(FlyState(pos, vel, s.escape_theta, s.escaping));
+    for (var k = 0u; k < FLY_STATE_WORDS; k = k + 1u) {
+        fly_states[i * FLY_STATE_WORDS + k] = w[k];
+    }
+}
