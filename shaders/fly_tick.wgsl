@@ -45,12 +45,16 @@ const FLY_DECISION_WORDS: u32 = 4u;
 
 // A group's words (layout.rs, GROUP_*): the sixteen parameters in S in FlyParams' order, then
 // orca_neighbours, noise, fallback, escape_sides, the goal's and the threat's object ids
-// (FLY_NO_SOURCE: none) and r_att squared in S.
-const FLY_GROUP_WORDS: u32 = 24u;
+// (FLY_NO_SOURCE: none), and r_att, r_rep and r_ali squared in S (the selection's bands).
+const FLY_GROUP_WORDS: u32 = 28u;
 const FLY_GROUP_ORCA_NEIGHBOURS: u32 = 16u;
 const FLY_GROUP_GOAL: u32 = 20u;
 const FLY_GROUP_THREAT: u32 = 21u;
 const FLY_GROUP_RANGE2: u32 = 22u;
+const FLY_GROUP_REP2: u32 = 23u;
+const FLY_GROUP_ALI2: u32 = 24u;
+// Entries a truncated frame keeps for each farther zone with members (sense.rs, ZONE_QUOTA).
+const FLY_ZONE_QUOTA: u32 = 4u;
 const FLY_NO_SOURCE: u32 = 0xffffffffu;
 
 // A slot's flags (layout.rs, FLAG_*): what the world corrected (bit 0 an obstacle, bit 1 the
@@ -146,17 +150,46 @@ struct FlyNear {
     within: u32,
 }
 
-// select::<S, 16> (nearest.rs): the FLY_NEIGHBOURS insects nearest to slot i (at `me`)
-// strictly within r_att (squared distance in S below `r2`), nearest first, ties by id, and how
-// many were within it (more than FLY_NEIGHBOURS: the frame is truncated).
-fn fly_tick_near(i: u32, me: vec3<S>, r_att: S, r2: S) -> FlyNear {
-    let g = bee_world_grid(BEE_WORLD_H_GRID);
-    let q = bee_sense_query(g, me, s_add(r_att, g.margin));
-    var near: BeeSenseSelected;
-    var within = 0u;
+// zone_shares (sense.rs): how many of each zone's nearest members (repulsion, alignment,
+// attraction) a frame holds, from the zones' member counts `n`.
+fn fly_zone_shares(n: vec3<u32>) -> vec3<u32> {
+    let q_ali = min(n.y, FLY_ZONE_QUOTA);
+    let q_att = min(n.z, FLY_ZONE_QUOTA);
+    let rep = min(n.x, FLY_NEIGHBOURS - q_ali - q_att);
+    let ali = min(n.y, FLY_NEIGHBOURS - rep - q_att);
+    let att = min(n.z, FLY_NEIGHBOURS - rep - ali);
+    return vec3<u32>(rep, ali, att);
+}
+
+// Appends the first `k` of `band` to `out`.
+fn fly_near_append(out: ptr<function, BeeSenseSelected>, band: BeeSenseSelected, k: u32) {
+    for (var m = 0u; m < k; m = m + 1u) {
+        let at = (*out).len;
+        (*out).keys[at] = band.keys[m];
+        (*out).ties[at] = band.ties[m];
+        (*out).slots[at] = band.slots[m];
+        (*out).len = at + 1u;
+    }
+}
+
+// select_bands::<S, 16, 3> (nearest.rs) and the shares of fly_frame (sense.rs): the insects
+// strictly within r_att of slot i (at `me`), banded by squared distance in S into the zones
+// (below r_rep², r_ali², r_att²: `g`'s words), each band's FLY_NEIGHBOURS nearest kept (ties
+// by id), then each band's share of the frame, nearest first; and how many were within r_att
+// (more than FLY_NEIGHBOURS: the frame is truncated).
+fn fly_tick_near(i: u32, me: vec3<S>, r_att: S, g: u32) -> FlyNear {
+    let grid = bee_world_grid(BEE_WORLD_H_GRID);
+    let q = bee_sense_query(grid, me, s_add(r_att, grid.margin));
+    let rep2 = fly_group_s(g, FLY_GROUP_REP2);
+    let ali2 = fly_group_s(g, FLY_GROUP_ALI2);
+    let att2 = fly_group_s(g, FLY_GROUP_RANGE2);
+    var rep: BeeSenseSelected;
+    var ali: BeeSenseSelected;
+    var att: BeeSenseSelected;
+    var n = vec3<u32>(0u, 0u, 0u);
     for (var z = q.lo.z; z <= q.hi.z; z = z + 1u) {
         for (var y = q.lo.y; y <= q.hi.y; y = y + 1u) {
-            let row = bee_world_cell_key(g, vec3<u32>(q.lo.x, y, z));
+            let row = bee_world_cell_key(grid, vec3<u32>(q.lo.x, y, z));
             let end = bee_grid_starts[row + q.hi.x - q.lo.x + 1u];
             for (var s = bee_grid_starts[row]; s < end; s = s + 1u) {
                 let j = bee_grid_order[s];
@@ -164,14 +197,25 @@ fn fly_tick_near(i: u32, me: vec3<S>, r_att: S, r2: S) -> FlyNear {
                     continue;
                 }
                 let d = geom_vec3_length_sq(geom_vec3_sub(fly_tick_pos(j), me));
-                if (d < r2) {
-                    within = within + 1u;
-                    bee_sense_offer(&near, FLY_NEIGHBOURS, d, fly_tick_id(j), j);
+                if (d < rep2) {
+                    n.x = n.x + 1u;
+                    bee_sense_offer(&rep, FLY_NEIGHBOURS, d, fly_tick_id(j), j);
+                } else if (d < ali2) {
+                    n.y = n.y + 1u;
+                    bee_sense_offer(&ali, FLY_NEIGHBOURS, d, fly_tick_id(j), j);
+                } else if (d < att2) {
+                    n.z = n.z + 1u;
+                    bee_sense_offer(&att, FLY_NEIGHBOURS, d, fly_tick_id(j), j);
                 }
             }
         }
     }
-    return FlyNear(near, within);
+    let share = fly_zone_shares(n);
+    var near: BeeSenseSelected;
+    fly_near_append(&near, rep, share.x);
+    fly_near_append(&near, ali, share.y);
+    fly_near_append(&near, att, share.z);
+    return FlyNear(near, n.x + n.y + n.z);
 }
 
 // stimulus (sense.rs): source `id`'s centre if it is active and within r_res (squared in S,
@@ -255,7 +299,7 @@ fn fly_tick_surfaces(f: ptr<function, FlyFrame>, p: vec3<S>, reach: S) {
 
 // fly_frame (sense.rs) of the insect in slot i of group g; returns whether it was truncated.
 fn fly_tick_frame(f: ptr<function, FlyFrame>, i: u32, g: u32, p: FlyParams, me: vec3<S>) -> bool {
-    let near = fly_tick_near(i, me, p.r_att, fly_group_s(g, FLY_GROUP_RANGE2));
+    let near = fly_tick_near(i, me, p.r_att, g);
     (*f).neighbours_len = near.near.len;
     for (var k = 0u; k < near.near.len; k = k + 1u) {
         let j = near.near.slots[k];

@@ -22,6 +22,6 @@ mod tests;
 
 pub use build::{bench_fly_world, fly_frame_samples};
 pub use scenario::{FlyParamsOverride, FlyPreset, fly_params};
-pub use sense::{FlySimFrame, N, O, Stimuli, fly_frame};
+pub use sense::{FlySimFrame, N, O, Stimuli, ZONE_QUOTA, fly_frame, zone_shares};
 pub use sim::{AnyFlyGroup, Counts, FlyGroup, FlySim};
 pub use world::{FlyWorld, Sensed, Source, reach};

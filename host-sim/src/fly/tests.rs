@@ -77,3 +77,28 @@ pub(super) fn overlaps(pos: &[[f64; 3]], d: f64) -> usize {
     }
     n
 }
+
+/// Insects spawn at least two ORCA radii apart; a region with no room for the group is refused
+/// before the run, naming the group and the first insect that found no place.
+#[test]
+fn insects_spawn_apart_or_the_scenario_is_refused() {
+    let mut sc = crate::scenario::builtin("fly-fig2-fruitfly").unwrap();
+    let sim = FlySim::from_scenario(&sc, 7).unwrap();
+    let pos = sim.positions_by_id();
+    let floor = 2.0 * f64::from(fly_params(&sc.groups[0]).unwrap().orca_radius());
+    for (i, p) in pos.iter().enumerate() {
+        for q in &pos[i + 1..] {
+            let d = (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>().sqrt();
+            assert!(d >= floor * (1.0 - 1e-6), "{d} < {floor}");
+        }
+    }
+    sc.groups[0].spawn.region = crate::scenario::SpawnRegion::Box {
+        min: vec![9.0, 9.0, 9.0],
+        max: vec![11.0, 11.0, 11.0],
+    };
+    let err = FlySim::from_scenario(&sc, 7).err().expect("refused");
+    assert!(
+        matches!(err, crate::SimError::SpawnCrowded { ref group, .. } if group == "fruitflies"),
+        "{err}"
+    );
+}

@@ -1,6 +1,6 @@
 //! The ren2016 values as `u32` words for the GPU tick (`shaders/fly_tick.wgsl` reads them in the
 //! same layout): the states, the decisions, each group's parameters and what its frames take
-//! besides the world (its goal and threat, r_att squared), each slot's flags, and the status
+//! besides the world (its goal and threat, r_att, r_rep and r_ali squared), each slot's flags, and the status
 //! words of the controller's refusals. Every value is converted on the host exactly as the CPU
 //! engine converts it (`nearest::squared` for the selection's limit), so the GPU computes from
 //! the CPU's bits.
@@ -22,7 +22,7 @@ pub const DECISION_WORDS: usize = 4;
 
 /// Words of a group (`FLY_GROUP_WORDS`): the sixteen parameters in `S` in [`FlyParams`]' order
 /// (γ … max_speed), then the words below.
-pub const GROUP_WORDS: usize = 24;
+pub const GROUP_WORDS: usize = 28;
 /// Group words: `orca_neighbours`, `noise`, `fallback`, `escape_sides`.
 pub const GROUP_ORCA_NEIGHBOURS: usize = 16;
 /// Group word: the object id of the goal it pursues ([`NO_SOURCE`]: none).
@@ -31,6 +31,10 @@ pub const GROUP_GOAL: usize = 20;
 pub const GROUP_THREAT: usize = 21;
 /// Group word: r_att squared in `S` (the neighbour selection's limit, strict).
 pub const GROUP_RANGE2: usize = 22;
+/// Group word: r_rep squared in `S` (the repulsion zone's band of the selection, strict).
+pub const GROUP_REP2: usize = 23;
+/// Group word: r_ali squared in `S` (the alignment zone's band of the selection, strict).
+pub const GROUP_ALI2: usize = 24;
 /// [`GROUP_GOAL`] or [`GROUP_THREAT`] of a group without one.
 pub const NO_SOURCE: u32 = u32::MAX;
 
@@ -48,6 +52,9 @@ pub const WGSL_CONSTANTS: &[(&str, u32)] = &[
     ("FLY_GROUP_GOAL", GROUP_GOAL as u32),
     ("FLY_GROUP_THREAT", GROUP_THREAT as u32),
     ("FLY_GROUP_RANGE2", GROUP_RANGE2 as u32),
+    ("FLY_GROUP_REP2", GROUP_REP2 as u32),
+    ("FLY_GROUP_ALI2", GROUP_ALI2 as u32),
+    ("FLY_ZONE_QUOTA", crate::fly::ZONE_QUOTA as u32),
     ("FLY_NO_SOURCE", NO_SOURCE),
     ("FLY_FLAG_TRUNCATED", FLAG_TRUNCATED),
 ];
@@ -145,6 +152,8 @@ pub fn write_group<S: Word + SimScalar>(out: &mut Vec<u32>, p: &FlyParams<S>, st
     out.extend([p.orca_neighbours, p.noise, p.fallback, p.escape_sides].map(u32::from));
     let source = |id: Option<u16>| id.map_or(NO_SOURCE, u32::from);
     out.extend([source(stimuli.goal), source(stimuli.threat)]);
-    out.push(crate::nearest::squared::<S>(p.r_att.to_f32()).to_word());
+    for r in [p.r_att, p.r_rep, p.r_ali] {
+        out.push(crate::nearest::squared::<S>(r.to_f32()).to_word());
+    }
     out.resize(start + GROUP_WORDS, 0);
 }
