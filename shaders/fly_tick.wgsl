@@ -54,7 +54,7 @@ const FLY_GROUP_RANGE2: u32 = 22u;
 const FLY_GROUP_REP2: u32 = 23u;
 const FLY_GROUP_ALI2: u32 = 24u;
 // Entries a truncated frame keeps for each farther zone with members (sense.rs, ZONE_QUOTA).
-const FLY_ZONE_QUOTA: u32 = 4u;
+const FLY_ZONE_QUOTA: u32 = 3u;
 const FLY_NO_SOURCE: u32 = 0xffffffffu;
 
 // A slot's flags (layout.rs, FLAG_*): what the world corrected (bit 0 an obstacle, bit 1 the

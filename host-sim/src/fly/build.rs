@@ -11,7 +11,7 @@ use super::world::{FlyWorld, Source, reach};
 use crate::by_scalar;
 use crate::output::{AgentSample, Frame};
 use crate::scalar::SimScalar;
-use crate::scenario::{Action, Group, ScalarType, Scenario};
+use crate::scenario::{Action, Group, ObjectKind, ScalarType, Scenario};
 use crate::space::{BeeObstacle, Shape3};
 use crate::spawn::{draw, spaced3};
 use crate::{Result, SimError};
@@ -53,15 +53,25 @@ impl FlySim {
             };
             let id = scenario.object_id(name).ok_or_else(no_object)?;
             let o = &scenario.objects[usize::from(id)];
-            let &[x, y, z] = o.kind.center().ok_or_else(no_object)? else {
-                return Err(no_object());
+            let (center, echo) = match o.kind {
+                ObjectKind::Region { min, max } => (
+                    std::array::from_fn(|k| 0.5 * (min[k] + max[k])),
+                    Some([min, max]),
+                ),
+                ref kind => {
+                    let &[x, y, z] = kind.center().ok_or_else(no_object)? else {
+                        return Err(no_object());
+                    };
+                    ([x, y, z], None)
+                }
             };
             if !world.sources.iter().any(|s| s.id == id) {
                 world.sources.push(Source {
                     id,
                     name: o.name.clone(),
-                    center: [x, y, z],
+                    center,
                     active: o.active,
+                    echo,
                 });
             }
             Ok(Some(id))
@@ -102,7 +112,12 @@ impl FlySim {
                 (Some(active), _) => s.active = active,
                 (None, Action::Move { to, .. }) => {
                     if let &[x, y, z] = to.as_slice() {
+                        let shift = [x - s.center[0], y - s.center[1], z - s.center[2]];
                         s.center = [x, y, z];
+                        if let Some(b) = &mut s.echo {
+                            b.iter_mut()
+                                .for_each(|c| (0..3).for_each(|k| c[k] += shift[k]));
+                        }
                     }
                 }
                 _ => {}

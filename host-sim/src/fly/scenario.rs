@@ -70,6 +70,10 @@ pub fn fly_params(g: &Group) -> Result<FlyParams<f32>> {
 /// obstacle, as the predator of Fig. 8 and the lamp of Fig. 7).
 pub(crate) const STIMULUS_KINDS: [&str; 3] = ["zone", "target", "sphere"];
 
+/// The kinds a threat may be: a [`STIMULUS_KINDS`] object, or a `region` whose walls the
+/// insects sense ahead of them (the bats' echolocation of Fig. 9).
+pub(crate) const THREAT_KINDS: [&str; 4] = ["zone", "target", "sphere", "region"];
+
 /// The rules of a ren2016 group: no ant `nest`; a `goal` (the target it pursues) and a
 /// `threat` (the predator it escapes), each optional, objects with a centre; parameters the controller accepts (in fixed point too for a fixed
 /// group), with the neighbour range r_att within fixed point's reach.
@@ -81,9 +85,12 @@ pub(crate) fn check(c: &GroupCheck<'_>) -> std::result::Result<(), Problem> {
         "`nest` is for ant groups; ren2016 insects pursue a `goal` (an object of kind `zone`, \
          `target` or `sphere`)",
     )?;
-    for (field, name) in [("goal", &g.goal), ("threat", &g.threat)] {
+    for (field, name, kinds) in [
+        ("goal", &g.goal, &STIMULUS_KINDS[..]),
+        ("threat", &g.threat, &THREAT_KINDS[..]),
+    ] {
         if let Some(name) = name {
-            stimulus_object(c, field, name)?;
+            stimulus_object(c, field, name, kinds)?;
         }
     }
     let params = c.params::<FlyParamsOverride>()?.params();
@@ -91,23 +98,29 @@ pub(crate) fn check(c: &GroupCheck<'_>) -> std::result::Result<(), Problem> {
     c.fixed_range("r_att", "the neighbour range r_att", params.r_att)
 }
 
-/// `name` (field `field` of the group) must be an object of a [`STIMULUS_KINDS`] kind.
+/// `name` (field `field` of the group) must be an object of one of `kinds`.
 fn stimulus_object(
     c: &GroupCheck<'_>,
     field: &str,
     name: &str,
+    kinds: &[&str],
 ) -> std::result::Result<(), Problem> {
     let kind = c
         .scenario
         .object(name)
         .map(|o| o.kind.tag())
         .unwrap_or("zone");
-    if !STIMULUS_KINDS.contains(&kind) {
+    if !kinds.contains(&kind) {
+        let echo = if kinds.contains(&"region") {
+            ", or a `region` whose walls the insects sense ahead"
+        } else {
+            ""
+        };
         return Err(c.problem(
             field,
             format!(
                 "`{name}` is a `{kind}`, expected an object with a centre `[x, y, z]` (`zone`, \
-                 `target` or `sphere`)"
+                 `target` or `sphere`){echo}"
             ),
         ));
     }

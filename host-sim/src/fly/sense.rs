@@ -5,11 +5,11 @@
 //! [`zone_shares`]), the stimulus in range (a predator before a target), and the obstacle
 //! surfaces within ORCA's reach. The HIL harness feeds devices with this same function.
 
-use swarm_core::Vec3;
 use swarm_core::fly::{
     FlyFrame, FlyParams, Neighbour, STIMULUS_PREDATOR, STIMULUS_TARGET, Stimulus,
     WIRE_FLY_NEIGHBOURS, WIRE_FLY_SURFACES,
 };
+use swarm_core::{Scalar, Vec3};
 
 use super::world::{FlyWorld, reach};
 use crate::nearest::select_bands;
@@ -26,8 +26,9 @@ pub type FlySimFrame<S> = FlyFrame<S, N, O>;
 
 /// Entries a truncated frame keeps for each of the alignment and attraction zones that has
 /// members (ours): Eq. 5 averages each zone over its members, so a frame of the nearest [`N`]
-/// alone would leave out the farther zones of a dense swarm, and with them its cohesion.
-pub const ZONE_QUOTA: usize = 4;
+/// alone would leave out the farther zones of a dense swarm, and with them its cohesion. 3
+/// leaves the nearest 10 to ORCA in any frame, RVO2-3D's default `maxNeighbors`.
+pub const ZONE_QUOTA: usize = 3;
 
 /// How many of each zone's nearest members a frame holds, from the zones' member counts
 /// `[repulsion, alignment, attraction]` (spec R15, ours): every member when they all fit in
@@ -80,25 +81,61 @@ pub fn fly_frame<S: SimScalar>(
             vel: v3(w.sensed.vel[j]),
         });
     }
-    frame.stimulus = stimulus(w, me, p.r_res, stimuli);
+    frame.stimulus = stimulus(w, me, v3(w.sensed.vel[slot]), p.r_res, stimuli);
     frame.surfaces = w.surfaces(me, reach(p.orca_radius(), p.tau, p.max_speed));
     (frame, within.iter().sum::<usize>() > N)
 }
 
-/// The stimulus of an insect at `me` with visual range `r_res` (spec §2.3, R12): the threat
-/// if it is active and within r_res (H(0) = 1), else the goal if it is.
+/// The stimulus of an insect at `me` flying at `vel` with visual range `r_res` (spec §2.3,
+/// R12): the threat if it is active and within r_res (H(0) = 1), else the goal if it is. A
+/// source's position is its centre, or for an echo source ([`Source::echo`](super::world::Source::echo)) the point where
+/// the insect's heading meets the box's walls ([`echo_point`]).
 fn stimulus<S: SimScalar>(
     w: &FlyWorld,
     me: Vec3<S>,
+    vel: Vec3<S>,
     r_res: S,
     stimuli: Stimuli,
 ) -> Option<Stimulus<S>> {
-    let r2 = r_res * r_res;
     let sensed = |id: Option<u16>, kind| {
-        let c = at::<S>(w.source(id?)?);
-        ((c - me).length_sq() <= r2).then_some(Stimulus { pos: c, kind })
+        let s = w.source(id?)?;
+        let pos = match s.echo {
+            Some([lo, hi]) => echo_point(me, vel, at::<S>(lo), at::<S>(hi))?,
+            None => at::<S>(s.center),
+        };
+        ((pos - me).length_sq() <= r_res * r_res).then_some(Stimulus { pos, kind })
     };
     sensed(stimuli.threat, STIMULUS_PREDATOR).or_else(|| sensed(stimuli.goal, STIMULUS_TARGET))
+}
+
+/// Where a ray from `p` along `vel` leaves the box `[lo, hi]` (`p` inside; from outside, the
+/// nearest exit ahead is clamped to `p`): the echo a bat hears ahead of it (Fig. 9, ours).
+/// `None` for an insect at rest (`Vec3::normalized`).
+pub fn echo_point<S: Scalar>(
+    p: Vec3<S>,
+    vel: Vec3<S>,
+    lo: Vec3<S>,
+    hi: Vec3<S>,
+) -> Option<Vec3<S>> {
+    let dir = vel.normalized()?;
+    let exit = |d: S, p: S, lo: S, hi: S| {
+        if d > S::ZERO {
+            Some((hi - p) / d)
+        } else if d < S::ZERO {
+            Some((lo - p) / d)
+        } else {
+            None
+        }
+    };
+    let t = [
+        exit(dir.x, p.x, lo.x, hi.x),
+        exit(dir.y, p.y, lo.y, hi.y),
+        exit(dir.z, p.z, lo.z, hi.z),
+    ]
+    .into_iter()
+    .flatten()
+    .fold(None, |m: Option<S>, t| Some(m.map_or(t, |m| m.min(t))))?;
+    Some(p + dir * t.max(S::ZERO))
 }
 
 #[cfg(test)]
@@ -111,9 +148,9 @@ mod tests {
     fn zone_shares_keep_every_zone() {
         assert_eq!(zone_shares([3, 5, 8]), [3, 5, 8]);
         assert_eq!(zone_shares([0, 0, 40]), [0, 0, 16]);
-        assert_eq!(zone_shares([30, 0, 40]), [12, 0, 4]);
-        assert_eq!(zone_shares([30, 40, 40]), [8, 4, 4]);
-        assert_eq!(zone_shares([2, 40, 40]), [2, 10, 4]);
+        assert_eq!(zone_shares([30, 0, 40]), [13, 0, 3]);
+        assert_eq!(zone_shares([30, 40, 40]), [10, 3, 3]);
+        assert_eq!(zone_shares([2, 40, 40]), [2, 11, 3]);
         assert_eq!(zone_shares([2, 40, 1]), [2, 13, 1]);
         assert_eq!(zone_shares([20, 2, 1]), [13, 2, 1]);
         for n in [

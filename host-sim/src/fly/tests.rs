@@ -96,9 +96,63 @@ fn insects_spawn_apart_or_the_scenario_is_refused() {
         min: vec![9.0, 9.0, 9.0],
         max: vec![11.0, 11.0, 11.0],
     };
-    let err = FlySim::from_scenario(&sc, 7).err().expect("refused");
+    let Err(err) = FlySim::from_scenario(&sc, 7) else {
+        panic!("a crowded spawn region must be refused");
+    };
     assert!(
         matches!(err, crate::SimError::SpawnCrowded { ref group, .. } if group == "fruitflies"),
         "{err}"
+    );
+}
+
+/// A `region` threat is an echo source: the bats of Fig. 9 hear the wall ahead of them. The
+/// stimulus is that wall point while it is within r_res, nothing at rest; the GPU engine
+/// refuses it by name until it senses echoes too.
+#[test]
+fn a_region_threat_echoes_the_wall_ahead() {
+    let text = r#"
+name = "echo"
+steps = 10
+world = { dim = 3, min = [0, 0, 0], max = [40, 10, 40] }
+[[groups]]
+name = "bats"
+model = "fly"
+count = 2
+threat = "cave"
+spawn = { min = [30, 4, 18], max = [32, 6, 22] }
+fly = { preset = "bats" }
+[[objects]]
+name = "cave"
+kind = "region"
+min = [0, 0, 0]
+max = [40, 10, 40]
+"#;
+    let sc = crate::scenario::Scenario::from_str(text, "echo.toml").unwrap();
+    let mut sim = FlySim::from_scenario(&sc, 1).unwrap();
+    let p = fly_params(&sc.groups[0]).unwrap();
+    let stimuli = Stimuli {
+        goal: None,
+        threat: Some(0),
+    };
+    let me = sim.world.sensed.pos[0];
+    // At rest: no heading, no echo.
+    let (f, _) = fly_frame::<f32>(&sim.world, 0, &p, stimuli);
+    assert!(f.stimulus.is_none());
+    // Heading +x: the wall x = 40 ahead, within r_res = 10.
+    sim.world.sensed.vel[0] = [1.0, 0.0, 0.0];
+    let (f, _) = fly_frame::<f32>(&sim.world, 0, &p, stimuli);
+    let s = f.stimulus.expect("the echo");
+    assert_eq!(s.kind, swarm_core::fly::STIMULUS_PREDATOR);
+    assert_eq!(
+        [s.pos.x, s.pos.y, s.pos.z],
+        [40.0, me[1] as f32, me[2] as f32]
+    );
+    // Heading −x: the wall x = 0 is beyond r_res.
+    sim.world.sensed.vel[0] = [-1.0, 0.0, 0.0];
+    assert!(
+        fly_frame::<f32>(&sim.world, 0, &p, stimuli)
+            .0
+            .stimulus
+            .is_none()
     );
 }

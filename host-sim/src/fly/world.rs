@@ -24,6 +24,10 @@ pub struct Source {
     pub center: [f32; 3],
     /// Present now.
     pub active: bool,
+    /// For a box `[min, max]` whose walls the insects sense ahead (a `region` threat: the
+    /// bats' echolocation of Fig. 9, spec §2.3 and R13): the stimulus is where an insect's
+    /// heading meets the walls, not the centre.
+    pub echo: Option<[[f32; 3]; 2]>,
 }
 
 /// What every insect broadcast at its last step, by slot (`f64` holds `f32` and `Fx` values
@@ -130,12 +134,9 @@ impl FlyWorld {
         });
     }
 
-    /// The centre of source `id` while it is active.
-    pub fn source(&self, id: u16) -> Option<[f32; 3]> {
-        self.sources
-            .iter()
-            .find(|s| s.id == id && s.active)
-            .map(|s| s.center)
+    /// Source `id` while it is active.
+    pub fn source(&self, id: u16) -> Option<&Source> {
+        self.sources.iter().find(|s| s.id == id && s.active)
     }
 
     /// The surfaces ORCA must respect at `p` (spec §2.5, ours): the closest point and outward

@@ -210,9 +210,19 @@ impl GpuFlySim {
     /// # Errors
     ///
     /// [`SimError::GpuMixedScalars`] if its groups do not all run one scalar type,
-    /// [`SimError::NoAgents`] without insects, and what compiling the kernels and sizing the
-    /// grid refuse.
+    /// [`SimError::NoAgents`] without insects, [`SimError::GpuUnsupported`] for an echo
+    /// source (a `region` threat, sensed on the CPU only for now), and what compiling the
+    /// kernels and sizing the grid refuse.
     pub fn new(sim: FlySim, gpu: Gpu) -> Result<GpuFlySim> {
+        if let Some(s) = sim.world.sources.iter().find(|s| s.echo.is_some()) {
+            return Err(SimError::GpuUnsupported {
+                model: "fly".into(),
+                what: format!(
+                    "the echo of `{}` (a `region` threat sensed ahead of each insect)",
+                    s.name
+                ),
+            });
+        }
         let first = sim.groups.first().ok_or(SimError::NoAgents)?;
         let scalar = by_scalar!(first, g => scalar_of(g));
         if let Some(other) = sim
