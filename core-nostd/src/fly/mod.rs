@@ -14,6 +14,7 @@ pub mod force;
 pub mod frame;
 pub mod params;
 pub mod step;
+pub mod temperature;
 mod wire;
 
 #[cfg(test)]
