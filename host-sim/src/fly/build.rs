@@ -53,7 +53,7 @@ impl FlySim {
             };
             let id = scenario.object_id(name).ok_or_else(no_object)?;
             let o = &scenario.objects[usize::from(id)];
-            let (center, echo) = match o.kind {
+            let (center, region) = match o.kind {
                 ObjectKind::Region { min, max } => (
                     std::array::from_fn(|k| 0.5 * (min[k] + max[k])),
                     Some([min, max]),
@@ -71,7 +71,7 @@ impl FlySim {
                     name: o.name.clone(),
                     center,
                     active: o.active,
-                    echo,
+                    region,
                 });
             }
             Ok(Some(id))
@@ -114,7 +114,7 @@ impl FlySim {
                     if let &[x, y, z] = to.as_slice() {
                         let shift = [x - s.center[0], y - s.center[1], z - s.center[2]];
                         s.center = [x, y, z];
-                        if let Some(b) = &mut s.echo {
+                        if let Some(b) = &mut s.region {
                             b.iter_mut()
                                 .for_each(|c| (0..3).for_each(|k| c[k] += shift[k]));
                         }

@@ -66,13 +66,11 @@ pub fn fly_params(g: &Group) -> Result<FlyParams<f32>> {
     Ok(g.params_as::<FlyParamsOverride>()?.params())
 }
 
-/// The kinds a stimulus may be: objects with a centre `[x, y, z]` (a solid sphere is also an
-/// obstacle, as the predator of Fig. 8 and the lamp of Fig. 7).
-pub(crate) const STIMULUS_KINDS: [&str; 3] = ["zone", "target", "sphere"];
-
-/// The kinds a threat may be: a [`STIMULUS_KINDS`] object, or a `region` whose walls the
-/// insects sense ahead of them (the bats' echolocation of Fig. 9).
-pub(crate) const THREAT_KINDS: [&str; 4] = ["zone", "target", "sphere", "region"];
+/// The kinds a goal or threat may be: objects with a centre `[x, y, z]` (a solid sphere is
+/// also an obstacle, as the predator of Fig. 8 and the lamp of Fig. 7), or a `region` (a
+/// threat's walls sensed ahead, the bats' echolocation of Fig. 9; a goal's nearest point, the
+/// locusts' crop field of Fig. 4).
+pub(crate) const SOURCE_KINDS: [&str; 4] = ["zone", "target", "sphere", "region"];
 
 /// The rules of a ren2016 group: no ant `nest`; a `goal` (the target it pursues) and a
 /// `threat` (the predator it escapes), each optional, objects with a centre; parameters the controller accepts (in fixed point too for a fixed
@@ -85,12 +83,9 @@ pub(crate) fn check(c: &GroupCheck<'_>) -> std::result::Result<(), Problem> {
         "`nest` is for ant groups; ren2016 insects pursue a `goal` (an object of kind `zone`, \
          `target` or `sphere`)",
     )?;
-    for (field, name, kinds) in [
-        ("goal", &g.goal, &STIMULUS_KINDS[..]),
-        ("threat", &g.threat, &THREAT_KINDS[..]),
-    ] {
+    for (field, name) in [("goal", &g.goal), ("threat", &g.threat)] {
         if let Some(name) = name {
-            stimulus_object(c, field, name, kinds)?;
+            stimulus_object(c, field, name)?;
         }
     }
     let params = c.params::<FlyParamsOverride>()?.params();
@@ -98,29 +93,23 @@ pub(crate) fn check(c: &GroupCheck<'_>) -> std::result::Result<(), Problem> {
     c.fixed_range("r_att", "the neighbour range r_att", params.r_att)
 }
 
-/// `name` (field `field` of the group) must be an object of one of `kinds`.
+/// `name` (field `field` of the group) must be an object of a [`SOURCE_KINDS`] kind.
 fn stimulus_object(
     c: &GroupCheck<'_>,
     field: &str,
     name: &str,
-    kinds: &[&str],
 ) -> std::result::Result<(), Problem> {
     let kind = c
         .scenario
         .object(name)
         .map(|o| o.kind.tag())
         .unwrap_or("zone");
-    if !kinds.contains(&kind) {
-        let echo = if kinds.contains(&"region") {
-            ", or a `region` whose walls the insects sense ahead"
-        } else {
-            ""
-        };
+    if !SOURCE_KINDS.contains(&kind) {
         return Err(c.problem(
             field,
             format!(
                 "`{name}` is a `{kind}`, expected an object with a centre `[x, y, z]` (`zone`, \
-                 `target` or `sphere`){echo}"
+                 `target` or `sphere`) or a `region`"
             ),
         ));
     }

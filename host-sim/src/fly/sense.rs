@@ -88,8 +88,9 @@ pub fn fly_frame<S: SimScalar>(
 
 /// The stimulus of an insect at `me` flying at `vel` with visual range `r_res` (spec §2.3,
 /// R12): the threat if it is active and within r_res (H(0) = 1), else the goal if it is. A
-/// source's position is its centre, or for an echo source ([`Source::echo`](super::world::Source::echo)) the point where
-/// the insect's heading meets the box's walls ([`echo_point`]).
+/// source's position is its centre; for a region
+/// ([`Source::region`](super::world::Source::region)) a threat is where the insect's heading
+/// meets its walls ([`echo_point`]) and a goal its nearest point (none inside it).
 fn stimulus<S: SimScalar>(
     w: &FlyWorld,
     me: Vec3<S>,
@@ -99,13 +100,25 @@ fn stimulus<S: SimScalar>(
 ) -> Option<Stimulus<S>> {
     let sensed = |id: Option<u16>, kind| {
         let s = w.source(id?)?;
-        let pos = match s.echo {
-            Some([lo, hi]) => echo_point(me, vel, at::<S>(lo), at::<S>(hi))?,
-            None => at::<S>(s.center),
+        let pos = match (s.region, kind) {
+            (Some([lo, hi]), STIMULUS_PREDATOR) => echo_point(me, vel, at::<S>(lo), at::<S>(hi))?,
+            (Some([lo, hi]), _) => nearest_outside(me, at::<S>(lo), at::<S>(hi))?,
+            (None, _) => at::<S>(s.center),
         };
         ((pos - me).length_sq() <= r_res * r_res).then_some(Stimulus { pos, kind })
     };
     sensed(stimuli.threat, STIMULUS_PREDATOR).or_else(|| sensed(stimuli.goal, STIMULUS_TARGET))
+}
+
+/// The point of the box `[lo, hi]` nearest to `p`, or `None` when `p` is inside it (an area
+/// the insect has reached).
+pub fn nearest_outside<S: Scalar>(p: Vec3<S>, lo: Vec3<S>, hi: Vec3<S>) -> Option<Vec3<S>> {
+    let q = Vec3::new(
+        p.x.max(lo.x).min(hi.x),
+        p.y.max(lo.y).min(hi.y),
+        p.z.max(lo.z).min(hi.z),
+    );
+    (q != p).then_some(q)
 }
 
 /// Where a ray from `p` along `vel` leaves the box `[lo, hi]` (`p` inside; from outside, the
@@ -168,5 +181,27 @@ mod tests {
                 "{n:?}"
             );
         }
+    }
+
+    /// The echo is where the heading leaves the box, in both scalars, none at rest; an area
+    /// pursued gives its nearest point from outside and nothing from inside.
+    #[test]
+    fn the_echo_is_the_wall_ahead_and_an_area_its_nearest_point() {
+        fn check<S: SimScalar>() {
+            let v = |x: f32, y: f32, z: f32| Vec3::<S>::from_f32(x, y, z);
+            let (lo, hi) = (v(0.0, 0.0, 0.0), v(40.0, 10.0, 40.0));
+            let hit = echo_point(v(20.0, 5.0, 20.0), v(3.0, 0.0, 4.0), lo, hi).unwrap();
+            for (got, want) in [hit.x, hit.y, hit.z].into_iter().zip([35.0, 5.0, 40.0]) {
+                assert!((got.to_f32() - want).abs() < 1e-3, "{got:?} vs {want}");
+            }
+            let down = echo_point(v(20.0, 5.0, 20.0), v(0.0, -2.0, 0.0), lo, hi).unwrap();
+            assert!(down.y.to_f32().abs() < 1e-4 && (down.x.to_f32() - 20.0).abs() < 1e-4);
+            assert!(echo_point(v(1.0, 1.0, 1.0), v(0.0, 0.0, 0.0), lo, hi).is_none());
+            let near = nearest_outside(v(50.0, 5.0, -3.0), lo, hi).unwrap();
+            assert_eq!(near, v(40.0, 5.0, 0.0));
+            assert!(nearest_outside(v(20.0, 5.0, 20.0), lo, hi).is_none());
+        }
+        check::<f32>();
+        check::<swarm_core::Fx>();
     }
 }

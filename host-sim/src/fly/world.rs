@@ -24,10 +24,11 @@ pub struct Source {
     pub center: [f32; 3],
     /// Present now.
     pub active: bool,
-    /// For a box `[min, max]` whose walls the insects sense ahead (a `region` threat: the
-    /// bats' echolocation of Fig. 9, spec §2.3 and R13): the stimulus is where an insect's
-    /// heading meets the walls, not the centre.
-    pub echo: Option<[[f32; 3]; 2]>,
+    /// For a `region` `[min, max]`: as a threat, the walls the insects sense ahead of them
+    /// (the bats' echolocation of Fig. 9, spec §2.3 and R13: the stimulus is where an
+    /// insect's heading meets them); as a goal, an area pursued toward its nearest point (the
+    /// locusts' crop field of Fig. 4: nothing to pursue once inside).
+    pub region: Option<[[f32; 3]; 2]>,
 }
 
 /// What every insect broadcast at its last step, by slot (`f64` holds `f32` and `Fx` values

@@ -210,15 +210,15 @@ impl GpuFlySim {
     /// # Errors
     ///
     /// [`SimError::GpuMixedScalars`] if its groups do not all run one scalar type,
-    /// [`SimError::NoAgents`] without insects, [`SimError::GpuUnsupported`] for an echo
-    /// source (a `region` threat, sensed on the CPU only for now), and what compiling the
+    /// [`SimError::NoAgents`] without insects, [`SimError::GpuUnsupported`] for a
+    /// `region` stimulus (sensed on the CPU only for now), and what compiling the
     /// kernels and sizing the grid refuse.
     pub fn new(sim: FlySim, gpu: Gpu) -> Result<GpuFlySim> {
-        if let Some(s) = sim.world.sources.iter().find(|s| s.echo.is_some()) {
+        if let Some(s) = sim.world.sources.iter().find(|s| s.region.is_some()) {
             return Err(SimError::GpuUnsupported {
                 model: "fly".into(),
                 what: format!(
-                    "the echo of `{}` (a `region` threat sensed ahead of each insect)",
+                    "`{}`, a `region` stimulus (an echo ahead or an area's nearest point)",
                     s.name
                 ),
             });

@@ -277,20 +277,20 @@ fn a_refusal_is_the_cpus() {
     assert!(a.contains("state.pos"), "{a}");
 }
 
-/// A `region` threat (the bats' echo, sensed on the CPU only so far) is refused by name, not
-/// run with the wrong stimulus.
+/// A `region` stimulus (the bats' echo, the locusts' field: sensed on the CPU only so far) is
+/// refused by name, not run with the wrong stimulus.
 #[test]
-fn an_echo_threat_is_refused() {
+fn a_region_stimulus_is_refused() {
     let mut sim = bench_fly_world(20, 3, ScalarType::Fixed);
     sim.world.sources.push(crate::fly::Source {
         id: 7,
         name: "cave".into(),
         center: [5.0; 3],
         active: true,
-        echo: Some([[0.0; 3], [10.0; 3]]),
+        region: Some([[0.0; 3], [10.0; 3]]),
     });
     let Err(err) = GpuFlySim::new(sim, test_gpu()) else {
-        panic!("an echo threat must be refused");
+        panic!("a region stimulus must be refused");
     };
     assert!(
         matches!(err, crate::SimError::GpuUnsupported { .. }) && err.to_string().contains("`cave`"),
