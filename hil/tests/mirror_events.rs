@@ -82,14 +82,14 @@ fn escape() -> Scenario {
             step: 2,
             action: Action::Move {
                 object: "predator".into(),
-                to: vec![22.0, 10.0, 10.0],
+                to: vec![22.0, 20.0, 20.0],
             },
         },
         Event {
             step: 5,
             action: Action::Move {
                 object: "predator".into(),
-                to: vec![28.0, 10.0, 10.0],
+                to: vec![28.0, 20.0, 20.0],
             },
         },
     ];
