@@ -1,6 +1,6 @@
 //! ren2016's temperature extension (Eq. 1): how many insects per unit volume a swarm holds at
 //! the environment temperature T, after the model of Grüebler et al. that the paper cites
-//! (°C; the paper prints no unit, spec §1.2 [reading]):
+//! (°C; the paper prints no unit, spec §1.2, a reading):
 //!
 //! N(T) = −0.1073·T² + 4.7643·T − 33.4556,
 //!
