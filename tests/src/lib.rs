@@ -25,4 +25,15 @@ pub fn seed(scenario_seed: u32) -> u32 {
     }
 }
 
+/// Euclidean distance between two points.
+pub fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// The mean of `pos` (the origin for none).
+pub fn centroid(pos: &[[f64; 3]]) -> [f64; 3] {
+    let n = pos.len().max(1) as f64;
+    std::array::from_fn(|k| pos.iter().map(|p| p[k]).sum::<f64>() / n)
+}
+
 pub mod walker;

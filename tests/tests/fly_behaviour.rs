@@ -7,8 +7,10 @@
 
 use swarm_core::model::ParamValue;
 use swarm_sim::engine::{Engine, apply_due_events};
+use swarm_sim::eval::frame_polarisation;
 use swarm_sim::fly::{FlyParamsOverride, FlySim, fly_params};
 use swarm_sim::scenario::{self, Scenario, builtin_names};
+use swarm_tests::{centroid, dist};
 
 fn load(name: &str) -> Scenario {
     scenario::builtin(name).expect("built-in scenario")
@@ -36,15 +38,6 @@ fn run(sc: &Scenario, steps: u32, mut each: impl FnMut(&FlySim)) -> FlySim {
         each(&sim);
     }
     sim
-}
-
-fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
-}
-
-fn centroid(pos: &[[f64; 3]]) -> [f64; 3] {
-    let n = pos.len().max(1) as f64;
-    std::array::from_fn(|k| pos.iter().map(|p| p[k]).sum::<f64>() / n)
 }
 
 /// Radius of gyration: the root mean square distance to the centroid.
@@ -311,18 +304,6 @@ fn fig7_the_moths_gather_at_the_lamp() {
     assert!(with >= without, "{with} vs control {without}");
 }
 
-/// Polarisation Φ = ‖(1/N) Σ v̂_i‖ of the actual velocities.
-fn polarisation(vel: &[[f64; 3]]) -> f64 {
-    let mut sum = [0.0; 3];
-    for v in vel {
-        let len = dist(*v, [0.0; 3]);
-        if len > 0.0 {
-            (0..3).for_each(|k| sum[k] += v[k] / len);
-        }
-    }
-    dist(sum, [0.0; 3]) / vel.len().max(1) as f64
-}
-
 /// R-T20, Fig. 6 (ours, as two runs: the scenario format has fixed group sizes, so the
 /// transition the paper drives by adding insects is shown by its two parameter sets): with
 /// the values before the switch (gain 1.0, no alignment) the mean polarisation over the last
@@ -337,7 +318,7 @@ fn fig6_the_swarm_orders_when_noise_falls_and_alignment_rises() {
         let (mut sum, mut n) = (0.0, 0u32);
         run(sc, sc.steps, |sim| {
             if sim.step > from {
-                sum += polarisation(&sim.velocities_by_id());
+                sum += frame_polarisation(&sim.velocities_by_id());
                 n += 1;
             }
         });

@@ -6,6 +6,7 @@ use swarm_sim::engine::{Engine, apply_due_events};
 use swarm_sim::scalar::a3;
 use swarm_sim::scenario::{self, ObjectKind, Scenario};
 use swarm_sim::wang::{AnyWangGroup, WangSim};
+use swarm_tests::{centroid, dist};
 
 fn load(name: &str) -> (Scenario, WangSim) {
     let sc = scenario::builtin(name).expect("built-in scenario");
@@ -38,15 +39,6 @@ fn inside_obstacles(sim: &WangSim) -> usize {
 /// The share of `pos` for which `f` holds.
 fn share(pos: &[[f64; 3]], f: impl Fn(&[f64; 3]) -> bool) -> f64 {
     pos.iter().filter(|p| f(p)).count() as f64 / pos.len().max(1) as f64
-}
-
-fn centroid(pos: &[[f64; 3]]) -> [f64; 3] {
-    let n = pos.len().max(1) as f64;
-    std::array::from_fn(|k| pos.iter().map(|p| p[k]).sum::<f64>() / n)
-}
-
-fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
 }
 
 /// W-T12 and W-T13 after a run: nobody inside an obstacle at any step (checked by the
