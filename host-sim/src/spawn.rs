@@ -64,7 +64,8 @@ pub const SPACED_ATTEMPTS: u32 = 64;
 
 /// The start positions of group `g`'s agents, ids `first..`, at least `distance` apart: each
 /// agent in id order takes the first of its [`point3_try`] places (at most
-/// [`SPACED_ATTEMPTS`]) that keeps the distance to the agents placed before it.
+/// [`SPACED_ATTEMPTS`]) that is `clear` (off the obstacles, say) and keeps the distance to the
+/// agents placed before it.
 ///
 /// # Errors
 ///
@@ -76,6 +77,7 @@ pub fn spaced3(
     seed: u32,
     first: usize,
     distance: f32,
+    clear: impl Fn([f32; 3]) -> bool,
 ) -> crate::Result<Vec<[f32; 3]>> {
     use std::collections::HashMap;
     let cell = |p: [f32; 3]| p.map(|v| (v / distance.max(1e-6)).floor() as i64);
@@ -98,7 +100,7 @@ pub fn spaced3(
         };
         let p = (0..SPACED_ATTEMPTS)
             .map(|a| point3_try(scenario, &g.spawn.region, seed, id, a))
-            .find(|&p| free(p))
+            .find(|&p| clear(p) && free(p))
             .ok_or_else(|| crate::SimError::SpawnCrowded {
                 group: g.name.clone(),
                 agent: k,

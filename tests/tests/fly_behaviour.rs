@@ -267,11 +267,9 @@ fn fig8_the_flies_escape_the_predator_and_gather_again() {
     );
 }
 
-/// R-T21, Fig. 7: after 30 s at least 60 % of the moths are within r_res = 5 of the lamp
-/// holder and no fewer than without the pursuit (measured 100 % from 6 s on, the control 0 %;
-/// over ten seeds 65-100 %, the control 0-69 %: a group that splits off before it meets the
-/// lamp can stay away, so the spec's 80 % is not met for every seed); no moth is ever inside
-/// the lamp.
+/// R-T21, Fig. 7: after 30 s at least 80 % of the moths (the spec's figure) are within
+/// r_res = 5 of the lamp holder and no fewer than without the pursuit (measured 100 % over
+/// seeds 1-24, the control 0-76 %); no moth is ever inside the lamp.
 #[test]
 fn fig7_the_moths_gather_at_the_lamp() {
     let sc = load("fly-fig7-phototaxis");
@@ -300,7 +298,7 @@ fn fig7_the_moths_gather_at_the_lamp() {
     let (without, _) = share_at_end(&with_param(&sc, "chi_res", 0.0));
     eprintln!("within r_res of the holder: {with:.2} (control {without:.2})");
     assert_eq!(inside, 0, "moth-steps inside the lamp");
-    assert!(with >= 0.6, "{with} within r_res");
+    assert!(with >= 0.8, "{with} within r_res");
     assert!(with >= without, "{with} vs control {without}");
 }
 

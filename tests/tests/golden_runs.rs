@@ -322,14 +322,14 @@ const PINNED: &[(&str, &str, u64, u64)] = &[
     (
         "fly-fig7-phototaxis",
         "f32",
-        0xfcbc11c2fb43c222,
-        0x20ecbf8f89243492,
+        0x10c0949b9c9219aa,
+        0xe89a9ac338880b37,
     ),
     (
         "fly-fig7-phototaxis",
         "fixed",
-        0xdc489e6fce6d319a,
-        0x0affbe791b22aa94,
+        0x1ba35a5bdf99e08b,
+        0xc922a2a261dfdbcf,
     ),
     (
         "fly-fig8-escape",

@@ -82,8 +82,26 @@ impl FlySim {
                 threat: source_of(g, "threat", g.threat.as_deref())?,
             };
             Ok::<AnyFlyGroup, SimError>(match g.scalar {
-                ScalarType::F32 => spawn::<f32>(scenario, g, p, stimuli, first, seed)?.into(),
-                ScalarType::Fixed => spawn::<Fx>(scenario, g, p, stimuli, first, seed)?.into(),
+                ScalarType::F32 => spawn::<f32>(
+                    scenario,
+                    (&world.obstacles, min, max),
+                    g,
+                    p,
+                    stimuli,
+                    first,
+                    seed,
+                )?
+                .into(),
+                ScalarType::Fixed => spawn::<Fx>(
+                    scenario,
+                    (&world.obstacles, min, max),
+                    g,
+                    p,
+                    stimuli,
+                    first,
+                    seed,
+                )?
+                .into(),
             })
         })?;
         Ok(FlySim::new(world, groups, seed))
@@ -128,9 +146,12 @@ impl FlySim {
 
 /// The insects of group `g`, ids `first..`, spawned uniformly in its region (box, or ball
 /// around an object's centre) with the scenario's counter-based random numbers, at rest, at
-/// least two ORCA radii apart ([`spaced3`]): ORCA keeps apart only insects that start apart.
+/// least two ORCA radii apart and one ORCA radius off every active obstacle ([`spaced3`]):
+/// ORCA keeps apart only insects that start apart, and a region may hold an obstacle (the lamp
+/// of Fig. 7 among its moths).
 fn spawn<S: SimScalar>(
     scenario: &Scenario,
+    (obstacles, min, max): (&[BeeObstacle], [f32; 3], [f32; 3]),
     g: &Group,
     params: FlyParams<f32>,
     stimuli: Stimuli,
@@ -144,7 +165,14 @@ fn spawn<S: SimScalar>(
             group: g.name.clone(),
             source,
         })?;
-    let states = spaced3(scenario, g, seed, first, 2.0 * params.orca_radius())?
+    let r = params.orca_radius();
+    let clear = |p: [f32; 3]| {
+        obstacles.iter().filter(|o| o.active).all(|o| {
+            let s = o.shape.surface(Vec3::new(p[0], p[1], p[2]), min, max);
+            !s.inside && s.distance >= r
+        })
+    };
+    let states = spaced3(scenario, g, seed, first, 2.0 * r, clear)?
         .into_iter()
         .map(|p| FlyState::new(Vec3::from_f32(p[0], p[1], p[2]), Vec3::zero()))
         .collect();

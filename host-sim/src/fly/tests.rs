@@ -105,6 +105,32 @@ fn insects_spawn_apart_or_the_scenario_is_refused() {
     );
 }
 
+/// A spawn region may hold an obstacle: no insect starts inside it or within one ORCA radius
+/// of its surface (the moths of Fig. 7 spawned round their lamp).
+#[test]
+fn insects_spawn_off_the_obstacles_in_their_region() {
+    let mut sc = crate::scenario::builtin("fly-fig7-phototaxis").unwrap();
+    sc.groups[0].spawn.region = crate::scenario::SpawnRegion::Box {
+        min: vec![8.5, 4.5, 8.5],
+        max: vec![11.5, 7.5, 11.5],
+    };
+    let r = f64::from(fly_params(&sc.groups[0]).unwrap().orca_radius());
+    let (center, radius) = ([10.0, 6.0, 10.0], 0.5);
+    for seed in [7, 8, 9] {
+        let sim = FlySim::from_scenario(&sc, seed).unwrap();
+        for p in sim.positions_by_id() {
+            let d = (0..3)
+                .map(|k| (p[k] - center[k]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            assert!(
+                d >= radius + r * (1.0 - 1e-6),
+                "seed {seed}: {p:?} is {d} from the lamp"
+            );
+        }
+    }
+}
+
 /// A `region` threat is an echo source: the bats of Fig. 9 hear the wall ahead of them. The
 /// stimulus is that wall point while it is within r_res, nothing at rest; the GPU engine
 /// refuses it by name until it senses echoes too.
