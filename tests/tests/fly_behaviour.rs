@@ -131,17 +131,7 @@ proptest::proptest! {
     /// come closer than 2·radius·(1 − 1e-3), and the world never has to correct one.
     #[test]
     fn orca_keeps_random_worlds_collision_free(
-        (preset, p) in proptest::sample::select(vec![
-            ("midge", FlyParams::<f32>::midge()),
-            ("aggregation", FlyParams::aggregation()),
-            ("fruitfly", FlyParams::fruitfly()),
-            ("mating", FlyParams::mating()),
-            ("escape", FlyParams::escape()),
-            ("bats", FlyParams::bats()),
-            ("locust", FlyParams::locust()),
-            ("phase", FlyParams::phase()),
-            ("phototaxis", FlyParams::phototaxis()),
-        ]),
+        (preset, p) in proptest::sample::select(FlyParams::<f32>::table_1().to_vec()),
         count in 8u32..250,
         spacing in 2.5f32..8.0,
         aspect in proptest::array::uniform3(0.5f32..2.0),
@@ -152,10 +142,11 @@ proptest::proptest! {
         let volume = count as f32 * (spacing * p.r_rep).powi(3);
         let stretch = (aspect[0] * aspect[1] * aspect[2]).cbrt();
         let side = aspect.map(|a| a / stretch * volume.cbrt());
+        let goal = if ball { "goal = \"ball\"\n" } else { "" };
         let mut text = format!(
             "name = \"random-{preset}\"\nseed = {seed}\nsteps = 200\n\
              world = {{ dim = 3, min = [0, 0, 0], max = [{}, {}, {}] }}\n\
-             [[groups]]\nname = \"insects\"\nmodel = \"fly\"\ncount = {count}\n\
+             [[groups]]\nname = \"insects\"\nmodel = \"fly\"\n{goal}count = {count}\n\
              spawn = {{ min = [{}, {}, {}], max = [{}, {}, {}] }}\n\
              fly = {{ preset = \"{preset}\", fallback = 1 }}\n",
             side[0], side[1], side[2],
@@ -164,7 +155,6 @@ proptest::proptest! {
         );
         if ball {
             let radius = 0.15 * side.iter().copied().fold(f32::INFINITY, f32::min);
-            text = text.replace("count =", "goal = \"ball\"\ncount =");
             text += &format!(
                 "[[objects]]\nname = \"ball\"\nkind = \"sphere\"\ncenter = [{}, {}, {}]\n\
                  radius = {radius}\n",

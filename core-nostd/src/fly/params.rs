@@ -178,6 +178,21 @@ impl<S: Scalar> FlyParams<S> {
         Self::column([1.40, 0.42, 1.0, 3.0, 0.2, 0.0, 0.0, 8.0, 10.0, 1.0, 5.0])
     }
 
+    /// Every Table 1 column, named as the scenario presets name it.
+    pub fn table_1() -> [(&'static str, Self); 9] {
+        [
+            ("midge", Self::midge()),
+            ("aggregation", Self::aggregation()),
+            ("fruitfly", Self::fruitfly()),
+            ("mating", Self::mating()),
+            ("escape", Self::escape()),
+            ("bats", Self::bats()),
+            ("locust", Self::locust()),
+            ("phase", Self::phase()),
+            ("phototaxis", Self::phototaxis()),
+        ]
+    }
+
     /// A Table 1 column plus our constants: Δt [`DT`], ORCA radius 0.25·r_rep with the
     /// [`MARGIN`], τ 0.5 s,
     /// speed limit min([`MAX_SPEED`], 0.5/(γΔt)), 16 ORCA neighbours, curl noise, the
@@ -316,18 +331,7 @@ mod tests {
     /// Every Table 1 column validates in both scalars, and the absolute radii add up.
     #[test]
     fn table_1_columns_validate() {
-        let columns = [
-            ("midge", FlyParams::<f32>::midge()),
-            ("aggregation", FlyParams::aggregation()),
-            ("fruitfly", FlyParams::fruitfly()),
-            ("mating", FlyParams::mating()),
-            ("escape", FlyParams::escape()),
-            ("bats", FlyParams::bats()),
-            ("locust", FlyParams::locust()),
-            ("phase", FlyParams::phase()),
-            ("phototaxis", FlyParams::phototaxis()),
-        ];
-        for (name, p) in columns {
+        for (name, p) in FlyParams::<f32>::table_1() {
             assert_eq!(p.validate(), Ok(()), "{name}");
             assert_eq!(p.cast::<Fx>().validate(), Ok(()), "{name} in Fx");
             assert!(p.gamma * p.max_speed * p.dt <= 0.5 + 1e-6, "{name}");

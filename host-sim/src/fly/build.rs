@@ -81,27 +81,12 @@ impl FlySim {
                 goal: source_of(g, "goal", g.goal.as_deref())?,
                 threat: source_of(g, "threat", g.threat.as_deref())?,
             };
+            let r = p.orca_radius();
+            let clear = |q: [f32; 3]| clear_of(&world.obstacles, min, max, r, q);
+            let at = || spaced3(scenario, g, seed, first, 2.0 * r, clear);
             Ok::<AnyFlyGroup, SimError>(match g.scalar {
-                ScalarType::F32 => spawn::<f32>(
-                    scenario,
-                    (&world.obstacles, min, max),
-                    g,
-                    p,
-                    stimuli,
-                    first,
-                    seed,
-                )?
-                .into(),
-                ScalarType::Fixed => spawn::<Fx>(
-                    scenario,
-                    (&world.obstacles, min, max),
-                    g,
-                    p,
-                    stimuli,
-                    first,
-                    seed,
-                )?
-                .into(),
+                ScalarType::F32 => spawn::<f32>(g, p, stimuli, first, at)?.into(),
+                ScalarType::Fixed => spawn::<Fx>(g, p, stimuli, first, at)?.into(),
             })
         })?;
         Ok(FlySim::new(world, groups, seed))
@@ -144,19 +129,26 @@ impl FlySim {
     }
 }
 
-/// The insects of group `g`, ids `first..`, spawned uniformly in its region (box, or ball
-/// around an object's centre) with the scenario's counter-based random numbers, at rest, at
-/// least two ORCA radii apart and one ORCA radius off every active obstacle ([`spaced3`]):
-/// ORCA keeps apart only insects that start apart, and a region may hold an obstacle (the lamp
-/// of Fig. 7 among its moths).
+/// Whether an insect of ORCA radius `r` may start at `q`: one radius off every active
+/// obstacle (a spawn region may hold one: the lamp of Fig. 7 among its moths).
+fn clear_of(obstacles: &[BeeObstacle], min: [f32; 3], max: [f32; 3], r: f32, q: [f32; 3]) -> bool {
+    obstacles.iter().filter(|o| o.active).all(|o| {
+        let s = o.shape.surface(Vec3::new(q[0], q[1], q[2]), min, max);
+        !s.inside && s.distance >= r
+    })
+}
+
+/// The insects of group `g`, ids `first..`, at rest at the places `at` gives once the
+/// parameters are checked: spawned uniformly in its region
+/// (box, or ball around an object's centre) with the scenario's counter-based random numbers,
+/// at least two ORCA radii apart and clear of the obstacles ([`spaced3`], [`clear_of`]): ORCA
+/// keeps apart only insects that start apart.
 fn spawn<S: SimScalar>(
-    scenario: &Scenario,
-    (obstacles, min, max): (&[BeeObstacle], [f32; 3], [f32; 3]),
     g: &Group,
     params: FlyParams<f32>,
     stimuli: Stimuli,
     first: usize,
-    seed: u32,
+    at: impl FnOnce() -> Result<Vec<[f32; 3]>>,
 ) -> Result<FlyGroup<S>> {
     let checked = params
         .cast::<S>()
@@ -165,14 +157,7 @@ fn spawn<S: SimScalar>(
             group: g.name.clone(),
             source,
         })?;
-    let r = params.orca_radius();
-    let clear = |p: [f32; 3]| {
-        obstacles.iter().filter(|o| o.active).all(|o| {
-            let s = o.shape.surface(Vec3::new(p[0], p[1], p[2]), min, max);
-            !s.inside && s.distance >= r
-        })
-    };
-    let states = spaced3(scenario, g, seed, first, 2.0 * r, clear)?
+    let states = at()?
         .into_iter()
         .map(|p| FlyState::new(Vec3::from_f32(p[0], p[1], p[2]), Vec3::zero()))
         .collect();
