@@ -45,14 +45,18 @@ const FLY_DECISION_WORDS: u32 = 4u;
 
 // A group's words (layout.rs, GROUP_*): the sixteen parameters in S in FlyParams' order, then
 // orca_neighbours, noise, fallback, escape_sides, the goal's and the threat's object ids
-// (FLY_NO_SOURCE: none), and r_att, r_rep and r_ali squared in S (the selection's bands).
-const FLY_GROUP_WORDS: u32 = 28u;
+// (FLY_NO_SOURCE: none), r_att, r_rep and r_ali squared in S (the selection's bands), and the
+// goal's and the threat's regions (FLY_REGION_WORDS each: 1 for a `region`, then its lower and
+// upper corners in S).
+const FLY_GROUP_WORDS: u32 = 40u;
 const FLY_GROUP_ORCA_NEIGHBOURS: u32 = 16u;
 const FLY_GROUP_GOAL: u32 = 20u;
 const FLY_GROUP_THREAT: u32 = 21u;
 const FLY_GROUP_RANGE2: u32 = 22u;
 const FLY_GROUP_REP2: u32 = 23u;
 const FLY_GROUP_ALI2: u32 = 24u;
+const FLY_GROUP_REGIONS: u32 = 26u;
+const FLY_REGION_WORDS: u32 = 7u;
 // Entries a truncated frame keeps for each farther zone with members (sense.rs, ZONE_QUOTA).
 const FLY_ZONE_QUOTA: u32 = 3u;
 const FLY_NO_SOURCE: u32 = 0xffffffffu;
@@ -218,13 +222,61 @@ fn fly_tick_near(i: u32, me: vec3<S>, r_att: S, g: u32) -> FlyNear {
     return FlyNear(near, n.x + n.y + n.z);
 }
 
-// stimulus (sense.rs): source `id`'s centre if it is active and within r_res (squared in S,
-// H(0) = 1).
-fn fly_tick_source(f: ptr<function, FlyFrame>, id: u32, kind: u32, me: vec3<S>, r2: S) -> bool {
+// echo_point (sense.rs): where a ray from p along vel leaves the box [lo, hi] (the nearest exit
+// ahead, clamped to p from outside); none for an insect at rest.
+fn fly_echo_point(p: vec3<S>, vel: vec3<S>, lo: vec3<S>, hi: vec3<S>) -> GeomOptionVec3 {
+    let dir = geom_vec3_normalized(vel);
+    if (!dir.is_some) {
+        return dir;
+    }
+    let d = dir.value;
+    var found = false;
+    var t = S_ZERO;
+    for (var k = 0u; k < 3u; k = k + 1u) {
+        var exit = S_ZERO;
+        if (d[k] > S_ZERO) {
+            exit = s_div(s_sub(hi[k], p[k]), d[k]);
+        } else if (d[k] < S_ZERO) {
+            exit = s_div(s_sub(lo[k], p[k]), d[k]);
+        } else {
+            continue;
+        }
+        t = select(exit, s_min(t, exit), found);
+        found = true;
+    }
+    if (!found) {
+        return GeomOptionVec3(false, vec3<S>());
+    }
+    return GeomOptionVec3(true, geom_vec3_add(p, geom_vec3_mul(d, s_max(t, S_ZERO))));
+}
+
+// nearest_outside (sense.rs): the point of the box [lo, hi] nearest to p; none inside it.
+fn fly_nearest_outside(p: vec3<S>, lo: vec3<S>, hi: vec3<S>) -> GeomOptionVec3 {
+    let q = vec3<S>(s_min(s_max(p.x, lo.x), hi.x), s_min(s_max(p.y, lo.y), hi.y),
+                    s_min(s_max(p.z, lo.z), hi.z));
+    return GeomOptionVec3(any(q != p), q);
+}
+
+// stimulus (sense.rs): source `id` (the group's goal, region 0, or threat, region 1) if it is
+// active and within r_res (squared in S, H(0) = 1): its centre, or for a region the echo ahead
+// (a threat) or its nearest point (a goal).
+fn fly_tick_source(f: ptr<function, FlyFrame>, g: u32, region: u32, kind: u32, me: vec3<S>,
+                   vel: vec3<S>, r2: S) -> bool {
+    let id = fly_group_u(g, select(FLY_GROUP_GOAL, FLY_GROUP_THREAT, region == 1u));
     if (id == FLY_NO_SOURCE) {
         return false;
     }
-    let c = bee_world_target_center(id);
+    var c = bee_world_target_center(id);
+    let r = FLY_GROUP_REGIONS + region * FLY_REGION_WORDS;
+    if (c.is_some && fly_group_u(g, r) != 0u) {
+        let lo = vec3<S>(fly_group_s(g, r + 1u), fly_group_s(g, r + 2u), fly_group_s(g, r + 3u));
+        let hi = vec3<S>(fly_group_s(g, r + 4u), fly_group_s(g, r + 5u), fly_group_s(g, r + 6u));
+        if (kind == FLY_STIMULUS_PREDATOR) {
+            c = fly_echo_point(me, vel, lo, hi);
+        } else {
+            c = fly_nearest_outside(me, lo, hi);
+        }
+    }
     if (!c.is_some || !(geom_vec3_length_sq(geom_vec3_sub(c.value, me)) <= r2)) {
         return false;
     }
@@ -306,8 +358,9 @@ fn fly_tick_frame(f: ptr<function, FlyFrame>, i: u32, g: u32, p: FlyParams, me: 
         (*f).neighbours[k] = FlyNeighbour(near.near.ties[k], fly_tick_pos(j), fly_tick_vel(j));
     }
     let r2 = s_mul(p.r_res, p.r_res);
-    if (!fly_tick_source(f, fly_group_u(g, FLY_GROUP_THREAT), FLY_STIMULUS_PREDATOR, me, r2)) {
-        fly_tick_source(f, fly_group_u(g, FLY_GROUP_GOAL), FLY_STIMULUS_TARGET, me, r2);
+    let vel = fly_tick_vel(i);
+    if (!fly_tick_source(f, g, 1u, FLY_STIMULUS_PREDATOR, me, vel, r2)) {
+        fly_tick_source(f, g, 0u, FLY_STIMULUS_TARGET, me, vel, r2);
     }
     fly_tick_surfaces(f, me, fly_reach(p));
     return near.within > FLY_NEIGHBOURS;

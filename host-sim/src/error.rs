@@ -198,16 +198,6 @@ pub enum SimError {
         /// The model.
         model: String,
     },
-    /// `--backend gpu` for a scenario that uses what a model's GPU engine does not have yet.
-    #[error(
-        "--backend gpu: the `{model}` GPU engine does not sense {what} yet (run it with --backend cpu)"
-    )]
-    GpuUnsupported {
-        /// The model.
-        model: String,
-        /// What it lacks.
-        what: String,
-    },
     /// The GPU stopped answering (device lost, or a wait timed out).
     #[error("GPU: {source}")]
     GpuLost {

@@ -147,6 +147,23 @@ fn world_and_boxes<S: Word + SimScalar>(w: &FlyWorld, shape: &GridShape3) -> (Ve
     )
 }
 
+/// Every group's words ([`layout::write_group`]), with the regions of its goal and threat
+/// (fixed: a region has no centre to move).
+fn group_words(sim: &FlySim) -> Vec<u32> {
+    let region = |id: Option<u16>| {
+        let id = id?;
+        sim.world.sources.iter().find(|s| s.id == id)?.region
+    };
+    let mut out = Vec::new();
+    for g in &sim.groups {
+        by_scalar!(g, g => {
+            let regions = [region(g.stimuli.goal), region(g.stimuli.threat)];
+            layout::write_group(&mut out, &g.params, g.stimuli, regions);
+        });
+    }
+    out
+}
+
 /// What the GPU decided, read back.
 struct Seen {
     states: Vec<u32>,
@@ -210,19 +227,9 @@ impl GpuFlySim {
     /// # Errors
     ///
     /// [`SimError::GpuMixedScalars`] if its groups do not all run one scalar type,
-    /// [`SimError::NoAgents`] without insects, [`SimError::GpuUnsupported`] for a
-    /// `region` stimulus (sensed on the CPU only for now), and what compiling the
-    /// kernels and sizing the grid refuse.
+    /// [`SimError::NoAgents`] without insects, and what compiling the kernels and sizing the
+    /// grid refuse.
     pub fn new(sim: FlySim, gpu: Gpu) -> Result<GpuFlySim> {
-        if let Some(s) = sim.world.sources.iter().find(|s| s.region.is_some()) {
-            return Err(SimError::GpuUnsupported {
-                model: "fly".into(),
-                what: format!(
-                    "`{}`, a `region` stimulus (an echo ahead or an area's nearest point)",
-                    s.name
-                ),
-            });
-        }
         let first = sim.groups.first().ok_or(SimError::NoAgents)?;
         let scalar = by_scalar!(first, g => scalar_of(g));
         if let Some(other) = sim
@@ -244,15 +251,12 @@ impl GpuFlySim {
             ScalarKind::I16F16 => world_and_boxes::<Fx>(&sim.world, &shape),
             ScalarKind::F32 => world_and_boxes::<f32>(&sim.world, &shape),
         };
-        let mut groups = Vec::new();
+        let groups = group_words(&sim);
         let mut slots = vec![0u32; 2 * n];
         for (k, g) in sim.groups.iter().enumerate() {
             let r = g.first()..g.first() + g.len();
             slots[r.clone()].fill(k as u32);
-            by_scalar!(g, g => {
-                slots[n + r.start..n + r.end].copy_from_slice(&g.ids);
-                layout::write_group(&mut groups, &g.params, g.stimuli);
-            });
+            by_scalar!(g, g => slots[n + r.start..n + r.end].copy_from_slice(&g.ids));
         }
         let offset = match scalar {
             ScalarKind::I16F16 => Fx::from_f32(SURFACE_OFFSET).to_word(),

@@ -22,7 +22,7 @@ pub const DECISION_WORDS: usize = 4;
 
 /// Words of a group (`FLY_GROUP_WORDS`): the sixteen parameters in `S` in [`FlyParams`]' order
 /// (γ … max_speed), then the words below.
-pub const GROUP_WORDS: usize = 28;
+pub const GROUP_WORDS: usize = 40;
 /// Group words: `orca_neighbours`, `noise`, `fallback`, `escape_sides`.
 pub const GROUP_ORCA_NEIGHBOURS: usize = 16;
 /// Group word: the object id of the goal it pursues ([`NO_SOURCE`]: none).
@@ -35,6 +35,12 @@ pub const GROUP_RANGE2: usize = 22;
 pub const GROUP_REP2: usize = 23;
 /// Group word: r_ali squared in `S` (the alignment zone's band of the selection, strict).
 pub const GROUP_ALI2: usize = 24;
+/// Group words: the goal's region, then the threat's ([`REGION_WORDS`] each): 1 if the source
+/// is a `region` (its nearest point is pursued, its walls ahead echo), then its lower and upper
+/// corners in `S` (0 words for a source with a centre only).
+pub const GROUP_REGIONS: usize = 26;
+/// Words of a source's region in a group ([`GROUP_REGIONS`]).
+pub const REGION_WORDS: usize = 7;
 /// [`GROUP_GOAL`] or [`GROUP_THREAT`] of a group without one.
 pub const NO_SOURCE: u32 = u32::MAX;
 
@@ -54,6 +60,8 @@ pub const WGSL_CONSTANTS: &[(&str, u32)] = &[
     ("FLY_GROUP_RANGE2", GROUP_RANGE2 as u32),
     ("FLY_GROUP_REP2", GROUP_REP2 as u32),
     ("FLY_GROUP_ALI2", GROUP_ALI2 as u32),
+    ("FLY_GROUP_REGIONS", GROUP_REGIONS as u32),
+    ("FLY_REGION_WORDS", REGION_WORDS as u32),
     ("FLY_ZONE_QUOTA", crate::fly::ZONE_QUOTA as u32),
     ("FLY_NO_SOURCE", NO_SOURCE),
     ("FLY_FLAG_TRUNCATED", FLAG_TRUNCATED),
@@ -125,8 +133,15 @@ pub fn read_decision<S: Word>(w: &[u32]) -> FlyDecision<S> {
     }
 }
 
-/// Appends the [`GROUP_WORDS`] words of a group with parameters `p` responding to `stimuli`.
-pub fn write_group<S: Word + SimScalar>(out: &mut Vec<u32>, p: &FlyParams<S>, stimuli: Stimuli) {
+/// Appends the [`GROUP_WORDS`] words of a group with parameters `p` responding to `stimuli`,
+/// whose goal and threat have the regions `regions` (`[min, max]`, `None` for a source with a
+/// centre only: [`Source::region`](crate::fly::Source::region)).
+pub fn write_group<S: Word + SimScalar>(
+    out: &mut Vec<u32>,
+    p: &FlyParams<S>,
+    stimuli: Stimuli,
+    regions: [Option<[[f32; 3]; 2]>; 2],
+) {
     let start = out.len();
     out.extend(
         [
@@ -155,5 +170,15 @@ pub fn write_group<S: Word + SimScalar>(out: &mut Vec<u32>, p: &FlyParams<S>, st
     for r in [p.r_att, p.r_rep, p.r_ali] {
         out.push(crate::nearest::squared::<S>(r.to_f32()).to_word());
     }
-    out.resize(start + GROUP_WORDS, 0);
+    out.push(0);
+    for region in regions {
+        match region {
+            Some([lo, hi]) => {
+                out.push(1);
+                out.extend(lo.iter().chain(&hi).map(|&c| S::from_f32(c).to_word()));
+            }
+            None => out.extend([0; REGION_WORDS]),
+        }
+    }
+    debug_assert_eq!(out.len(), start + GROUP_WORDS);
 }

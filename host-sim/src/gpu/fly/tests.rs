@@ -277,24 +277,70 @@ fn a_refusal_is_the_cpus() {
     assert!(a.contains("state.pos"), "{a}");
 }
 
-/// A `region` stimulus (the bats' echo, the locusts' field: sensed on the CPU only so far) is
-/// refused by name, not run with the wrong stimulus.
+/// The `region` stimuli: a threat's echo where the heading meets its walls (the bats of Fig. 9,
+/// until an event removes the cave) and a goal's nearest point (the locusts' field of Fig. 4).
 #[test]
-fn a_region_stimulus_is_refused() {
-    let mut sim = bench_fly_world(20, 3, ScalarType::Fixed);
-    sim.world.sources.push(crate::fly::Source {
-        id: 7,
-        name: "cave".into(),
-        center: [5.0; 3],
-        active: true,
-        region: Some([[0.0; 3], [10.0; 3]]),
-    });
-    let Err(err) = GpuFlySim::new(sim, test_gpu()) else {
-        panic!("a region stimulus must be refused");
-    };
+fn region_stimuli_are_the_cpus() {
+    let text = r#"
+name = "regions"
+seed = 5
+steps = 160
+world = { dim = 3, min = [0, 0, 0], max = [30, 10, 30] }
+[[groups]]
+name = "bats"
+model = "fly"
+scalar = "fixed"
+count = 60
+threat = "cave"
+spawn = { min = [4, 2, 4], max = [26, 8, 26] }
+fly = { preset = "bats", fallback = 1 }
+[[groups]]
+name = "locusts"
+model = "fly"
+scalar = "fixed"
+count = 60
+goal = "field"
+spawn = { min = [2, 2, 2], max = [12, 4, 28] }
+fly = { preset = "locust", fallback = 1 }
+[[objects]]
+name = "cave"
+kind = "region"
+min = [0, 0, 0]
+max = [30, 10, 30]
+[[objects]]
+name = "field"
+kind = "region"
+min = [20, 0, 5]
+max = [28, 1.5, 25]
+[[events]]
+step = 100
+remove = "cave"
+"#;
+    let sc = Scenario::from_str(text, "regions.toml").unwrap();
+    let make = || FlySim::from_scenario(&sc, sc.seed).unwrap();
+    let c = same_run("regions", make, sc.steps, 10, Some(&sc));
     assert!(
-        matches!(err, crate::SimError::GpuUnsupported { .. }) && err.to_string().contains("`cave`"),
-        "{err}"
+        c.escaping > 0,
+        "the bats must hear an echo for this test to test it"
+    );
+    let mut cpu = make();
+    for _ in 0..sc.steps {
+        apply_due_events(&mut cpu, &sc);
+        Engine::tick(&mut cpu).unwrap();
+    }
+    let field = cpu.world.sources.iter().find(|s| s.name == "field");
+    let [lo, hi] = field.and_then(|s| s.region).unwrap();
+    // Over the field, or at its edge.
+    let over = cpu
+        .positions_by_id()
+        .iter()
+        .filter(|p| {
+            (0..3).all(|k| p[k] >= f64::from(lo[k]) - 2.0 && p[k] <= f64::from(hi[k]) + 2.0)
+        })
+        .count();
+    assert!(
+        over > 0,
+        "the locusts must reach the field for this test to test it"
     );
 }
 
@@ -377,8 +423,21 @@ fn the_shaders_constants_are_rusts() {
         goal: None,
         threat: Some(3),
     };
-    layout::write_group(&mut w, &p, stimuli);
+    layout::write_group(
+        &mut w,
+        &p,
+        stimuli,
+        [None, Some([[1.0, 2.0, 3.0], [4.0, 5.0, 6.5]])],
+    );
     assert_eq!(w.len(), layout::GROUP_WORDS);
+    let (goal, threat) = (
+        layout::GROUP_REGIONS,
+        layout::GROUP_REGIONS + layout::REGION_WORDS,
+    );
+    assert_eq!(w[goal..threat], [0; layout::REGION_WORDS]);
+    assert_eq!(w[threat], 1);
+    assert_eq!(w[threat + 1], Fx::from_f32(1.0).to_bits() as u32);
+    assert_eq!(w[threat + 6], Fx::from_f32(6.5).to_bits() as u32);
     assert_eq!(w[8], p.r_att.to_bits() as u32);
     assert_eq!(w[15], p.max_speed.to_bits() as u32);
     assert_eq!(w[layout::GROUP_GOAL], layout::NO_SOURCE);
