@@ -1,4 +1,4 @@
-//! The ren2016 behaviours (issue 16, spec §4 R-T8, R-T9, R-T17..R-T22) on the built-in fly
+//! The ren2016 behaviours (issue 16, spec §4 R-T8, R-T9, R-T17, R-T19..R-T22) on the built-in fly
 //! scenarios with their fixed seeds (or `SWARM_TEST_SEED`), through the whole simulator
 //! (scenario → world → frames → the swarm-core step with ORCA). The numbers quoted in the
 //! comments were measured with these seeds. A behaviour is measured against a control run of
@@ -326,70 +326,6 @@ fn fig8_the_flies_escape_the_predator_and_gather_again() {
         (after / before - 1.0).abs() <= 0.25,
         "gyration {before} before, {after} 10 s after"
     );
-}
-
-/// The box `[min, max]` of object `name` (a `region` or a `box`).
-fn box_of(sc: &Scenario, name: &str) -> ([f64; 3], [f64; 3]) {
-    match sc.object(name).map(|o| &o.kind) {
-        Some(
-            swarm_sim::scenario::ObjectKind::Region { min, max }
-            | swarm_sim::scenario::ObjectKind::Box { min, max },
-        ) => (min.map(f64::from), max.map(f64::from)),
-        k => panic!("{name} is {k:?}"),
-    }
-}
-
-/// The distance from `p` to the box `[lo, hi]` (0 inside).
-fn to_box(p: [f64; 3], (lo, hi): ([f64; 3], [f64; 3])) -> f64 {
-    let gap = |k: usize| (lo[k] - p[k]).max(p[k] - hi[k]).max(0.0);
-    (gap(0).powi(2) + gap(1).powi(2) + gap(2).powi(2)).sqrt()
-}
-
-/// R-T18, Fig. 4: the 2,000 locusts start at the paper's density (33.3 /m³ against 34.2,
-/// within 3 %), never enter a house, and by the end at least 90 % are within r_res of the crop
-/// field (the spec's figure) and at least 85 % within r_att of it (ours: at the field with the
-/// swarm, not just in sight of it; measured 92.5-94 % over seeds 1-5, the control without
-/// pursuit 0 %).
-#[test]
-fn fig4_the_locusts_pass_the_hamlet_to_the_crop() {
-    let sc = load("fly-fig4-locusts");
-    let p = fly_params(&sc.groups[0]).expect("parameters");
-    let swarm_sim::scenario::SpawnRegion::Box { min, max } = &sc.groups[0].spawn.region else {
-        panic!("a cuboid spawn");
-    };
-    let volume: f64 = (0..3).map(|k| f64::from(max[k] - min[k])).product();
-    let density = f64::from(sc.groups[0].count) / volume;
-    assert!((density - 34.2).abs() / 34.2 <= 0.03, "{density} /m³");
-    let crop = box_of(&sc, "crop");
-    let houses: Vec<_> = (1..=6)
-        .map(|k| box_of(&sc, &format!("house-{k}")))
-        .collect();
-    let shares = |sc: &Scenario| {
-        let mut inside = 0usize;
-        let sim = run(sc, sc.steps, |sim| {
-            let pos = sim.positions_by_id();
-            inside += pos
-                .iter()
-                .filter(|&&q| houses.iter().any(|&h| to_box(q, h) == 0.0))
-                .count();
-        });
-        let pos = sim.positions_by_id();
-        let within = |r: f32| {
-            let n = pos
-                .iter()
-                .filter(|&&q| to_box(q, crop) <= f64::from(r))
-                .count();
-            n as f64 / pos.len() as f64
-        };
-        (within(p.r_res), within(p.r_att), inside)
-    };
-    let (sight, with, inside) = shares(&sc);
-    let (_, without, _) = shares(&with_param(&sc, "chi_res", 0.0));
-    eprintln!("within r_res of the crop {sight:.3}, within r_att {with:.3} (control {without:.3})");
-    assert_eq!(inside, 0, "locust-steps inside a house");
-    assert!(sight >= 0.9, "{sight} within r_res");
-    assert!(with >= 0.85, "{with} within r_att");
-    assert!(without < 0.1, "control: {without} within r_att");
 }
 
 /// R-T21, Fig. 7: after 30 s at least 80 % of the moths (the spec's figure) are within

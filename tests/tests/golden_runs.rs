@@ -296,18 +296,6 @@ const PINNED: &[(&str, &str, u64, u64)] = &[
         0xcda4ffe00f4711df,
     ),
     (
-        "fly-fig4-locusts",
-        "f32",
-        0x02db27c08415fe27,
-        0x33b4f88e8d9bd225,
-    ),
-    (
-        "fly-fig4-locusts",
-        "fixed",
-        0x01eedacfc41c56ac,
-        0x7c53fc8594d7dbae,
-    ),
-    (
         "fly-fig5-mating",
         "f32",
         0xfaed36608a611a5c,

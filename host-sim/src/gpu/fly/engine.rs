@@ -147,8 +147,8 @@ fn world_and_boxes<S: Word + SimScalar>(w: &FlyWorld, shape: &GridShape3) -> (Ve
     )
 }
 
-/// Every group's words ([`layout::write_group`]), with the regions of its goal and threat
-/// (fixed: a region has no centre to move).
+/// Every group's words ([`layout::write_group`]), with the regions its goal and threat have now
+/// (uploaded again with the world: `Engine::apply` shifts a region it moves).
 fn group_words(sim: &FlySim) -> Vec<u32> {
     let region = |id: Option<u16>| {
         let id = id?;
@@ -354,6 +354,11 @@ impl GpuFlySim {
         };
         let q = &self.gpu.queue;
         q.write_buffer(&self.b.world, 0, bytemuck::cast_slice(&world));
+        q.write_buffer(
+            &self.b.groups,
+            0,
+            bytemuck::cast_slice(&group_words(&self.sim)),
+        );
         if !boxes.is_empty() {
             q.write_buffer(&self.b.boxes, 0, bytemuck::cast_slice(&boxes));
         }

@@ -37,7 +37,7 @@ pub const GROUP_REP2: usize = 23;
 pub const GROUP_ALI2: usize = 24;
 /// Group words: the goal's region, then the threat's ([`REGION_WORDS`] each): 1 if the source
 /// is a `region` (its nearest point is pursued, its walls ahead echo), then its lower and upper
-/// corners in `S` (0 words for a source with a centre only).
+/// corners in `S` (all zero for a source with a centre only).
 pub const GROUP_REGIONS: usize = 26;
 /// Words of a source's region in a group ([`GROUP_REGIONS`]).
 pub const REGION_WORDS: usize = 7;

@@ -278,7 +278,8 @@ fn a_refusal_is_the_cpus() {
 }
 
 /// The `region` stimuli: a threat's echo where the heading meets its walls (the bats of Fig. 9,
-/// until an event removes the cave) and a goal's nearest point (the locusts' field of Fig. 4).
+/// until an event removes the cave) and a goal's nearest point (the locusts' field of Fig. 4,
+/// moved at tick 60 by an action a scenario file cannot hold but `Engine::apply` takes).
 #[test]
 fn region_stimuli_are_the_cpus() {
     let text = r#"
@@ -316,7 +317,17 @@ max = [28, 1.5, 25]
 step = 100
 remove = "cave"
 "#;
-    let sc = Scenario::from_str(text, "regions.toml").unwrap();
+    let mut sc = Scenario::from_str(text, "regions.toml").unwrap();
+    sc.events.insert(
+        0,
+        crate::scenario::Event {
+            step: 60,
+            action: crate::scenario::Action::Move {
+                object: "field".into(),
+                to: vec![23.0, 0.75, 12.0],
+            },
+        },
+    );
     let make = || FlySim::from_scenario(&sc, sc.seed).unwrap();
     let c = same_run("regions", make, sc.steps, 10, Some(&sc));
     assert!(
