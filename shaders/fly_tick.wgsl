@@ -257,21 +257,27 @@ fn fly_nearest_outside(p: vec3<S>, lo: vec3<S>, hi: vec3<S>) -> GeomOptionVec3 {
     return GeomOptionVec3(any(q != p), q);
 }
 
-// stimulus (sense.rs): source `id` (the group's goal, region 0, or threat, region 1) if it is
-// active and within r_res (squared in S, H(0) = 1): its centre, or for a region the echo ahead
-// (a threat) or its nearest point (a goal).
-fn fly_tick_source(f: ptr<function, FlyFrame>, g: u32, region: u32, kind: u32, me: vec3<S>,
-                   vel: vec3<S>, r2: S) -> bool {
-    let id = fly_group_u(g, select(FLY_GROUP_GOAL, FLY_GROUP_THREAT, region == 1u));
+// Three S words of group g from word k on.
+fn fly_group_vec3(g: u32, k: u32) -> vec3<S> {
+    return vec3<S>(fly_group_s(g, k), fly_group_s(g, k + 1u), fly_group_s(g, k + 2u));
+}
+
+// stimulus (sense.rs): the group's threat (kind FLY_STIMULUS_PREDATOR) or goal if it is active
+// and within r_res (squared in S, H(0) = 1): its centre, or for a region the echo ahead (a
+// threat) or its nearest point (a goal).
+fn fly_tick_source(f: ptr<function, FlyFrame>, g: u32, kind: u32, me: vec3<S>, vel: vec3<S>,
+                   r2: S) -> bool {
+    let threat = kind == FLY_STIMULUS_PREDATOR;
+    let id = fly_group_u(g, select(FLY_GROUP_GOAL, FLY_GROUP_THREAT, threat));
     if (id == FLY_NO_SOURCE) {
         return false;
     }
     var c = bee_world_target_center(id);
-    let r = FLY_GROUP_REGIONS + region * FLY_REGION_WORDS;
+    let r = FLY_GROUP_REGIONS + select(0u, FLY_REGION_WORDS, threat);
     if (c.is_some && fly_group_u(g, r) != 0u) {
-        let lo = vec3<S>(fly_group_s(g, r + 1u), fly_group_s(g, r + 2u), fly_group_s(g, r + 3u));
-        let hi = vec3<S>(fly_group_s(g, r + 4u), fly_group_s(g, r + 5u), fly_group_s(g, r + 6u));
-        if (kind == FLY_STIMULUS_PREDATOR) {
+        let lo = fly_group_vec3(g, r + 1u);
+        let hi = fly_group_vec3(g, r + 4u);
+        if (threat) {
             c = fly_echo_point(me, vel, lo, hi);
         } else {
             c = fly_nearest_outside(me, lo, hi);
@@ -359,8 +365,8 @@ fn fly_tick_frame(f: ptr<function, FlyFrame>, i: u32, g: u32, p: FlyParams, me: 
     }
     let r2 = s_mul(p.r_res, p.r_res);
     let vel = fly_tick_vel(i);
-    if (!fly_tick_source(f, g, 1u, FLY_STIMULUS_PREDATOR, me, vel, r2)) {
-        fly_tick_source(f, g, 0u, FLY_STIMULUS_TARGET, me, vel, r2);
+    if (!fly_tick_source(f, g, FLY_STIMULUS_PREDATOR, me, vel, r2)) {
+        fly_tick_source(f, g, FLY_STIMULUS_TARGET, me, vel, r2);
     }
     fly_tick_surfaces(f, me, fly_reach(p));
     return near.within > FLY_NEIGHBOURS;
