@@ -56,6 +56,8 @@ have_vulkan() {
         compgen -G '/usr/share/vulkan/icd.d/*.json' >/dev/null
 }
 have_vulkan || need_pkgs+=(mesa-vulkan-drivers libvulkan1)
+# docs/protocol.md's reference appendices are Python.
+command -v python3 >/dev/null 2>&1 || need_pkgs+=(python3)
 
 firmware_ok=1
 if ((${#need_pkgs[@]} > 0)); then
@@ -83,6 +85,7 @@ stage "swarm-core builds without std, every backend" bash -c '
 stage "swarm-core with feature small (the ant node's size options) passes its unit tests" \
     cargo test -q -p swarm-core --release --features small --lib
 stage "cargo doc (warnings are errors)" env RUSTDOCFLAGS="-D warnings" cargo doc -q --workspace --no-deps
+stage "docs/protocol.md: the Python reference appendices run and every assertion holds" python3 scripts/protocol-reference.py
 stage "cargo test --workspace (unit, property, integration, doc tests)" cargo test --workspace --release
 
 if ((QUICK == 1)); then

@@ -72,7 +72,7 @@ fn source(sim: &FlySim, name: &str) -> Option<[f64; 3]> {
 /// R-T8 and R-T9 in every built-in fly scenario: with the LP4 fallback no two insects come
 /// closer than 2·radius·(1 − 1e-3) at any step (they spawn apart); with the paper's
 /// zero-velocity fallback (the midges) the share of infeasible programs is reported and stays
-/// below 5 % (measured 2.4 %, 1.3-3.3 % over seeds: Table 1's Midge column contracts the swarm until ORCA jams,
+/// below 5 % (measured 2.9 %; 1.3-3.3 % over seeds with the old margin of 0.01: Table 1's Midge column contracts the swarm until ORCA jams,
 /// docs/models.md, so the spec's guess of 1 % does not hold); the world's backstop never has
 /// to move an insect out of an obstacle or back into the box.
 #[test]
@@ -118,9 +118,12 @@ fn closest_over_run(sc: &Scenario) -> (f64, u64, u64, f64) {
 }
 
 proptest::proptest! {
+    // The worlds come from a fixed seed (`SWARM_TEST_SEED` draws others): the same build
+    // tests the same worlds on every run, and a failure prints its world's whole scenario.
     #![proptest_config(proptest::prelude::ProptestConfig {
         cases: 12,
         failure_persistence: None,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(u64::from(swarm_tests::seed(16))),
         ..Default::default()
     })]
 
@@ -201,6 +204,50 @@ fn fig3_the_aggregating_swarm_stays_where_it_is() {
         eprintln!("{name}: centroid drift {drift:.3} units (box {side})");
         assert!(drift < 0.1 * side, "{name}: centroid drifted {drift}");
     }
+}
+
+/// R-T18, Fig. 4: the 2,000 locusts spawn at the paper's density (33.3 /m³ in the 24 × 5 ×
+/// 0.5 m cuboid, within 3 % of the paper's 34.2), no locust ever enters a house (the world
+/// never has to put one back: R-T9 and R-T8 also run this scenario), and by the end at least
+/// 90 % are over the crop field (measured 97.8-100 % over seeds 1-4), against under 10 %
+/// without the pursuit (measured 0 %: the swarm only gathers). The spec's "within r_res of
+/// the crop" holds from the start here (the field's near edge is 17-22 m from the cuboid,
+/// r_res = 25 m), so the test asks for the field itself.
+#[test]
+fn fig4_the_locusts_pass_the_hamlet_to_the_crop() {
+    let sc = load("fly-fig4-locusts");
+    let g = &sc.groups[0];
+    let scenario::SpawnRegion::Box { min, max } = &g.spawn.region else {
+        panic!("a cuboid spawn");
+    };
+    let volume: f64 = (0..3).map(|k| f64::from(max[k] - min[k])).product();
+    let density = f64::from(g.count) / volume;
+    assert!(
+        (density / 34.2 - 1.0).abs() < 0.03,
+        "spawn density {density} /m³"
+    );
+    let field = sc
+        .objects
+        .iter()
+        .find_map(|o| match o.kind {
+            scenario::ObjectKind::Region { min, max } if o.name == "field" => Some((min, max)),
+            _ => None,
+        })
+        .expect("the crop field");
+    let over = |sim: &FlySim| {
+        let pos = sim.positions_by_id();
+        let inside = |p: &[f64; 3]| {
+            (0..3).all(|k| f64::from(field.0[k]) <= p[k] && p[k] <= f64::from(field.1[k]))
+        };
+        pos.iter().filter(|p| inside(p)).count() as f64 / pos.len() as f64
+    };
+    let pursuit = run(&sc, sc.steps, |_| {});
+    let control = run(&with_param(&sc, "chi_res", 0.0), sc.steps, |_| {});
+    let (share, without) = (over(&pursuit), over(&control));
+    eprintln!("over the field: {share:.3} (control {without:.3})");
+    assert_eq!((pursuit.total.obstacle, pursuit.total.bounds), (0, 0));
+    assert!(share >= 0.9, "{share} over the field");
+    assert!(without < 0.1, "control: {without} over the field");
 }
 
 /// What a fly group does near a moving stimulus over a run: insect-steps within `range` of

@@ -153,11 +153,11 @@ fn the_node_parameters_are_the_host_scenarios() {
     assert_eq!(fly_params::<Fx>(), FlyParams::<Fx>::midge());
     assert_eq!(
         params_hash(&fly_params::<f32>()).unwrap(),
-        0xa9a8_1f58_e176_86cf
+        0x6fe6_5802_e861_6419
     );
     assert_eq!(
         params_hash(&fly_params::<Fx>()).unwrap(),
-        0x75c3_9c61_449a_9cbb
+        0xd9cd_f576_c0cf_3e24
     );
 }
 

@@ -56,6 +56,7 @@ builtins! {
     "fly-fig2-fruitfly" => "ren2016 Fig. 2: 100 fruit flies swarming in a glass box",
     "fly-fig3-aggregation" => "ren2016 Fig. 3: 500 midges aggregating at 9,470 /m³",
     "fly-fig3-aggregation-3000" => "ren2016 Fig. 3: 3000 midges aggregating at 56,818 /m³",
+    "fly-fig4-locusts" => "ren2016 Fig. 4: 2000 locusts pass a hamlet to a crop field",
     "fly-fig5-mating" => "ren2016 Fig. 5: 100 males pursue a female flying through the swarm",
     "fly-fig6-phase" => "ren2016 Fig. 6: 200 insects in the ordered phase fly off together",
     "fly-fig7-phototaxis" => "ren2016 Fig. 7: 80 moths gather at a street lamp",
