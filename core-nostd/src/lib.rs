@@ -14,6 +14,9 @@
 //! * [`fly`]: the force-based flying insect of Ren et al. 2016, *Simulating Flying Insects
 //!   Using Dynamics and Data-Driven Noise Modeling* (Eq. 2-5, Algorithm 1): zone forces,
 //!   friction, stimulus response and curl noise into a preferred velocity;
+//! * [`li`]: the waypoint levels of Li et al. 2015, *Biologically-Inspired Visual Simulation
+//!   of Insect Swarms* (§4.2-4.3, Algorithm 1): data-driven waypoints screened by
+//!   Metropolis-Hastings against a visiting-frequency density;
 //! * [`orca3d`]: 3D ORCA with RVO2-3D semantics and hard obstacle planes (ren2016 spec §2.5);
 //! * [`wire`] (feature `serde`): the message types, the frame codec
 //!   `COBS(header ‖ postcard payload ‖ CRC) ‖ 0x00`, the session protocol (handshake,
@@ -75,6 +78,7 @@ mod check;
 mod error;
 pub mod fly;
 pub mod geom;
+pub mod li;
 pub mod model;
 pub mod orca3d;
 pub mod rand;

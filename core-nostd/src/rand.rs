@@ -42,6 +42,16 @@ pub mod stream {
     pub const FLY_NOISE_Y: u32 = 0x42;
     /// ren2016: the white and Gaussian noise, z.
     pub const FLY_NOISE_Z: u32 = 0x43;
+    /// li2015: a proposed segment's length (Algorithm 1; proposal a adds `a << 8`).
+    pub const LI_LENGTH: u32 = 0x50;
+    /// li2015: a proposed segment's turning angle.
+    pub const LI_TURN: u32 = 0x51;
+    /// li2015: the azimuth of that turn about the previous direction.
+    pub const LI_AZIMUTH: u32 = 0x52;
+    /// li2015: the height of a uniform direction (the first waypoint).
+    pub const LI_HEIGHT: u32 = 0x53;
+    /// li2015: the Metropolis-Hastings acceptance of a proposal (§4.3).
+    pub const LI_ACCEPT: u32 = 0x54;
 }
 
 /// Wellons' `lowbias32` finaliser: a bijective 32-bit mixer with low avalanche bias.

@@ -1,0 +1,384 @@
+//! li2015 spec §4: L-T1 and L-T3 to L-T6, and bad input.
+
+use super::density::Density;
+use super::sampler::Table;
+use super::waypoint::{LiParams, Waypoint, accept, direction, next_waypoint};
+use crate::rand;
+use crate::{Error, StepCtx, Vec3};
+
+fn v(x: f32, y: f32, z: f32) -> Vec3<f32> {
+    Vec3::new(x, y, z)
+}
+
+fn ctx(agent: u32, step: u32) -> StepCtx {
+    StepCtx {
+        seed: 2015,
+        agent,
+        step,
+    }
+}
+
+/// L-T1: 10⁵ draws of a skewed 32-bin table follow the table's own CDF (Kolmogorov-Smirnov
+/// D < 0.01), and every draw lies in [lo, hi].
+#[test]
+fn table_draws_follow_its_cdf() {
+    let counts: [u32; 32] = core::array::from_fn(|k| ((32 - k) * (32 - k)) as u32 + (k % 3) as u32);
+    let t = Table::<f32, 32>::from_counts(0.002, 0.09, &counts).unwrap();
+    assert_eq!(t.cdf[31], 1.0);
+    let mut draws: Vec<f32> = (0..100_000)
+        .map(|i| t.sample(rand::unit(ctx(i, 0), 0)))
+        .collect();
+    assert!(draws.iter().all(|&x| (0.002..=0.09).contains(&x)));
+    draws.sort_by(f32::total_cmp);
+    let n = draws.len() as f64;
+    let d = draws
+        .iter()
+        .enumerate()
+        .map(|(i, &x)| {
+            let f = f64::from(t.cdf_at(x));
+            (f - i as f64 / n).abs().max((f - (i + 1) as f64 / n).abs())
+        })
+        .fold(0.0, f64::max);
+    assert!(d < 0.01, "KS D = {d}");
+    // The ends and bad input.
+    assert_eq!(
+        (t.sample(0.0), t.sample(f32::NAN), t.sample(1.0)),
+        (0.002, 0.002, 0.09)
+    );
+    assert_eq!(
+        Table::<f32, 2>::from_counts(1.0, 1.0, &[1, 1]),
+        Err(Error::BadParam { field: "hi" })
+    );
+    assert_eq!(
+        Table::<f32, 2>::from_counts(0.0, 1.0, &[0, 0]),
+        Err(Error::BadParam { field: "counts" })
+    );
+}
+
+/// L-T3: direction(d, θ) is a unit vector at angle |θ| from d̂ (cosine within 1e-6), its
+/// azimuth is uniform (χ² over 8 sectors, 8,000 draws, below the p = 0.01 quantile 18.48),
+/// and without a direction it is uniform on the sphere.
+#[test]
+fn direction_turns_by_theta_at_a_uniform_azimuth() {
+    let d = v(0.3, -1.2, 0.7);
+    let n = d.normalized().unwrap();
+    let mut sectors = [0u32; 8];
+    // A fixed reference perpendicular to d̂ to measure the azimuth against.
+    let e1 = n.cross(v(1.0, 0.0, 0.0)).normalized().unwrap();
+    let e2 = n.cross(e1);
+    for i in 0..8000u32 {
+        let theta = rand::angle(ctx(i, 1), 0, 3.0f32);
+        let phi = rand::angle(ctx(i, 2), 0, core::f32::consts::PI);
+        let o = direction(d, theta, phi, 0.0);
+        assert!((o.length() - 1.0).abs() < 1e-6, "{o:?}");
+        assert!(
+            (o.dot(n) - theta.abs().cos()).abs() < 1e-6,
+            "θ {theta}: {}",
+            o.dot(n)
+        );
+        let side = o - n * o.dot(n);
+        if side.length() > 1e-3 {
+            let a = side.dot(e2).atan2(side.dot(e1)) + core::f32::consts::PI;
+            sectors[((a / core::f32::consts::TAU * 8.0) as usize).min(7)] += 1;
+        }
+    }
+    let total: u32 = sectors.iter().sum();
+    let e = f64::from(total) / 8.0;
+    let chi2: f64 = sectors
+        .iter()
+        .map(|&c| (f64::from(c) - e).powi(2) / e)
+        .sum();
+    assert!(chi2 < 18.48, "χ² {chi2} over {sectors:?}");
+
+    // d = 0: uniform on the sphere (each axis's mean ≈ 0, mean z² ≈ 1/3).
+    let mut sum = v(0.0, 0.0, 0.0);
+    let mut zz = 0.0f32;
+    for i in 0..20_000u32 {
+        let z = rand::angle(ctx(i, 3), 0, 1.0f32);
+        let phi = rand::angle(ctx(i, 4), 0, core::f32::consts::PI);
+        let o = direction(v(0.0, 0.0, 0.0), 0.7, phi, z);
+        assert!((o.length() - 1.0).abs() < 1e-5);
+        sum += o;
+        zz += o.y * o.y;
+    }
+    let mean = sum * (1.0 / 20_000.0);
+    assert!(mean.length() < 0.02, "{mean:?}");
+    assert!(
+        (zz / 20_000.0 - 1.0 / 3.0).abs() < 0.01,
+        "{}",
+        zz / 20_000.0
+    );
+}
+
+fn uniform_world() -> ([u8; 64], Table<f32, 8>, Table<f32, 8>) {
+    let lengths = Table::from_counts(0.01, 0.03, &[1; 8]).unwrap();
+    let turns = Table::from_counts(0.0, 0.6, &[1; 8]).unwrap();
+    ([100u8; 64], lengths, turns)
+}
+
+/// L-T4: the waypoint is unchanged while ‖x − g‖ > ε; on arrival ‖g − s‖ = l ∈ the length
+/// table's range, s = x, and the turn from the previous direction is within the turn table's.
+#[test]
+fn algorithm_1_proposes_only_on_arrival() {
+    let (w, lengths, turns) = uniform_world();
+    let density = Density::new(v(0.0, 0.0, 0.0), 0.25, [4, 4, 4], &w).unwrap();
+    let params = LiParams::<f32>::default();
+    let current = Waypoint {
+        waypoint: v(0.6, 0.5, 0.5),
+        seg_start: v(0.3, 0.5, 0.5),
+    };
+    // Not arrived: 0.01 from the waypoint (ε = 0.00148).
+    let pos = v(0.59, 0.5, 0.5);
+    let next = next_waypoint(
+        pos,
+        &current,
+        &lengths,
+        &turns,
+        &density,
+        &params,
+        ctx(0, 0),
+    )
+    .unwrap();
+    assert_eq!(
+        (next.waypoint, next.proposals, next.accepted),
+        (current, 0, false)
+    );
+    // Arrived.
+    for step in 0..200 {
+        let pos = v(0.6, 0.5, 0.5005);
+        let next = next_waypoint(
+            pos,
+            &current,
+            &lengths,
+            &turns,
+            &density,
+            &params,
+            ctx(0, step),
+        )
+        .unwrap();
+        assert!(
+            next.accepted && next.proposals == 1,
+            "uniform density: always accepted"
+        );
+        assert_eq!(next.waypoint.seg_start, pos);
+        let leg = next.waypoint.waypoint - pos;
+        assert!(
+            (0.01 - 1e-6..=0.03 + 1e-6).contains(&leg.length()),
+            "{}",
+            leg.length()
+        );
+        let came = (pos - current.seg_start).normalized().unwrap();
+        let turn = (leg.normalized().unwrap().dot(came))
+            .clamp(-1.0, 1.0)
+            .acos();
+        assert!(turn <= 0.6 + 1e-3, "turn {turn}");
+    }
+}
+
+/// L-T5: the acceptance is min(1, w_g/w_x) (10⁵ trials within ±0.005), never into a zero
+/// cell, and from a zero cell exactly into the non-zero ones.
+#[test]
+fn metropolis_hastings_acceptance() {
+    for (w_x, w_g) in [(200u8, 50u8), (90, 60), (255, 1), (40, 40), (10, 200)] {
+        let hits = (0..100_000u32)
+            .filter(|&i| accept(w_x, w_g, rand::unit::<f32>(ctx(i, 9), 0)))
+            .count();
+        let want = (f64::from(w_g) / f64::from(w_x)).min(1.0);
+        let got = hits as f64 / 1e5;
+        assert!((got - want).abs() < 0.005, "{w_x} → {w_g}: {got} vs {want}");
+    }
+    assert!((0..1000u32).all(|i| !accept(77, 0, rand::unit::<f32>(ctx(i, 10), 0))));
+    assert!(accept(0, 1, 0.999f32) && !accept(0, 0, 0.001f32));
+}
+
+/// The grid of L-T6: 16³ cells over the 0.91 m cube, a Gaussian of σ = 0.12 m at the centre
+/// scaled to 255 and rounded (the far corners round to 0).
+fn gaussian_grid() -> (Vec<u8>, f32) {
+    let cell = 0.91 / 16.0;
+    let w = (0..16 * 16 * 16)
+        .map(|i| {
+            let c = [i % 16, (i / 16) % 16, i / 256].map(|k| (k as f32 + 0.5) * cell - 0.455);
+            let r2 = c.iter().map(|x| x * x).sum::<f32>();
+            (255.0 * (-r2 / (2.0 * 0.12 * 0.12)).exp()).round() as u8
+        })
+        .collect();
+    (w, cell)
+}
+
+/// The waypoint chains of L-T6 on `grid` (isotropic proposals: s = x at every step), their
+/// cell visits after the first 1,000 steps: 200 chains × 8,000 steps from near the centre.
+fn chain_visits(grid: &Density<'_, f32>, proposals: u8) -> Vec<u64> {
+    let lengths = Table::<f32, 16>::from_counts(0.0, 0.06, &[1; 16]).unwrap();
+    let turns = Table::<f32, 4>::from_counts(0.0, 0.1, &[1; 4]).unwrap();
+    let params = LiParams {
+        eps: 0.0,
+        proposals,
+    };
+    let mut visits = vec![0u64; 16 * 16 * 16];
+    for chain in 0..200u32 {
+        let u = |k: u32| rand::unit::<f32>(ctx(chain, k), 77);
+        let mut x = v(0.355 + 0.2 * u(0), 0.355 + 0.2 * u(1), 0.355 + 0.2 * u(2));
+        for step in 0..8000u32 {
+            let here = Waypoint {
+                waypoint: x,
+                seg_start: x,
+            };
+            let c = StepCtx {
+                seed: 6,
+                agent: chain,
+                step,
+            };
+            x = next_waypoint(x, &here, &lengths, &turns, grid, &params, c)
+                .unwrap()
+                .waypoint
+                .waypoint;
+            if step >= 1000 {
+                let [i, j, k] = grid.cell_of(x).expect("inside").map(usize::from);
+                visits[i + 16 * (j + 16 * k)] += 1;
+            }
+        }
+    }
+    visits
+}
+
+/// Total variation between visit counts and weights, both normalised.
+fn total_variation(visits: &[u64], w: &[u8]) -> f64 {
+    let n: u64 = visits.iter().sum();
+    let total: f64 = w.iter().map(|&x| f64::from(x)).sum();
+    0.5 * visits
+        .iter()
+        .zip(w)
+        .map(|(&c, &wc)| (c as f64 / n as f64 - f64::from(wc) / total).abs())
+        .sum::<f64>()
+}
+
+/// L-T6: with isotropic proposals the waypoint chain's law is the density's: 200 chains ×
+/// 8,000 steps on the Gaussian grid come within total variation 0.08 of the normalised
+/// weights (spec prototype 0.05-0.07; measured 0.03), in standard Metropolis-Hastings
+/// (K = 1) and in the paper's resampling mode (K = 32). Without the screening (a uniform
+/// grid) the same chains are far from it (over 0.5; measured 0.76).
+#[test]
+fn the_waypoint_chain_samples_the_density() {
+    let (w, cell) = gaussian_grid();
+    let gaussian = Density::new(v(0.0, 0.0, 0.0), cell, [16, 16, 16], &w).unwrap();
+    for proposals in [1u8, 32] {
+        let tv = total_variation(&chain_visits(&gaussian, proposals), &w);
+        eprintln!("K = {proposals}: total variation {tv:.4}");
+        assert!(tv <= 0.08, "K = {proposals}: total variation {tv}");
+    }
+    let flat = vec![1u8; w.len()];
+    let uniform = Density::new(v(0.0, 0.0, 0.0), cell, [16, 16, 16], &flat).unwrap();
+    let tv = total_variation(&chain_visits(&uniform, 1), &w);
+    eprintln!("no screening: total variation {tv:.4}");
+    assert!(tv > 0.5, "the control must be far from the target: {tv}");
+}
+
+/// Bad input: a typed error naming the field, never a panic.
+#[test]
+fn bad_input_is_refused() {
+    let (w, lengths, turns) = uniform_world();
+    assert_eq!(
+        Density::new(v(0.0, 0.0, 0.0), 0.25, [4, 4, 3], &w),
+        Err(Error::Inconsistent {
+            field: "weights",
+            index: None
+        })
+    );
+    assert_eq!(
+        Density::<f32>::new(v(0.0, 0.0, 0.0), 0.0, [4, 4, 4], &w),
+        Err(Error::BadParam { field: "cell" })
+    );
+    let density = Density::new(v(0.0, 0.0, 0.0), 0.25, [4, 4, 4], &w).unwrap();
+    assert_eq!(density.at(v(-0.01, 0.5, 0.5)), 0);
+    assert_eq!(density.at(v(f32::NAN, 0.5, 0.5)), 0);
+    assert_eq!(density.at(v(0.99, 0.99, 0.99)), 100);
+    assert_eq!(density.at(v(1.0, 0.5, 0.5)), 0);
+    let here = Waypoint::default();
+    let params = LiParams::<f32>::default();
+    let run = |pos: Vec3<f32>, p: &LiParams<f32>| {
+        next_waypoint(pos, &here, &lengths, &turns, &density, p, ctx(0, 0))
+    };
+    assert_eq!(
+        run(v(f32::NAN, 0.0, 0.0), &params),
+        Err(Error::non_finite("pos"))
+    );
+    let zero = LiParams {
+        proposals: 0,
+        ..params
+    };
+    assert_eq!(
+        run(v(0.0, 0.0, 0.0), &zero),
+        Err(Error::BadParam { field: "proposals" })
+    );
+}
+
+/// Outside the grid every proposal is a zero cell: the insect holds where it is after K
+/// proposals (and keeps its segment start).
+#[test]
+fn an_insect_with_nowhere_to_go_holds() {
+    let (w, lengths, turns) = uniform_world();
+    let density = Density::new(v(5.0, 5.0, 5.0), 0.25, [4, 4, 4], &w).unwrap();
+    let params = LiParams::<f32>::default();
+    let here = Waypoint {
+        waypoint: v(0.0, 0.0, 0.0),
+        seg_start: v(-0.1, 0.0, 0.0),
+    };
+    let next = next_waypoint(
+        v(0.0, 0.0, 0.0),
+        &here,
+        &lengths,
+        &turns,
+        &density,
+        &params,
+        ctx(3, 3),
+    )
+    .unwrap();
+    assert_eq!((next.proposals, next.accepted), (32, false));
+    assert_eq!(next.waypoint.waypoint, v(0.0, 0.0, 0.0));
+    assert_eq!(next.waypoint.seg_start, v(-0.1, 0.0, 0.0));
+}
+
+/// The same code in fixed point: a proposal from an arrived insect lies within the length
+/// table's range and its cell, and the same inputs give the same bits.
+#[cfg(feature = "fixed")]
+#[test]
+fn fixed_point_proposes_within_the_tables() {
+    use crate::{Fx, Scalar};
+    let f = Fx::from_f32;
+    let lengths = Table::<Fx, 8>::from_counts(f(0.01), f(0.03), &[1; 8]).unwrap();
+    let turns = Table::<Fx, 8>::from_counts(f(0.0), f(0.6), &[1; 8]).unwrap();
+    let w = [100u8; 64];
+    let density = Density::new(Vec3::new(f(0.0), f(0.0), f(0.0)), f(0.25), [4, 4, 4], &w).unwrap();
+    let params = LiParams::<Fx>::default();
+    let pos = Vec3::new(f(0.5), f(0.5), f(0.5));
+    let here = Waypoint {
+        waypoint: pos,
+        seg_start: Vec3::new(f(0.4), f(0.5), f(0.5)),
+    };
+    for step in 0..100 {
+        let next = next_waypoint(
+            pos,
+            &here,
+            &lengths,
+            &turns,
+            &density,
+            &params,
+            ctx(1, step),
+        )
+        .unwrap();
+        assert!(next.accepted);
+        let l = (next.waypoint.waypoint - pos).length().to_f32();
+        assert!((0.0099..=0.0301).contains(&l), "{l}");
+        let again = next_waypoint(
+            pos,
+            &here,
+            &lengths,
+            &turns,
+            &density,
+            &params,
+            ctx(1, step),
+        )
+        .unwrap();
+        assert_eq!(next, again);
+    }
+}

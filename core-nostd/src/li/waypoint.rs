@@ -1,0 +1,167 @@
+//! Algorithm 1 of li2015 (§4.2, waypoint computation) with the Metropolis-Hastings screening
+//! of §4.3, for one insect at one step.
+
+use super::density::Density;
+use super::sampler::Table;
+use crate::check::{check_nonneg, check_vec};
+use crate::rand::{self, stream};
+use crate::scalar::pi;
+use crate::{Error, Result, Scalar, StepCtx, Vec3};
+
+wire_type! {
+    /// The parameters of the waypoint level (spec §1.6, §2.3; ours where the paper is silent).
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct LiParams<S> {
+        /// ε of Algorithm 1: the insect has arrived when ‖x − g‖ ≤ ε (ours: one step of
+        /// travel, v0·Δt).
+        pub eps: S,
+        /// K: proposals per arrival (≥ 1). The paper resamples a rejected waypoint ("another
+        /// waypoint would be sampled", spec L9; ours K = 32); 1 is standard
+        /// Metropolis-Hastings, one proposal. When all K are rejected the insect holds (its
+        /// waypoint is its position) and proposes again at the next step.
+        pub proposals: u8,
+    }
+
+    /// An insect's waypoint state: its current waypoint g and the start s of its current
+    /// segment (x − s is the direction it came from).
+    #[derive(Clone, Copy, Debug, Default, PartialEq)]
+    pub struct Waypoint<S> {
+        /// g: where the insect flies.
+        pub waypoint: Vec3<S>,
+        /// s: where the current segment began.
+        pub seg_start: Vec3<S>,
+    }
+
+    /// What [`next_waypoint`] decided.
+    #[derive(Clone, Copy, Debug, Default, PartialEq)]
+    pub struct Next<S> {
+        /// The waypoint state after this step.
+        pub waypoint: Waypoint<S>,
+        /// How many proposals were drawn (0: not arrived yet).
+        pub proposals: u8,
+        /// Whether a proposal was accepted (false when not arrived, or held).
+        pub accepted: bool,
+    }
+}
+
+impl<S: Scalar> Default for LiParams<S> {
+    /// ε = 0.148 m/s × 0.01 s (spec §1.3 in metres, §1.6), K = 32.
+    fn default() -> Self {
+        LiParams {
+            eps: S::from_f32(0.00148),
+            proposals: 32,
+        }
+    }
+}
+
+impl<S: Scalar> LiParams<S> {
+    /// `Err(BadParam)` unless ε is finite and non-negative and K ≥ 1.
+    pub fn validate(&self) -> Result<()> {
+        check_nonneg(self.eps, "eps").map_err(|_| Error::BadParam { field: "eps" })?;
+        if self.proposals == 0 {
+            return Err(Error::BadParam { field: "proposals" });
+        }
+        Ok(())
+    }
+}
+
+/// `direction(d, θ)` of Algorithm 1 in 3D (spec §2.2, ours): the unit vector at angle |θ| from
+/// d̂, at azimuth `phi` about it (measured from the axis d̂ × a, a the world axis least aligned
+/// with d̂). When `d` cannot be normalised (the first waypoint, or an insect that did not
+/// move), the uniform direction on the sphere of height `z` ∈ (−1, 1) and azimuth `phi`.
+pub fn direction<S: Scalar>(d: Vec3<S>, theta: S, phi: S, z: S) -> Vec3<S> {
+    let (s_phi, c_phi) = phi.sin_cos();
+    let Some(n) = d.normalized() else {
+        let r = (S::ONE - z * z).max(S::ZERO).sqrt();
+        return Vec3::new(r * c_phi, z, r * s_phi);
+    };
+    let (ax, ay, az) = (n.x.abs(), n.y.abs(), n.z.abs());
+    let a = if ax <= ay && ax <= az {
+        Vec3::new(S::ONE, S::ZERO, S::ZERO)
+    } else if ay <= az {
+        Vec3::new(S::ZERO, S::ONE, S::ZERO)
+    } else {
+        Vec3::new(S::ZERO, S::ZERO, S::ONE)
+    };
+    // n is a unit vector and a the axis least aligned with it: |n × a|² ≥ 2/3.
+    let e1 = n.cross(a).normalized().unwrap_or(a);
+    let e2 = n.cross(e1);
+    let (s_t, c_t) = theta.abs().sin_cos();
+    n * c_t + (e1 * c_phi + e2 * s_phi) * s_t
+}
+
+/// The acceptance of §4.3 for a proposal with density `w_g` from a position with density
+/// `w_x`, given a uniform `u` ∈ (0, 1): never into a zero cell; from a zero cell any `w_g` > 0
+/// (spec L8, ours); else with probability min(1, w_g/w_x) (`u·w_x < w_g`).
+pub fn accept<S: Scalar>(w_x: u8, w_g: u8, u: S) -> bool {
+    w_g > 0 && (w_x <= w_g || u * S::from_i32(i32::from(w_x)) < S::from_i32(i32::from(w_g)))
+}
+
+/// One step of Algorithm 1 with the screening of §4.3, for the insect at `pos` with waypoint
+/// state `current`:
+///
+/// * not arrived (‖x − g‖ > ε): unchanged;
+/// * arrived: up to K proposals, each `g = x + l·o` with `l` drawn from `lengths`, `o =
+///   direction(x − s, θ)` and θ drawn from `turns` (radians; its magnitude is the cone
+///   angle), screened by [`accept`] against `density`; the first accepted one becomes the
+///   waypoint and `s = x`; if none is, the insect holds (`g = x`, `s` kept).
+///
+/// Randomness: proposal a (0-based) draws from streams
+/// [`LI_LENGTH`](stream::LI_LENGTH), [`LI_TURN`](stream::LI_TURN),
+/// [`LI_AZIMUTH`](stream::LI_AZIMUTH), [`LI_HEIGHT`](stream::LI_HEIGHT) and
+/// [`LI_ACCEPT`](stream::LI_ACCEPT), each plus `a << 8`.
+///
+/// # Errors
+///
+/// `BadParam` for invalid [`LiParams`]; `NonFinite`/`OutOfRange` naming `pos`,
+/// `current.waypoint` or `current.seg_start`.
+#[allow(clippy::too_many_arguments)]
+pub fn next_waypoint<S: Scalar, const L: usize, const T: usize>(
+    pos: Vec3<S>,
+    current: &Waypoint<S>,
+    lengths: &Table<S, L>,
+    turns: &Table<S, T>,
+    density: &Density<'_, S>,
+    params: &LiParams<S>,
+    ctx: StepCtx,
+) -> Result<Next<S>> {
+    params.validate()?;
+    check_vec(pos, "pos")?;
+    check_vec(current.waypoint, "current.waypoint")?;
+    check_vec(current.seg_start, "current.seg_start")?;
+    if (pos - current.waypoint).length_sq() > params.eps * params.eps {
+        return Ok(Next {
+            waypoint: *current,
+            proposals: 0,
+            accepted: false,
+        });
+    }
+    let w_x = density.at(pos);
+    let came = pos - current.seg_start;
+    for a in 0..params.proposals {
+        let draw = |s: u32| rand::unit::<S>(ctx, s + (u32::from(a) << 8));
+        let l = lengths.sample(draw(stream::LI_LENGTH));
+        let theta = turns.sample(draw(stream::LI_TURN));
+        let phi = (draw(stream::LI_AZIMUTH) * S::from_i32(2) - S::ONE) * pi::<S>();
+        let z = draw(stream::LI_HEIGHT) * S::from_i32(2) - S::ONE;
+        let g = pos + direction(came, theta, phi, z) * l;
+        if accept(w_x, density.at(g), draw(stream::LI_ACCEPT)) {
+            return Ok(Next {
+                waypoint: Waypoint {
+                    waypoint: g,
+                    seg_start: pos,
+                },
+                proposals: a + 1,
+                accepted: true,
+            });
+        }
+    }
+    Ok(Next {
+        waypoint: Waypoint {
+            waypoint: pos,
+            seg_start: current.seg_start,
+        },
+        proposals: params.proposals,
+        accepted: false,
+    })
+}
