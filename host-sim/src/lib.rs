@@ -45,6 +45,7 @@ pub mod fly;
 pub mod gpu;
 pub mod grid;
 pub mod huge;
+pub mod li;
 pub mod models;
 pub(crate) mod nearest;
 pub mod orca;

@@ -1,0 +1,110 @@
+//! Piecewise-linear segmentation of a trajectory (li2015 §3.1: "piecewise linear regression
+//! … with goodness of fit R² = 0.9"; the algorithm is ours, spec §2.5): top-down, a window of
+//! samples is one segment when a straight line explains at least `r2_min` of its scatter, else
+//! it is split at the sample farthest from its chord and both halves are examined again.
+
+/// The paper's goodness of fit.
+pub const R2_MIN: f64 = 0.9;
+
+/// The shortest window that is split (a shorter one is a segment whatever its fit).
+pub const MIN_SPLIT: usize = 6;
+
+/// The shortest segment a split leaves (samples, endpoints shared with the neighbours).
+pub const MIN_SEGMENT: usize = 3;
+
+/// R² of the best 3D line through `points` (orthogonal regression, i.e. PCA): the share of
+/// the scatter about the centroid along the principal axis, λ₁ / trace of the covariance.
+/// 1 for fewer than two distinct points.
+pub fn r_squared(points: &[[f64; 3]]) -> f64 {
+    let n = points.len() as f64;
+    if points.len() < 2 {
+        return 1.0;
+    }
+    let mut mean = [0.0; 3];
+    for p in points {
+        for k in 0..3 {
+            mean[k] += p[k] / n;
+        }
+    }
+    let mut c = [[0.0; 3]; 3];
+    for p in points {
+        let d = [p[0] - mean[0], p[1] - mean[1], p[2] - mean[2]];
+        for i in 0..3 {
+            for j in 0..3 {
+                c[i][j] += d[i] * d[j];
+            }
+        }
+    }
+    let trace = c[0][0] + c[1][1] + c[2][2];
+    if trace <= 0.0 {
+        return 1.0;
+    }
+    // λ₁ by power iteration from the axis of the largest variance (the covariance is
+    // symmetric positive semi-definite; 64 iterations settle far below the 1e-9 that matters).
+    let start = (0..3)
+        .max_by(|&a, &b| c[a][a].total_cmp(&c[b][b]))
+        .unwrap_or(0);
+    let mut v = [0.0; 3];
+    v[start] = 1.0;
+    let mut lambda = 0.0;
+    for _ in 0..64 {
+        let w = [0, 1, 2].map(|i| c[i][0] * v[0] + c[i][1] * v[1] + c[i][2] * v[2]);
+        let norm = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+        if norm == 0.0 {
+            break;
+        }
+        lambda = norm;
+        v = w.map(|x| x / norm);
+    }
+    (lambda / trace).clamp(0.0, 1.0)
+}
+
+/// The distance from `p` to the line through `a` and `b` (to `a` when they coincide).
+fn distance_to_chord(p: [f64; 3], a: [f64; 3], b: [f64; 3]) -> f64 {
+    let ab = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let ap = [p[0] - a[0], p[1] - a[1], p[2] - a[2]];
+    let cross = [
+        ab[1] * ap[2] - ab[2] * ap[1],
+        ab[2] * ap[0] - ab[0] * ap[2],
+        ab[0] * ap[1] - ab[1] * ap[0],
+    ];
+    let len = (ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2]).sqrt();
+    let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    if len > 0.0 {
+        norm(cross) / len
+    } else {
+        norm(ap)
+    }
+}
+
+/// The segments of one track (consecutive samples) as inclusive index ranges, in order,
+/// each sharing its first sample with the previous one's last: a window of at least
+/// [`MIN_SPLIT`] samples whose [`r_squared`] is below `r2_min` is split at its sample farthest
+/// from its chord (keeping [`MIN_SEGMENT`] samples on each side). A track of one sample has
+/// no segment.
+pub fn segment(points: &[[f64; 3]], r2_min: f64) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    if points.len() < 2 {
+        return out;
+    }
+    let mut todo = vec![(0, points.len() - 1)];
+    while let Some((a, b)) = todo.pop() {
+        let n = b - a + 1;
+        if n < MIN_SPLIT || r_squared(&points[a..=b]) >= r2_min {
+            out.push((a, b));
+            continue;
+        }
+        let lo = a + MIN_SEGMENT - 1;
+        let hi = b + 1 - MIN_SEGMENT;
+        let k = (lo..=hi)
+            .max_by(|&i, &j| {
+                let d = |k: usize| distance_to_chord(points[k], points[a], points[b]);
+                d(i).total_cmp(&d(j)).then(j.cmp(&i))
+            })
+            .unwrap_or(lo);
+        // Right half first: the stack hands the left half out next, so segments come in order.
+        todo.push((k, b));
+        todo.push((a, k));
+    }
+    out
+}
