@@ -108,3 +108,46 @@ pub fn segment(points: &[[f64; 3]], r2_min: f64) -> Vec<(usize, usize)> {
     }
     out
 }
+
+/// The segments of one track by the largest distance to the chord (Douglas-Peucker,
+/// ours): a window is split at its sample farthest from its chord while that distance
+/// exceeds `tolerance` (windows of [`MIN_SEGMENT`] samples or fewer are not split). Same
+/// output as [`segment`].
+pub fn segment_by_tolerance(points: &[[f64; 3]], tolerance: f64) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    if points.len() < 2 {
+        return out;
+    }
+    let mut todo = vec![(0, points.len() - 1)];
+    while let Some((a, b)) = todo.pop() {
+        let far = (a + 1..b)
+            .map(|k| (distance_to_chord(points[k], points[a], points[b]), k))
+            .max_by(|x, y| x.0.total_cmp(&y.0).then(y.1.cmp(&x.1)));
+        match far {
+            Some((d, k)) if d > tolerance => {
+                todo.push((k, b));
+                todo.push((a, k));
+            }
+            _ => out.push((a, b)),
+        }
+    }
+    out
+}
+
+/// The measurement noise of a track (sd per coordinate), estimated from its second
+/// differences p[k+1] − 2p[k] + p[k−1], whose variance is 6σ² for white noise on a straight
+/// path at constant speed: the median absolute value over every coordinate, /0.6745 (the
+/// median of |N(0, 1)|) and /√6. Turns are rare among the samples, so the median ignores
+/// them. `None` for fewer than 3 samples.
+pub fn noise_sd(points: &[[f64; 3]]) -> Option<f64> {
+    let mut d: Vec<f64> = points
+        .windows(3)
+        .flat_map(|w| (0..3).map(move |k| (w[2][k] - 2.0 * w[1][k] + w[0][k]).abs()))
+        .collect();
+    if d.is_empty() {
+        return None;
+    }
+    let mid = d.len() / 2;
+    let (_, median, _) = d.select_nth_unstable_by(mid, f64::total_cmp);
+    Some(*median / 0.6745 / 6f64.sqrt())
+}

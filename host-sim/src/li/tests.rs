@@ -127,3 +127,44 @@ fn the_synthetic_tracks_follow_their_process() {
     assert!(sum >= path, "{sum} < {path}");
     assert_eq!(drawn.turns.len() + 5, drawn.lengths.len());
 }
+
+/// The noise estimate recovers each synthetic track's measurement noise within 15 % (0.1,
+/// 0.2 and 0.4 mm at 0.15 m/s; the vertices bias it up most at low noise: 0.11 for 0.1), and the tolerance segmentation cuts a
+/// clean polyline at every vertex, a 30° turn included, where the R² rule merges it.
+#[test]
+fn noise_estimate_and_tolerance_segmentation() {
+    use super::segment::{noise_sd, segment_by_tolerance};
+    for (noise, seed) in [(0.0001, 2), (0.0002, 1), (0.0004, 3)] {
+        let f = Fixture {
+            insects: 10,
+            noise,
+            seed,
+            ..Fixture::default()
+        };
+        let (tracks, _) = synthetic_tracks(&f);
+        for (_, _, run) in tracks.runs() {
+            let sigma = noise_sd(&run).unwrap();
+            assert!((sigma / noise - 1.0).abs() < 0.15, "{sigma} vs {noise}");
+        }
+    }
+    assert_eq!(noise_sd(&[[0.0; 3]; 2]), None);
+    let bend = polyline(
+        &[
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [1.0, 1.0, 1.0],
+            [1.0, 1.0 + 0.5, 1.0 + 0.75f64.sqrt()],
+        ],
+        20,
+    );
+    assert_eq!(
+        segment_by_tolerance(&bend, 0.01),
+        vec![(0, 20), (20, 40), (40, 60), (60, 80)]
+    );
+    assert_eq!(
+        segment(&bend, R2_MIN).len(),
+        3,
+        "the R² rule misses the 30° turn"
+    );
+}
