@@ -31,8 +31,11 @@ impl<'a, S: Scalar> Density<'a, S> {
         if dims.contains(&0) {
             return Err(Error::BadParam { field: "dims" });
         }
-        let cells = dims.iter().map(|&d| usize::from(d)).product::<usize>();
-        if weights.len() != cells {
+        // Checked: 16-bit dimensions can overflow a 32-bit device's usize.
+        let cells = dims
+            .iter()
+            .try_fold(1usize, |n, &d| n.checked_mul(usize::from(d)));
+        if cells != Some(weights.len()) {
             return Err(Error::Inconsistent {
                 field: "weights",
                 index: None,

@@ -71,7 +71,7 @@ impl<S: Scalar, const M: usize> Table<S, M> {
         if x.partial_cmp(&self.lo) != Some(Ordering::Greater) {
             return S::ZERO;
         }
-        if x >= self.hi {
+        if x >= self.hi || M == 0 {
             return S::ONE;
         }
         let pos = (x - self.lo) / (self.hi - self.lo) * S::from_i32(M as i32);

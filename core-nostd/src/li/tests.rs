@@ -288,6 +288,13 @@ fn bad_input_is_refused() {
         Density::<f32>::new(v(0.0, 0.0, 0.0), 0.0, [4, 4, 4], &w),
         Err(Error::BadParam { field: "cell" })
     );
+    // A table built by hand with no bins: draws and the CDF stay total.
+    let empty = Table::<f32, 0> {
+        lo: 0.0,
+        hi: 1.0,
+        cdf: [],
+    };
+    assert_eq!((empty.sample(0.5), empty.cdf_at(0.5)), (1.0, 1.0));
     let density = Density::new(v(0.0, 0.0, 0.0), 0.25, [4, 4, 4], &w).unwrap();
     assert_eq!(density.at(v(-0.01, 0.5, 0.5)), 0);
     assert_eq!(density.at(v(f32::NAN, 0.5, 0.5)), 0);
