@@ -151,7 +151,7 @@ pub fn synthetic_tracks(f: &Fixture) -> (Tracks, Drawn) {
             // Fly `step` along the polyline, turning at each vertex.
             let mut go = step;
             while go > left {
-                pos = [0, 1, 2].map(|i| pos[i] + left * f64::from(heading_at(heading, i)));
+                pos = advance(pos, heading, left);
                 go -= left;
                 let theta = turn(&mut d);
                 let phi = (d.uniform() * 2.0 - 1.0) * std::f64::consts::PI;
@@ -160,14 +160,15 @@ pub fn synthetic_tracks(f: &Fixture) -> (Tracks, Drawn) {
                 left = segment_length_mm(&mut d) / 1000.0;
                 drawn.lengths.push(left);
             }
-            pos = [0, 1, 2].map(|i| pos[i] + go * f64::from(heading_at(heading, i)));
+            pos = advance(pos, heading, go);
             left -= go;
         }
     }
     (Tracks::from_samples(1.0 / f.fps, samples), drawn)
 }
 
-/// Component `i` of `v`.
-fn heading_at(v: Vec3<f32>, i: usize) -> f32 {
-    [v.x, v.y, v.z][i]
+/// `pos` moved `by` along `heading`.
+fn advance(pos: [f64; 3], heading: Vec3<f32>, by: f64) -> [f64; 3] {
+    let h = [heading.x, heading.y, heading.z];
+    [0, 1, 2].map(|i| pos[i] + by * f64::from(h[i]))
 }

@@ -77,61 +77,64 @@ fn distance_to_chord(p: [f64; 3], a: [f64; 3], b: [f64; 3]) -> f64 {
     }
 }
 
-/// The segments of one track (consecutive samples) as inclusive index ranges, in order,
-/// each sharing its first sample with the previous one's last: a window of at least
-/// [`MIN_SPLIT`] samples whose [`r_squared`] is below `r2_min` is split at its sample farthest
-/// from its chord (keeping [`MIN_SEGMENT`] samples on each side). A track of one sample has
-/// no segment.
-pub fn segment(points: &[[f64; 3]], r2_min: f64) -> Vec<(usize, usize)> {
+/// The sample of `points` in `range` farthest from the chord of samples `a` and `b`, with
+/// that distance (the first one on a tie); `None` for an empty range.
+fn farthest(
+    points: &[[f64; 3]],
+    a: usize,
+    b: usize,
+    range: std::ops::RangeInclusive<usize>,
+) -> Option<(f64, usize)> {
+    range
+        .map(|k| (distance_to_chord(points[k], points[a], points[b]), k))
+        .max_by(|x, y| x.0.total_cmp(&y.0).then(y.1.cmp(&x.1)))
+}
+
+/// Top-down splitting of `len` samples: `split(a, b)` names the sample to cut the window
+/// `[a, b]` at, or `None` to keep it as one segment. The segments come as inclusive index
+/// ranges, in order, each sharing its first sample with the previous one's last; fewer than
+/// two samples have none.
+fn top_down(len: usize, split: impl Fn(usize, usize) -> Option<usize>) -> Vec<(usize, usize)> {
     let mut out = Vec::new();
-    if points.len() < 2 {
+    if len < 2 {
         return out;
     }
-    let mut todo = vec![(0, points.len() - 1)];
+    let mut todo = vec![(0, len - 1)];
     while let Some((a, b)) = todo.pop() {
-        let n = b - a + 1;
-        if n < MIN_SPLIT || r_squared(&points[a..=b]) >= r2_min {
-            out.push((a, b));
-            continue;
+        match split(a, b) {
+            // Right half first: the stack hands the left half out next, so segments come
+            // in order.
+            Some(k) => {
+                todo.push((k, b));
+                todo.push((a, k));
+            }
+            None => out.push((a, b)),
         }
-        let lo = a + MIN_SEGMENT - 1;
-        let hi = b + 1 - MIN_SEGMENT;
-        let k = (lo..=hi)
-            .max_by(|&i, &j| {
-                let d = |k: usize| distance_to_chord(points[k], points[a], points[b]);
-                d(i).total_cmp(&d(j)).then(j.cmp(&i))
-            })
-            .unwrap_or(lo);
-        // Right half first: the stack hands the left half out next, so segments come in order.
-        todo.push((k, b));
-        todo.push((a, k));
     }
     out
 }
 
+/// The segments of one track (consecutive samples), as [`top_down`] gives them: a window of
+/// at least [`MIN_SPLIT`] samples whose [`r_squared`] is below `r2_min` is split at its
+/// sample farthest from its chord (keeping [`MIN_SEGMENT`] samples on each side).
+pub fn segment(points: &[[f64; 3]], r2_min: f64) -> Vec<(usize, usize)> {
+    top_down(points.len(), |a, b| {
+        if b - a + 1 < MIN_SPLIT || r_squared(&points[a..=b]) >= r2_min {
+            return None;
+        }
+        let range = a + MIN_SEGMENT - 1..=b + 1 - MIN_SEGMENT;
+        farthest(points, a, b, range).map(|(_, k)| k)
+    })
+}
+
 /// The segments of one track by the largest distance to the chord (Douglas-Peucker,
 /// ours): a window is split at its sample farthest from its chord while that distance
-/// exceeds `tolerance` (windows of [`MIN_SEGMENT`] samples or fewer are not split). Same
-/// output as [`segment`].
+/// exceeds `tolerance`. Same output as [`segment`].
 pub fn segment_by_tolerance(points: &[[f64; 3]], tolerance: f64) -> Vec<(usize, usize)> {
-    let mut out = Vec::new();
-    if points.len() < 2 {
-        return out;
-    }
-    let mut todo = vec![(0, points.len() - 1)];
-    while let Some((a, b)) = todo.pop() {
-        let far = (a + 1..b)
-            .map(|k| (distance_to_chord(points[k], points[a], points[b]), k))
-            .max_by(|x, y| x.0.total_cmp(&y.0).then(y.1.cmp(&x.1)));
-        match far {
-            Some((d, k)) if d > tolerance => {
-                todo.push((k, b));
-                todo.push((a, k));
-            }
-            _ => out.push((a, b)),
-        }
-    }
-    out
+    top_down(points.len(), |a, b| {
+        let (d, k) = farthest(points, a, b, a + 1..=b.checked_sub(1)?)?;
+        (d > tolerance).then_some(k)
+    })
 }
 
 /// The measurement noise of a track (sd per coordinate), estimated from its second
