@@ -3,7 +3,7 @@
 //!
 //! The process, per insect: a start uniform in the cube `[0, side]³` and a uniform direction;
 //! then segment after segment, each of a length drawn from the generalised gamma of
-//! [`segment_length_mm`] (the paper's mean 14.57 mm, median 7.22 mm, sd 19.01 mm) and turned
+//! `segment_length_mm` (the paper's mean 14.57 mm, median 7.22 mm, sd 19.01 mm) and turned
 //! from the previous one by |θ|, θ ~ Normal(2.34°, 40.02°) (the paper's mean and sd), at a
 //! uniform azimuth ([`swarm_core::li::waypoint::direction`], the model's own turn); the
 //! insect flies the polyline at a constant speed, sampled at `fps`, each sample with

@@ -114,7 +114,7 @@ fn top_down(len: usize, split: impl Fn(usize, usize) -> Option<usize>) -> Vec<(u
     out
 }
 
-/// The segments of one track (consecutive samples), as [`top_down`] gives them: a window of
+/// The segments of one track (consecutive samples), split top down: a window of
 /// at least [`MIN_SPLIT`] samples whose [`r_squared`] is below `r2_min` is split at its
 /// sample farthest from its chord (keeping [`MIN_SEGMENT`] samples on each side).
 pub fn segment(points: &[[f64; 3]], r2_min: f64) -> Vec<(usize, usize)> {
@@ -138,7 +138,7 @@ pub fn segment_by_tolerance(points: &[[f64; 3]], tolerance: f64) -> Vec<(usize, 
 }
 
 /// The measurement noise of a track (sd per coordinate), estimated from its second
-/// differences p[k+1] − 2p[k] + p[k−1], whose variance is 6σ² for white noise on a straight
+/// differences `p[k+1] − 2p[k] + p[k−1]`, whose variance is 6σ² for white noise on a straight
 /// path at constant speed: the median absolute value over every coordinate, /0.6745 (the
 /// median of |N(0, 1)|) and /√6. Turns are rare among the samples, so the median ignores
 /// them. `None` for fewer than 3 samples.
