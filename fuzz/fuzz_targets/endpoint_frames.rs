@@ -11,6 +11,7 @@ use swarm_core::Fx;
 use swarm_core::ant::AntParams;
 use swarm_core::bee::BeeParams;
 use swarm_core::fly::FlyParams;
+use swarm_core::li::{LiDevice, LiParams};
 use swarm_core::wang::WangParams;
 use swarm_core::wire::{
     self, AntDevice, BeeDevice, Configure, Controller, DeviceEndpoint, FlyDevice, Hello,
@@ -30,7 +31,7 @@ impl Serialize for Raw<'_> {
     }
 }
 
-const KINDS: [u8; 18] = [
+const KINDS: [u8; 20] = [
     kind::HELLO,
     kind::CONFIGURE,
     kind::PING,
@@ -41,9 +42,11 @@ const KINDS: [u8; 18] = [
     kind::WANG_ADVECT_REQUEST,
     kind::WANG_SEPARATE_REQUEST,
     kind::FLY_STEP_REQUEST,
+    kind::LI_STEP_REQUEST,
     kind::ANT_PLAN_REPLY,
     kind::WANG_SEPARATE_REPLY,
     kind::FLY_STEP_REPLY,
+    kind::LI_STEP_REPLY,
     kind::ERROR_REPLY,
     0x00,
     0x09,
@@ -118,7 +121,7 @@ fuzz_target!(|data: &[u8]| {
     let Some((&mode, data)) = data.split_first() else {
         return;
     };
-    match mode % 8 {
+    match mode % 10 {
         0 => run(
             AntDevice::<f32>::new(AntParams::default(), "fuzz").unwrap(),
             data,
@@ -147,8 +150,16 @@ fuzz_target!(|data: &[u8]| {
             FlyDevice::<f32>::new(FlyParams::default(), "fuzz").unwrap(),
             data,
         ),
-        _ => run(
+        7 => run(
             FlyDevice::<Fx>::new(FlyParams::default(), "fuzz").unwrap(),
+            data,
+        ),
+        8 => run(
+            LiDevice::<f32>::new(LiParams::default(), "fuzz").unwrap(),
+            data,
+        ),
+        _ => run(
+            LiDevice::<Fx>::new(LiParams::default(), "fuzz").unwrap(),
             data,
         ),
     }

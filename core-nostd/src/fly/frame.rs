@@ -1,6 +1,7 @@
 //! The insect's state and its sensor frame, with input validation (spec §1.4, §1.5 step 1).
 
-use crate::check::{check_unit, check_vec};
+use crate::check::check_vec;
+pub use crate::orca3d::Neighbour;
 use crate::orca3d::Surface;
 use crate::{Error, Result, Scalar, Vec3};
 
@@ -22,17 +23,6 @@ wire_type! {
         pub escape_theta: S,
         /// Whether a predator was in range at the last step (ours).
         pub escaping: bool,
-    }
-
-    /// A neighbour within r_att as the insect senses it.
-    #[derive(Clone, Copy, Debug, PartialEq)]
-    pub struct Neighbour<S> {
-        /// Its agent id.
-        pub id: u32,
-        /// Its position r_j.
-        pub pos: Vec3<S>,
-        /// Its current actual velocity v_j.
-        pub vel: Vec3<S>,
     }
 
     /// The stimulus the insect responds to (the nearest within r_res, a predator before a
@@ -145,22 +135,12 @@ impl<S: Scalar, const N: usize, const O: usize> FlyFrame<S, N, O> {
     /// (`frame.stimulus.pos`, `frame.stimulus.kind`); surfaces' points within the limit and
     /// unit normals (`frame.surfaces.point`, `.normal`). List errors carry the entry's index.
     pub fn validate(&self) -> Result<()> {
-        for (i, n) in self.neighbours.iter().enumerate() {
-            check_vec(n.pos, "frame.neighbours.pos").map_err(|e| e.at(i))?;
-            check_vec(n.vel, "frame.neighbours.vel").map_err(|e| e.at(i))?;
-            if self.neighbours[..i].iter().any(|o| o.id == n.id) {
-                return Err(Error::inconsistent("frame.neighbours.id").at(i));
-            }
-        }
+        crate::orca3d::check_sensed(&self.neighbours, &self.surfaces)?;
         if let Some(s) = &self.stimulus {
             check_vec(s.pos, "frame.stimulus.pos")?;
             if s.kind > STIMULUS_PREDATOR {
                 return Err(Error::out_of_range("frame.stimulus.kind"));
             }
-        }
-        for (i, s) in self.surfaces.iter().enumerate() {
-            check_vec(s.point, "frame.surfaces.point").map_err(|e| e.at(i))?;
-            check_unit(s.normal, "frame.surfaces.normal").map_err(|e| e.at(i))?;
         }
         Ok(())
     }

@@ -3,8 +3,8 @@
 
 use super::force::{friction, noise_force, response, zone_force};
 use super::frame::{FlyFrame, FlyState};
-use super::params::{FALLBACK_LP4, FlyParams};
-use crate::orca3d::{self, Body, Fallback, OrcaParams};
+use super::params::FlyParams;
+use crate::orca3d::{self, Fallback, OrcaParams};
 use crate::{Checked, Result, Scalar, StepCtx, Vec3};
 
 wire_type! {
@@ -62,32 +62,23 @@ pub fn step_checked<S: Scalar, const N: usize, const O: usize>(
     let f_xi = noise_force(state.pos, p, ctx);
     let pref = state.vel + (f_int + f_fric + f_res + f_xi) * p.dt;
 
-    let radius = p.orca_radius();
-    let body = |pos, vel| Body { pos, vel, radius };
-    let room = N.saturating_sub(frame.surfaces.len());
-    let mut others: heapless::Vec<Body<S>, N> = heapless::Vec::new();
-    for n in frame
-        .neighbours
-        .iter()
-        .filter(|n| n.id != ctx.agent)
-        .take(room)
-    {
-        // At most `room` ≤ N entries: no push can fail.
-        let _ = others.push(body(n.pos, n.vel));
-    }
     let orca = OrcaParams {
         time_horizon: p.tau,
         dt: p.dt,
         max_speed: p.max_speed,
         max_neighbors: u16::from(p.orca_neighbours),
-        fallback: if p.fallback == FALLBACK_LP4 {
-            Fallback::Lp4
-        } else {
-            Fallback::ZeroVelocity
-        },
+        fallback: Fallback::of_code(p.fallback),
     };
-    let me = body(state.pos, state.vel);
-    let solution = orca3d::solve::<S, N>(&me, &others, &frame.surfaces, pref, &orca)?;
+    let solution = orca3d::solve_frame::<S, N>(
+        ctx.agent,
+        state.pos,
+        state.vel,
+        p.orca_radius(),
+        &frame.neighbours,
+        &frame.surfaces,
+        pref,
+        &orca,
+    )?;
     let vel = solution.velocity;
     let next = FlyState {
         pos: state.pos + vel * p.dt,

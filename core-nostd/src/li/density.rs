@@ -72,6 +72,13 @@ impl<'a, S: Scalar> Density<'a, S> {
         Some(out)
     }
 
+    /// The lower and upper corners of the grid.
+    pub fn bounds(&self) -> (Vec3<S>, Vec3<S>) {
+        let side = |d: u16| self.cell * S::from_i32(i32::from(d));
+        let far = Vec3::new(side(self.dims[0]), side(self.dims[1]), side(self.dims[2]));
+        (self.origin, self.origin + far)
+    }
+
     /// w_c of the cell holding `p`: 0 outside the grid.
     pub fn at(&self, p: Vec3<S>) -> u8 {
         self.cell_of(p).map_or(0, |[x, y, z]| {
@@ -79,5 +86,53 @@ impl<'a, S: Scalar> Density<'a, S> {
             let i = usize::from(x) + nx * (usize::from(y) + ny * usize::from(z));
             self.weights.get(i).copied().unwrap_or(0)
         })
+    }
+}
+
+/// The most cells an owned grid holds: 16³, one byte each (4 KiB, spec §1.7).
+pub const MAX_CELLS: usize = 4096;
+
+wire_type! {
+    /// An owned visiting-frequency grid of at most [`MAX_CELLS`] cells (what a model's
+    /// parameters carry, and a device keeps in flash); [`DensityGrid::view`] reads it.
+    #[derive(Clone, Debug, PartialEq)]
+    pub struct DensityGrid<S> {
+        /// The lower corner of cell (0, 0, 0).
+        pub origin: Vec3<S>,
+        /// The side of a cell.
+        pub cell: S,
+        /// Cells along x, y and z.
+        pub dims: [u16; 3],
+        /// w_c, x fastest, then y, then z.
+        pub weights: heapless::Vec<u8, MAX_CELLS>,
+    }
+}
+
+impl<S: Scalar> DensityGrid<S> {
+    /// A grid over a copy of `weights`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Density::new`]; `BadParam("weights")` for more than [`MAX_CELLS`] cells.
+    pub fn new(origin: Vec3<S>, cell: S, dims: [u16; 3], weights: &[u8]) -> Result<Self> {
+        let weights =
+            heapless::Vec::from_slice(weights).map_err(|_| Error::BadParam { field: "weights" })?;
+        let grid = DensityGrid {
+            origin,
+            cell,
+            dims,
+            weights,
+        };
+        grid.view()?;
+        Ok(grid)
+    }
+
+    /// The grid as a [`Density`].
+    ///
+    /// # Errors
+    ///
+    /// As [`Density::new`] (a grid deserialized with a wrong shape).
+    pub fn view(&self) -> Result<Density<'_, S>> {
+        Density::new(self.origin, self.cell, self.dims, &self.weights)
     }
 }

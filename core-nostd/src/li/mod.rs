@@ -11,7 +11,10 @@
 //!   previous direction turned by |θ| at a uniform azimuth);
 //! * [`density::Density`]: the visiting-frequency grid `w_c`, one byte a cell (a device keeps
 //!   16³ cells in 4 KiB; obstacles and the outside are 0);
-//! * [`waypoint::next_waypoint`]: Algorithm 1 with the screening of §4.3.
+//! * [`waypoint::next_waypoint`]: Algorithm 1 with the screening of §4.3;
+//! * [`LiParams`], [`LiState`], [`LiFrame`] and [`step()`]: the whole insect of spec §1.6 as a
+//!   model (the waypoint, the preferred velocity toward it, ORCA, the move), its learned data
+//!   in its parameters.
 //!
 //! `no_std`, no allocation, no panics; generic over [`Scalar`](crate::Scalar). Randomness is
 //! counter-based: streams [`LI_LENGTH`](crate::rand::stream::LI_LENGTH) and the three after
@@ -22,7 +25,7 @@
 //! ```
 //! use swarm_core::li::density::Density;
 //! use swarm_core::li::sampler::Table;
-//! use swarm_core::li::waypoint::{LiParams, Waypoint, next_waypoint};
+//! use swarm_core::li::waypoint::{Screening, Waypoint, next_waypoint};
 //! use swarm_core::{StepCtx, Vec3};
 //!
 //! // Segment lengths 0.01-0.03 m, turns 0-0.5 rad, uniform within their ranges.
@@ -31,7 +34,7 @@
 //! // A 2 × 2 × 2 grid of 0.5 m cells, every cell visited as often.
 //! let weights = [10u8; 8];
 //! let density = Density::new(Vec3::new(0.0, 0.0, 0.0), 0.5, [2, 2, 2], &weights).unwrap();
-//! let params = LiParams::<f32>::default();
+//! let params = Screening::<f32>::default();
 //! let here = Vec3::new(0.5, 0.5, 0.5);
 //! // Arrived (the waypoint is where the insect is): a new one is proposed and accepted.
 //! let at = Waypoint { waypoint: here, seg_start: here };
@@ -43,8 +46,22 @@
 //! ```
 
 pub mod density;
+pub mod frame;
+pub mod params;
 pub mod sampler;
+pub mod step;
 pub mod waypoint;
+mod wire;
+
+pub use frame::{LiFrame, LiState};
+pub use params::{BINS, LiParams, LiTable};
+pub use step::{LiDecision, preferred, step, step_checked};
+#[cfg(feature = "serde")]
+pub use wire::{LiDevice, MAX_LI_FRAME, MAX_LI_PAYLOAD, MAX_LI_REPLY_FRAME, MAX_LI_REPLY_PAYLOAD};
+pub use wire::{
+    LiNeighbour, LiStep, LiStepReply, LiStepRequest, WIRE_LI_NEIGHBOURS, WIRE_LI_SURFACES,
+    WireLiFrame,
+};
 
 #[cfg(test)]
 mod tests;

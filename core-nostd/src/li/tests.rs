@@ -2,7 +2,7 @@
 
 use super::density::Density;
 use super::sampler::Table;
-use super::waypoint::{LiParams, Waypoint, accept, direction, next_waypoint};
+use super::waypoint::{Screening, Waypoint, accept, direction, next_waypoint};
 use crate::rand;
 use crate::{Error, StepCtx, Vec3};
 
@@ -122,7 +122,7 @@ fn uniform_world() -> ([u8; 64], Table<f32, 8>, Table<f32, 8>) {
 fn algorithm_1_proposes_only_on_arrival() {
     let (w, lengths, turns) = uniform_world();
     let density = Density::new(v(0.0, 0.0, 0.0), 0.25, [4, 4, 4], &w).unwrap();
-    let params = LiParams::<f32>::default();
+    let params = Screening::<f32>::default();
     let current = Waypoint {
         waypoint: v(0.6, 0.5, 0.5),
         seg_start: v(0.3, 0.5, 0.5),
@@ -210,9 +210,10 @@ fn gaussian_grid() -> (Vec<u8>, f32) {
 fn chain_visits(grid: &Density<'_, f32>, proposals: u8) -> Vec<u64> {
     let lengths = Table::<f32, 16>::from_counts(0.0, 0.06, &[1; 16]).unwrap();
     let turns = Table::<f32, 4>::from_counts(0.0, 0.1, &[1; 4]).unwrap();
-    let params = LiParams {
+    let params = Screening {
         eps: 0.0,
         proposals,
+        ..Screening::default()
     };
     let mut visits = vec![0u64; 16 * 16 * 16];
     for chain in 0..200u32 {
@@ -289,11 +290,12 @@ fn bad_input_is_refused() {
         Err(Error::BadParam { field: "cell" })
     );
     // A table built by hand with no bins: draws and the CDF stay total.
-    let empty = Table::<f32, 0> {
+    let empty = Table::<f32, 4> {
         lo: 0.0,
         hi: 1.0,
-        cdf: [],
+        cdf: heapless::Vec::new(),
     };
+    assert_eq!(empty.validate("t"), Err(Error::BadParam { field: "t" }));
     assert_eq!((empty.sample(0.5), empty.cdf_at(0.5)), (1.0, 1.0));
     let density = Density::new(v(0.0, 0.0, 0.0), 0.25, [4, 4, 4], &w).unwrap();
     assert_eq!(density.at(v(-0.01, 0.5, 0.5)), 0);
@@ -301,15 +303,15 @@ fn bad_input_is_refused() {
     assert_eq!(density.at(v(0.99, 0.99, 0.99)), 100);
     assert_eq!(density.at(v(1.0, 0.5, 0.5)), 0);
     let here = Waypoint::default();
-    let params = LiParams::<f32>::default();
-    let run = |pos: Vec3<f32>, p: &LiParams<f32>| {
+    let params = Screening::<f32>::default();
+    let run = |pos: Vec3<f32>, p: &Screening<f32>| {
         next_waypoint(pos, &here, &lengths, &turns, &density, p, ctx(0, 0))
     };
     assert_eq!(
         run(v(f32::NAN, 0.0, 0.0), &params),
         Err(Error::non_finite("pos"))
     );
-    let zero = LiParams {
+    let zero = Screening {
         proposals: 0,
         ..params
     };
@@ -325,7 +327,7 @@ fn bad_input_is_refused() {
 fn an_insect_with_nowhere_to_go_holds() {
     let (w, lengths, turns) = uniform_world();
     let density = Density::new(v(5.0, 5.0, 5.0), 0.25, [4, 4, 4], &w).unwrap();
-    let params = LiParams::<f32>::default();
+    let params = Screening::<f32>::default();
     let here = Waypoint {
         waypoint: v(0.0, 0.0, 0.0),
         seg_start: v(-0.1, 0.0, 0.0),
@@ -356,7 +358,7 @@ fn fixed_point_proposes_within_the_tables() {
     let turns = Table::<Fx, 8>::from_counts(f(0.0), f(0.6), &[1; 8]).unwrap();
     let w = [100u8; 64];
     let density = Density::new(Vec3::new(f(0.0), f(0.0), f(0.0)), f(0.25), [4, 4, 4], &w).unwrap();
-    let params = LiParams::<Fx>::default();
+    let params = Screening::<Fx>::default();
     let pos = Vec3::new(f(0.5), f(0.5), f(0.5));
     let here = Waypoint {
         waypoint: pos,
@@ -388,4 +390,173 @@ fn fixed_point_proposes_within_the_tables() {
         .unwrap();
         assert_eq!(next, again);
     }
+}
+
+// ---- the whole insect (spec §1.6) ----
+
+use super::density::DensityGrid;
+use super::waypoint::{SAMPLING_MESO, SAMPLING_RANDOM};
+use super::{LiFrame, LiParams, LiState, preferred, step};
+use crate::orca3d::{Neighbour, Surface};
+
+type Frame = LiFrame<f32, 16, 4>;
+
+/// The default parameters with 16-bin tables (lengths 5-40 mm, turns 0-0.8 rad) and the
+/// Gaussian grid of L-T6 over the 0.91 m cube (origin at −0.455).
+fn gaussian_params() -> LiParams<f32> {
+    let (w, cell) = gaussian_grid();
+    LiParams {
+        lengths: Table::from_counts(0.005, 0.04, &[1; 16]).unwrap(),
+        turns: Table::from_counts(0.0, 0.8, &[3, 2, 1, 1]).unwrap(),
+        density: DensityGrid::new(v(-0.455, -0.455, -0.455), cell, [16, 16, 16], &w).unwrap(),
+        ..LiParams::default()
+    }
+}
+
+#[test]
+fn default_parameters_are_valid_and_bad_data_is_named() {
+    assert_eq!(LiParams::<f32>::default().validate(), Ok(()));
+    let p = gaussian_params();
+    assert_eq!(p.validate(), Ok(()));
+    #[cfg(feature = "fixed")]
+    assert_eq!(p.cast::<crate::Fx>().validate(), Ok(()));
+    let bad = |f: &dyn Fn(&mut LiParams<f32>), field| {
+        let mut q = p.clone();
+        f(&mut q);
+        assert_eq!(q.validate(), Err(Error::BadParam { field }));
+    };
+    bad(&|q| q.lengths.lo = -0.01, "lengths");
+    bad(&|q| q.lengths.cdf[15] = 0.5, "lengths");
+    bad(&|q| q.turns.hi = 4.0, "turns");
+    bad(&|q| q.density.dims = [16, 16, 15], "density");
+    bad(&|q| q.density.cell = 0.0, "density");
+    bad(&|q| q.sampling = 3, "sampling");
+    bad(&|q| q.proposals = 0, "proposals");
+}
+
+#[test]
+fn the_preferred_velocity_is_v0_toward_the_waypoint_without_overshoot() {
+    let x = v(0.0, 0.0, 0.0);
+    assert_eq!(
+        preferred(x, v(1.0, 0.0, 0.0), 0.15, 0.01),
+        v(0.15, 0.0, 0.0)
+    );
+    // Closer than one step: exactly there after the step.
+    let near = preferred(x, v(0.0, 0.001, 0.0), 0.15, 0.01);
+    assert!((near.y - 0.1).abs() < 1e-6 && near.x == 0.0, "{near:?}");
+    assert_eq!(preferred(x, x, 0.15, 0.01), v(0.0, 0.0, 0.0));
+}
+
+/// A lone insect: every waypoint it accepts is one table length away, in a visited cell; it
+/// flies at most v0 and reaches each waypoint (so it proposes often); the same inputs give
+/// the same bits.
+#[test]
+fn a_lone_insect_flies_from_waypoint_to_waypoint() {
+    let p = gaussian_params();
+    let mut s = LiState::at(v(0.0, 0.0, 0.0));
+    let mut arrivals = 0;
+    for k in 0..3000 {
+        let c = ctx(3, k);
+        let (next, d) = step(&s, &Frame::new(), &p, c).unwrap();
+        assert_eq!(step(&s, &Frame::new(), &p, c).unwrap(), (next, d));
+        assert!(next.vel.length() <= p.speed * 1.0001, "{:?}", next.vel);
+        if d.accepted {
+            arrivals += 1;
+            let l = (next.waypoint - s.pos).length();
+            assert!((0.0049..=0.0401).contains(&l), "{l}");
+            assert!(p.density.view().unwrap().at(next.waypoint) > 0);
+            assert_eq!((next.seg_start, next.age), (s.pos, 0));
+        }
+        s = next;
+    }
+    // Mean length 22.5 mm at 0.148 m/s: about 15 steps a segment.
+    assert!((120..=260).contains(&arrivals), "{arrivals} arrivals");
+}
+
+/// A waypoint it cannot reach (behind a wall 2 mm ahead: ORCA holds it back) is given up
+/// after `patience` steps, and a new one is proposed.
+#[test]
+fn an_unreachable_waypoint_is_given_up_after_patience() {
+    let p = LiParams {
+        patience: 20,
+        ..gaussian_params()
+    };
+    let mut s = LiState::at(v(0.0, 0.0, 0.0));
+    s.waypoint = v(0.03, 0.0, 0.0);
+    s.seg_start = v(-0.01, 0.0, 0.0);
+    let mut frame = Frame::new();
+    frame
+        .surfaces
+        .push(Surface {
+            point: v(0.049, 0.0, 0.0),
+            normal: v(-1.0, 0.0, 0.0),
+        })
+        .unwrap();
+    for k in 0..20 {
+        let (next, d) = step(&s, &frame, &p, ctx(0, k)).unwrap();
+        assert_eq!(
+            (d.proposals, next.waypoint, next.age),
+            (0, s.waypoint, k as u16 + 1)
+        );
+        s = next;
+    }
+    let (next, d) = step(&s, &frame, &p, ctx(0, 20)).unwrap();
+    assert!(d.proposals > 0 && next.age == 0, "{d:?}");
+}
+
+/// Two insects flying at each other through their waypoints: ORCA keeps them apart.
+#[test]
+fn two_insects_head_on_keep_their_distance() {
+    let p = gaussian_params();
+    let mut a = LiState::at(v(-0.1, 0.0, 0.0));
+    let mut b = LiState::at(v(0.1, 0.0, 0.0));
+    (a.waypoint, b.waypoint) = (v(0.2, 0.0, 0.0), v(-0.2, 0.0, 0.0));
+    (a.seg_start, b.seg_start) = (v(-0.2, 0.0, 0.0), v(0.2, 0.0, 0.0));
+    let sensed = |id, s: &LiState<f32>| {
+        let mut f = Frame::new();
+        f.neighbours
+            .push(Neighbour {
+                id,
+                pos: s.pos,
+                vel: s.vel,
+            })
+            .unwrap();
+        f
+    };
+    for k in 0..150 {
+        let (na, _) = step(&a, &sensed(1, &b), &p, ctx(0, k)).unwrap();
+        let (nb, _) = step(&b, &sensed(0, &a), &p, ctx(1, k)).unwrap();
+        (a, b) = (na, nb);
+        assert!((a.pos - b.pos).length() >= 2.0 * p.radius, "step {k}");
+    }
+}
+
+/// Fig. 4's other methods: random waypoints are uniform in the grid's box; mesoscopic ones
+/// go anywhere inside the grid, zero cells included.
+#[test]
+fn random_and_mesoscopic_sampling() {
+    let mut p = gaussian_params();
+    p.sampling = SAMPLING_RANDOM;
+    let here = LiState::at(v(0.0, 0.0, 0.0));
+    let n = 4000;
+    let mut mean = [0.0f64; 3];
+    for k in 0..n {
+        let (s, d) = step(&here, &Frame::new(), &p, ctx(k, 0)).unwrap();
+        assert!(d.accepted && d.proposals == 1);
+        for (m, c) in mean
+            .iter_mut()
+            .zip([s.waypoint.x, s.waypoint.y, s.waypoint.z])
+        {
+            assert!((-0.455..=0.455).contains(&c));
+            *m += f64::from(c) / f64::from(n);
+        }
+    }
+    assert!(mean.iter().all(|m| m.abs() < 0.02), "{mean:?}");
+    p.sampling = SAMPLING_MESO;
+    // At a corner cell of zero density, a mesoscopic proposal inside the grid is accepted.
+    let corner = LiState::at(v(0.44, 0.44, 0.44));
+    assert_eq!(p.density.view().unwrap().at(corner.pos), 0);
+    let (s, d) = step(&corner, &Frame::new(), &p, ctx(0, 0)).unwrap();
+    assert!(d.accepted, "{d:?}");
+    assert!(p.density.view().unwrap().cell_of(s.waypoint).is_some());
 }

@@ -8,10 +8,20 @@ use crate::rand::{self, stream};
 use crate::scalar::pi;
 use crate::{Error, Result, Scalar, StepCtx, Vec3};
 
+/// [`Screening::sampling`]: Algorithm 1 screened by Metropolis-Hastings (meso + macro: the
+/// paper's model, §4.2-4.3).
+pub const SAMPLING_MH: u8 = 0;
+/// [`Screening::sampling`]: Algorithm 1 alone (the mesoscopic level of Fig. 4): a proposal is
+/// accepted when it is inside the grid, whatever its density (ours: the grid is the domain).
+pub const SAMPLING_MESO: u8 = 1;
+/// [`Screening::sampling`]: a waypoint uniform in the grid's box, length and turn ignored
+/// (Fig. 4's "random sampling", spec L12).
+pub const SAMPLING_RANDOM: u8 = 2;
+
 wire_type! {
     /// The parameters of the waypoint level (spec §1.6, §2.3; ours where the paper is silent).
     #[derive(Clone, Copy, Debug, PartialEq)]
-    pub struct LiParams<S> {
+    pub struct Screening<S> {
         /// ε of Algorithm 1: the insect has arrived when ‖x − g‖ ≤ ε (ours: one step of
         /// travel, v0·Δt).
         pub eps: S,
@@ -20,6 +30,9 @@ wire_type! {
         /// Metropolis-Hastings, one proposal. When all K are rejected the insect holds (its
         /// waypoint is its position) and proposes again at the next step.
         pub proposals: u8,
+        /// How waypoints are drawn: [`SAMPLING_MH`], [`SAMPLING_MESO`] or
+        /// [`SAMPLING_RANDOM`].
+        pub sampling: u8,
     }
 
     /// An insect's waypoint state: its current waypoint g and the start s of its current
@@ -44,22 +57,26 @@ wire_type! {
     }
 }
 
-impl<S: Scalar> Default for LiParams<S> {
-    /// ε = 0.148 m/s × 0.01 s (spec §1.3 in metres, §1.6), K = 32.
+impl<S: Scalar> Default for Screening<S> {
+    /// ε = 0.148 m/s × 0.01 s (spec §1.3 in metres, §1.6), K = 32, Metropolis-Hastings.
     fn default() -> Self {
-        LiParams {
+        Screening {
             eps: S::from_f32(0.00148),
             proposals: 32,
+            sampling: SAMPLING_MH,
         }
     }
 }
 
-impl<S: Scalar> LiParams<S> {
-    /// `Err(BadParam)` unless ε is finite and non-negative and K ≥ 1.
+impl<S: Scalar> Screening<S> {
+    /// `Err(BadParam)` unless ε is finite and non-negative, K ≥ 1 and the sampling known.
     pub fn validate(&self) -> Result<()> {
         check_nonneg(self.eps, "eps").map_err(|_| Error::BadParam { field: "eps" })?;
         if self.proposals == 0 {
             return Err(Error::BadParam { field: "proposals" });
+        }
+        if self.sampling > SAMPLING_RANDOM {
+            return Err(Error::BadParam { field: "sampling" });
         }
         Ok(())
     }
@@ -106,14 +123,18 @@ pub fn accept<S: Scalar>(w_x: u8, w_g: u8, u: S) -> bool {
 ///   angle), screened by [`accept`] against `density`; the first accepted one becomes the
 ///   waypoint and `s = x`; if none is, the insect holds (`g = x`, `s` kept).
 ///
+/// [`SAMPLING_MESO`] accepts any proposal inside the grid; [`SAMPLING_RANDOM`] proposes a
+/// point uniform in the grid's box instead of `x + l·o`, accepted when inside.
+///
 /// Randomness: proposal a (0-based) draws from streams
 /// [`LI_LENGTH`](stream::LI_LENGTH), [`LI_TURN`](stream::LI_TURN),
 /// [`LI_AZIMUTH`](stream::LI_AZIMUTH), [`LI_HEIGHT`](stream::LI_HEIGHT) and
-/// [`LI_ACCEPT`](stream::LI_ACCEPT), each plus `a << 8`.
+/// [`LI_ACCEPT`](stream::LI_ACCEPT), each plus `a << 8` (a random waypoint's x, y and z are
+/// the first three).
 ///
 /// # Errors
 ///
-/// `BadParam` for invalid [`LiParams`]; `NonFinite`/`OutOfRange` naming `pos`,
+/// `BadParam` for an invalid [`Screening`]; `NonFinite`/`OutOfRange` naming `pos`,
 /// `current.waypoint` or `current.seg_start`.
 #[allow(clippy::too_many_arguments)]
 pub fn next_waypoint<S: Scalar, const L: usize, const T: usize>(
@@ -122,7 +143,7 @@ pub fn next_waypoint<S: Scalar, const L: usize, const T: usize>(
     lengths: &Table<S, L>,
     turns: &Table<S, T>,
     density: &Density<'_, S>,
-    params: &LiParams<S>,
+    params: &Screening<S>,
     ctx: StepCtx,
 ) -> Result<Next<S>> {
     params.validate()?;
@@ -140,12 +161,26 @@ pub fn next_waypoint<S: Scalar, const L: usize, const T: usize>(
     let came = pos - current.seg_start;
     for a in 0..params.proposals {
         let draw = |s: u32| rand::unit::<S>(ctx, s + (u32::from(a) << 8));
-        let l = lengths.sample(draw(stream::LI_LENGTH));
-        let theta = turns.sample(draw(stream::LI_TURN));
-        let phi = (draw(stream::LI_AZIMUTH) * S::from_i32(2) - S::ONE) * pi::<S>();
-        let z = draw(stream::LI_HEIGHT) * S::from_i32(2) - S::ONE;
-        let g = pos + direction(came, theta, phi, z) * l;
-        if accept(w_x, density.at(g), draw(stream::LI_ACCEPT)) {
+        let (u1, u2, u3) = (
+            draw(stream::LI_LENGTH),
+            draw(stream::LI_TURN),
+            draw(stream::LI_AZIMUTH),
+        );
+        let g = if params.sampling == SAMPLING_RANDOM {
+            let (lo, hi) = density.bounds();
+            lo + Vec3::new((hi.x - lo.x) * u1, (hi.y - lo.y) * u2, (hi.z - lo.z) * u3)
+        } else {
+            let (l, theta) = (lengths.sample(u1), turns.sample(u2));
+            let phi = (u3 * S::from_i32(2) - S::ONE) * pi::<S>();
+            let z = draw(stream::LI_HEIGHT) * S::from_i32(2) - S::ONE;
+            pos + direction(came, theta, phi, z) * l
+        };
+        let accepted = if params.sampling == SAMPLING_MH {
+            accept(w_x, density.at(g), draw(stream::LI_ACCEPT))
+        } else {
+            density.cell_of(g).is_some()
+        };
+        if accepted {
             return Ok(Next {
                 waypoint: Waypoint {
                     waypoint: g,

@@ -332,6 +332,8 @@ mod tests {
         ranges_hold::<BeeParams<Fx>>(17);
         ranges_hold::<WangParams<f32>>(9);
         ranges_hold::<WangParams<Fx>>(9);
+        ranges_hold::<crate::li::LiParams<f32>>(12);
+        ranges_hold::<crate::li::LiParams<Fx>>(12);
     }
 
     #[test]

@@ -70,6 +70,17 @@ wire_type! {
         pub radius: S,
     }
 
+    /// A neighbour as a swarm agent senses it (what it broadcast at its last step).
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct Neighbour<S> {
+        /// Its agent id.
+        pub id: u32,
+        /// Its position.
+        pub pos: Vec3<S>,
+        /// Its current actual velocity.
+        pub vel: Vec3<S>,
+    }
+
     /// A sensed static obstacle surface: its point closest to the agent and its outward unit
     /// normal (pointing to the agent's side; container walls point inward).
     #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -122,6 +133,18 @@ wire_type! {
     }
 }
 
+impl Fallback {
+    /// The fallback of a model parameter's code: 1 is [`Fallback::Lp4`], anything else
+    /// [`Fallback::ZeroVelocity`] (the models' `fallback` fields: 0 stop, 1 lp4).
+    pub fn of_code(code: u8) -> Self {
+        if code == 1 {
+            Fallback::Lp4
+        } else {
+            Fallback::ZeroVelocity
+        }
+    }
+}
+
 impl<S: Scalar> Default for OrcaParams<S> {
     /// ren2016 spec §2.5: τ = 0.5 s, max speed 10; ours Δt = 0.01 s, 10 neighbours, the
     /// paper's zero-velocity fallback.
@@ -164,6 +187,57 @@ fn check_body<S: Scalar>(
     check_vec(b.pos, pos)?;
     check_vec(b.vel, vel)?;
     check_nonneg(b.radius, r)
+}
+
+/// Checks a sensor frame's neighbours and surfaces: positions and velocities within the
+/// crate's limit (`frame.neighbours.pos`, `.vel`) with no id twice (`Inconsistent`,
+/// `frame.neighbours.id`); surfaces' points within the limit and unit normals
+/// (`frame.surfaces.point`, `.normal`). Errors carry the entry's index.
+pub(crate) fn check_sensed<S: Scalar>(
+    neighbours: &[Neighbour<S>],
+    surfaces: &[Surface<S>],
+) -> Result<()> {
+    for (i, n) in neighbours.iter().enumerate() {
+        check_vec(n.pos, "frame.neighbours.pos").map_err(|e| e.at(i))?;
+        check_vec(n.vel, "frame.neighbours.vel").map_err(|e| e.at(i))?;
+        if neighbours[..i].iter().any(|o| o.id == n.id) {
+            return Err(Error::inconsistent("frame.neighbours.id").at(i));
+        }
+    }
+    for (i, s) in surfaces.iter().enumerate() {
+        check_vec(s.point, "frame.surfaces.point").map_err(|e| e.at(i))?;
+        crate::check::check_unit(s.normal, "frame.surfaces.normal").map_err(|e| e.at(i))?;
+    }
+    Ok(())
+}
+
+/// ORCA for agent `id` of a swarm from its sensor frame (ren2016 Algorithm 1 step 6, li2015
+/// §4.1): the obstacle `surfaces` first, then the first min(`params.max_neighbors`,
+/// `N` − surfaces) of `neighbours` (nearest first as given; an entry with the agent's own id
+/// is skipped), every body of radius `radius`, by [`solve`] with plane capacity `N`.
+///
+/// # Errors
+///
+/// As [`solve`].
+#[allow(clippy::too_many_arguments)]
+pub fn solve_frame<S: Scalar, const N: usize>(
+    id: u32,
+    pos: Vec3<S>,
+    vel: Vec3<S>,
+    radius: S,
+    neighbours: &[Neighbour<S>],
+    surfaces: &[Surface<S>],
+    pref: Vec3<S>,
+    params: &OrcaParams<S>,
+) -> Result<Solution<S>> {
+    let body = |pos, vel| Body { pos, vel, radius };
+    let room = N.saturating_sub(surfaces.len());
+    let mut others: HVec<Body<S>, N> = HVec::new();
+    for n in neighbours.iter().filter(|n| n.id != id).take(room) {
+        // At most `room` ≤ N entries: no push can fail.
+        let _ = others.push(body(n.pos, n.vel));
+    }
+    solve::<S, N>(&body(pos, vel), &others, surfaces, pref, params)
 }
 
 /// One agent's ORCA velocity (ren2016 spec §2.5, RVO2-3D `computeNewVelocity`): obstacle

@@ -20,6 +20,7 @@ use crate::Error;
 use crate::ant::MAX_ANT_PAYLOAD;
 use crate::bee::MAX_BEE_PAYLOAD;
 use crate::fly::MAX_FLY_PAYLOAD;
+use crate::li::MAX_LI_PAYLOAD;
 use crate::wang::MAX_WANG_PAYLOAD;
 
 const fn max(a: usize, b: usize) -> usize {
@@ -29,7 +30,7 @@ const fn max(a: usize, b: usize) -> usize {
 /// The largest payload of any message of the built-in models, for either scalar.
 pub const MAX_PAYLOAD: usize = max(
     max(MAX_ANT_PAYLOAD, MAX_BEE_PAYLOAD),
-    max(MAX_WANG_PAYLOAD, MAX_FLY_PAYLOAD),
+    max(MAX_WANG_PAYLOAD, max(MAX_FLY_PAYLOAD, MAX_LI_PAYLOAD)),
 );
 /// The longest frame of any message of this module, delimiter included: the size of a send
 /// buffer that always suffices, and an [`Accumulator`](super::Accumulator) capacity that
@@ -48,7 +49,8 @@ pub const MAX_FRAME: usize = max_frame_len(MAX_PAYLOAD);
 /// | `0x20-0x2F` | bee controller; a reply is its request's kind + 1        |
 /// | `0x30-0x3F` | wang controller; a reply is its request's kind + 1       |
 /// | `0x40-0x4F` | fly controller; a reply is its request's kind + 1        |
-/// | `0x50-0x7F` | reserved                                                 |
+/// | `0x50-0x5F` | li controller; a reply is its request's kind + 1         |
+/// | `0x60-0x7F` | reserved                                                 |
 /// | `0x80-0xFF` | free for applications and tests; this crate sends none   |
 pub mod kind {
     /// [`Hello`](crate::wire::Hello): host → device, opens the handshake.
@@ -93,6 +95,10 @@ pub mod kind {
     pub const FLY_STEP_REQUEST: u8 = 0x40;
     /// [`FlyStepReply`](crate::fly::FlyStepReply).
     pub const FLY_STEP_REPLY: u8 = 0x41;
+    /// [`LiStepRequest`](crate::li::LiStepRequest).
+    pub const LI_STEP_REQUEST: u8 = 0x50;
+    /// [`LiStepReply`](crate::li::LiStepReply).
+    pub const LI_STEP_REPLY: u8 = 0x51;
 
     /// The message's name, for logs and reports; `None` for a kind this build does not know.
     pub const fn name(kind: u8) -> Option<&'static str> {
@@ -118,6 +124,8 @@ pub mod kind {
             WANG_SEPARATE_REPLY => "SeparateReply",
             FLY_STEP_REQUEST => "FlyStepRequest",
             FLY_STEP_REPLY => "FlyStepReply",
+            LI_STEP_REQUEST => "LiStepRequest",
+            LI_STEP_REPLY => "LiStepReply",
             _ => return None,
         })
     }
@@ -138,6 +146,7 @@ pub mod kind {
                 | WANG_ADVECT_REPLY
                 | WANG_SEPARATE_REPLY
                 | FLY_STEP_REPLY
+                | LI_STEP_REPLY
         )
     }
 
@@ -268,6 +277,10 @@ mod tests {
         FlyDecision, FlyState, FlyStepReply, FlyStepRequest, MAX_FLY_FRAME, MAX_FLY_REPLY_PAYLOAD,
         Neighbour, STIMULUS_PREDATOR, STIMULUS_TARGET, Stimulus, Surface as FlySurface,
         WireFlyFrame,
+    };
+    use crate::li::{
+        LiDecision, LiState, LiStepReply, LiStepRequest, MAX_LI_FRAME, MAX_LI_REPLY_PAYLOAD,
+        WireLiFrame,
     };
     use crate::wang::{
         AdvectFrame, AdvectReply, AdvectRequest, Boundary, Close, MAX_WANG_FRAME,
@@ -931,6 +944,69 @@ mod tests {
         };
         assert!(frame_of(1, &req).len() <= MAX_FLY_FRAME);
         let _ = STIMULUS_TARGET;
+    }
+
+    /// Payload lengths of the widest instance of both li messages: step request and reply.
+    fn widest_li_payloads<S: Widest>() -> [usize; 2] {
+        let ctx = StepCtx {
+            seed: u32::MAX,
+            agent: u32::MAX,
+            step: u32::MAX,
+        };
+        let state = LiState {
+            pos: w3(),
+            vel: w3(),
+            waypoint: w3(),
+            seg_start: w3(),
+            age: u16::MAX,
+        };
+        let mut frame = WireLiFrame::<S>::new();
+        while frame
+            .neighbours
+            .push(Neighbour {
+                id: u32::MAX,
+                pos: w3(),
+                vel: w3(),
+            })
+            .is_ok()
+        {}
+        while frame
+            .surfaces
+            .push(FlySurface {
+                point: w3(),
+                normal: w3(),
+            })
+            .is_ok()
+        {}
+        let request = LiStepRequest { state, frame, ctx };
+        // The worst case fits a device's buffer.
+        assert!(frame_of(1, &request).len() <= MAX_LI_FRAME);
+        [
+            payload_len(&request),
+            payload_len(&LiStepReply {
+                decision: LiDecision {
+                    pref: w3(),
+                    proposals: u8::MAX,
+                    accepted: true,
+                    infeasible: true,
+                },
+                state,
+            }),
+        ]
+    }
+
+    #[test]
+    fn widest_li_messages_fit_max_li_payload() {
+        let f = widest_li_payloads::<f32>();
+        let x = widest_li_payloads::<Fx>();
+        // Request: state 51 / 63, 1 + 16 neighbours of 29 / 35, 1 + 4 surfaces of 24 / 30,
+        // ctx 15. Reply: decision 15 / 18, state 51 / 63.
+        assert_eq!(f, [628, 66]);
+        assert_eq!(x, [760, 81]);
+        assert_eq!(f.iter().chain(&x).max(), Some(&crate::li::MAX_LI_PAYLOAD));
+        assert_eq!(f[1].max(x[1]), MAX_LI_REPLY_PAYLOAD);
+        const { assert!(crate::li::MAX_LI_PAYLOAD <= MAX_PAYLOAD) };
+        assert_eq!(MAX_LI_FRAME, 771);
     }
 
     /// Payload lengths of the widest instance of every message.

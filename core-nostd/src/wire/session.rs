@@ -31,7 +31,7 @@ pub const MAX_SESSION_PAYLOAD: usize = 71;
 pub const MAX_SESSION_FRAME: usize = max_frame_len(MAX_SESSION_PAYLOAD);
 
 /// Which controller a device runs: a number (a varint on the wire), so that a new model needs
-/// no change here. `0` ant, `1` bee, `2` wang, `3` fly; `4`-`127` are kept for this project's
+/// no change here. `0` ant, `1` bee, `2` wang, `3` fly, `4` li; `5`-`127` are kept for this project's
 /// models, `128` and above are free for applications and tests.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(transparent)]
@@ -47,6 +47,8 @@ impl ControllerKind {
     pub const WANG: ControllerKind = ControllerKind(2);
     /// The ren2016 flying insect ([`crate::fly`]): step requests.
     pub const FLY: ControllerKind = ControllerKind(3);
+    /// The li2015 data-driven insect ([`crate::li`]): step requests.
+    pub const LI: ControllerKind = ControllerKind(4);
 }
 
 /// The capacity of each list of a sensor frame the device accepts; 0 for a list its
@@ -409,13 +411,14 @@ const fn math_name(m: MathBackend) -> &'static str {
 }
 
 impl fmt::Display for ControllerKind {
-    /// `ant`, `bee`, `wang`, `fly`, or `controller N` for any other.
+    /// `ant`, `bee`, `wang`, `fly`, `li`, or `controller N` for any other.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
             ControllerKind::ANT => f.write_str("ant"),
             ControllerKind::BEE => f.write_str("bee"),
             ControllerKind::WANG => f.write_str("wang"),
             ControllerKind::FLY => f.write_str("fly"),
+            ControllerKind::LI => f.write_str("li"),
             ControllerKind(n) => write!(f, "controller {n}"),
         }
     }
