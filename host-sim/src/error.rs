@@ -296,6 +296,28 @@ pub enum SimError {
         /// The most cells a grid may have.
         limit: u64,
     },
+    /// A li2015 density grid with no cells, or more than a device holds.
+    #[error(
+        "li density: {cells} cells, a grid needs at least 1 and a device holds at most {max} \
+         (one byte each): fewer `cells` along the longest side"
+    )]
+    LiGrid {
+        /// The cells asked for.
+        cells: usize,
+        /// The most a grid may have.
+        max: usize,
+    },
+    /// Samples a li2015 distribution cannot be tabulated from.
+    #[error(
+        "li data: cannot tabulate the {what} from {n} samples (they must be finite and not all \
+         equal)"
+    )]
+    LiSamples {
+        /// Which distribution.
+        what: &'static str,
+        /// How many samples there were.
+        n: usize,
+    },
     /// A per-cell array handed to a field solver whose length is not the grid's cell count.
     #[error("field: {what} has {len} values, the grid has {cells} cells")]
     FieldLength {

@@ -13,6 +13,7 @@ use crate::gpu::Gpu;
 use crate::gpu::ant::engine::GpuAntSim;
 use crate::gpu::fly::engine::GpuFlySim;
 use crate::gpu::wang::engine::GpuWangSim;
+use crate::li::{LiSim, bench_li_world};
 use crate::scenario::{Backend, GroupCheck, Problem, ScalarType, Scenario};
 use crate::wang::{WangSim, bench_wang_world};
 
@@ -142,6 +143,16 @@ pub const BUILTIN: &[ModelEntry] = &[
                 )?))
             },
         }),
+    },
+    ModelEntry {
+        name: "li",
+        about: "data-driven insects: waypoints from measured statistics, Metropolis-Hastings \
+                density control and 3D ORCA (li2015), 3D",
+        dim: 3,
+        check: crate::li::scenario::check,
+        engine: |sc, seed| Ok(Box::new(LiSim::from_scenario(sc, seed)?)),
+        bench_world: |n, seed, scalar| Box::new(bench_li_world(n, seed, scalar)),
+        gpu: None,
     },
 ];
 

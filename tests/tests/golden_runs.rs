@@ -355,6 +355,18 @@ const PINNED: &[(&str, &str, u64, u64)] = &[
         0xf871b9f98ca3dfb2,
         0x795cb6fb488cd141,
     ),
+    (
+        "li-fig4-confined",
+        "f32",
+        0x3b36e0b6ae6aada3,
+        0x602208939834e53a,
+    ),
+    (
+        "li-fig4-confined",
+        "fixed",
+        0xace63f072f6be22e,
+        0x506756210aaa440f,
+    ),
 ];
 
 /// The summary without what depends on the machine and the moment.

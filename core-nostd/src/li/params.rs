@@ -35,7 +35,9 @@ wire_type! {
         /// Steps after which a waypoint not reached counts as reached (ours: ORCA can keep an
         /// insect from a waypoint, e.g. one closer to a wall than its radius).
         pub patience: u16,
-        /// ORCA radius (§4.1 0.45, read as dm: 0.045 m).
+        /// ORCA radius (ours 4.5 mm, a midge's size: §4.1's 0.45 read as cm; read as dm like
+        /// the speed, 100 insects of 4.5 cm cannot fit the density of a swarm a few
+        /// decimetres across, docs/models.md).
         pub radius: S,
         /// ORCA's safety margin: ORCA plans with radius·(1 + margin) (ours, as ren2016's).
         pub margin: S,
@@ -48,7 +50,7 @@ wire_type! {
         pub orca_neighbours: u8,
         /// K: proposals per arrival (spec L8, ours 32; 1 is standard Metropolis-Hastings).
         pub proposals: u8,
-        /// [`SAMPLING_MH`](super::waypoint::SAMPLING_MH) (0, the model),
+        /// [`SAMPLING_MH`] (0, the model),
         /// [`SAMPLING_MESO`](super::waypoint::SAMPLING_MESO) (1) or
         /// [`SAMPLING_RANDOM`](super::waypoint::SAMPLING_RANDOM) (2): Fig. 4's methods.
         pub sampling: u8,
@@ -65,7 +67,7 @@ wire_type! {
 }
 
 impl<S: Scalar> Default for LiParams<S> {
-    /// Spec §1.3 in metres: v0 0.148 m/s, radius 0.045 m, τ 5.27 s, range 1.484 m; Δt 0.01 s,
+    /// Spec §1.3 in metres: v0 0.148 m/s, τ 5.27 s, range 1.484 m; radius 4.5 mm; Δt 0.01 s,
     /// ε = v0·Δt, patience 300 steps, margin 0.05, 16 ORCA neighbours, K = 32,
     /// Metropolis-Hastings, LP4; placeholder data: lengths uniform in [2, 30] mm, turns
     /// uniform in [0, 0.7] rad, one cell over the 0.91 m cube of the data.
@@ -81,7 +83,7 @@ impl<S: Scalar> Default for LiParams<S> {
             speed: f(0.148),
             eps: f(0.00148),
             patience: 300,
-            radius: f(0.045),
+            radius: f(0.0045),
             margin: f(0.05),
             tau: f(5.27),
             range: f(1.484),

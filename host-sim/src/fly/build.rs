@@ -7,7 +7,7 @@ use swarm_core::{Fx, Vec3};
 
 use super::sense::Stimuli;
 use super::sim::{AnyFlyGroup, FlyGroup, FlySim};
-use super::world::{FlyWorld, Source, reach};
+use super::world::{FlyWorld, Source, clear_of, reach};
 use crate::by_scalar;
 use crate::output::{AgentSample, Frame};
 use crate::scalar::SimScalar;
@@ -92,56 +92,17 @@ impl FlySim {
         Ok(FlySim::new(world, groups, seed))
     }
 
-    /// Applies a timed event of the scenario (`Action` on the object with id `object`): an
-    /// obstacle or a stimulus source added, removed or moved (a sphere is both).
+    /// Applies a timed event of the scenario ([`FlyWorld::apply`]).
     pub fn apply(&mut self, object: u16, action: &Action) {
-        let w = &mut self.world;
-        let on = match action {
-            Action::Add(_) | Action::Start(_) => Some(true),
-            Action::Remove(_) | Action::Stop(_) => Some(false),
-            Action::Move { .. } => None,
-        };
-        if let Some(o) = w.obstacles.iter_mut().find(|o| o.id == object) {
-            match (on, action) {
-                (Some(active), _) => o.active = active,
-                (None, Action::Move { to, .. }) => {
-                    o.set_center(to);
-                }
-                _ => {}
-            }
-        }
-        if let Some(s) = w.sources.iter_mut().find(|s| s.id == object) {
-            match (on, action) {
-                (Some(active), _) => s.active = active,
-                (None, Action::Move { to, .. }) => {
-                    if let &[x, y, z] = to.as_slice() {
-                        let shift = [x - s.center[0], y - s.center[1], z - s.center[2]];
-                        s.center = [x, y, z];
-                        if let Some(b) = &mut s.region {
-                            b.iter_mut()
-                                .for_each(|c| (0..3).for_each(|k| c[k] += shift[k]));
-                        }
-                    }
-                }
-                _ => {}
-            }
-        }
+        self.world.apply(object, action);
     }
-}
-
-/// Whether an insect of ORCA radius `r` may start at `q`: one radius off every active
-/// obstacle (a spawn region may hold one: the lamp of Fig. 7 among its moths).
-fn clear_of(obstacles: &[BeeObstacle], min: [f32; 3], max: [f32; 3], r: f32, q: [f32; 3]) -> bool {
-    obstacles.iter().filter(|o| o.active).all(|o| {
-        let s = o.shape.surface(Vec3::new(q[0], q[1], q[2]), min, max);
-        !s.inside && s.distance >= r
-    })
 }
 
 /// The insects of group `g`, ids `first..`, at rest at the places `at` gives once the
 /// parameters are checked: spawned uniformly in its region
 /// (box, or ball around an object's centre) with the scenario's counter-based random numbers,
-/// at least two ORCA radii apart and clear of the obstacles ([`spaced3`], [`clear_of`]): ORCA
+/// at least two ORCA radii apart and clear of the obstacles ([`spaced3`],
+/// [`clear_of`]): ORCA
 /// keeps apart only insects that start apart.
 fn spawn<S: SimScalar>(
     g: &Group,

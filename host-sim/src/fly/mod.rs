@@ -24,4 +24,4 @@ pub use build::{bench_fly_world, fly_frame_samples};
 pub use scenario::{FlyParamsOverride, FlyPreset, fly_params};
 pub use sense::{FlySimFrame, N, O, Stimuli, ZONE_QUOTA, fly_frame, zone_shares};
 pub use sim::{AnyFlyGroup, Counts, FlyGroup, FlySim};
-pub use world::{FlyWorld, Sensed, Source, reach};
+pub use world::{FlyWorld, Kinematic, Sensed, Source, clear_of, reach};

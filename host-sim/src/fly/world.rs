@@ -10,6 +10,7 @@ use swarm_core::{Scalar, Vec3};
 
 use crate::grid::Grid;
 use crate::scalar::{SimScalar, a3};
+use crate::scenario::Action;
 use crate::space::{BeeObstacle, at, axis, confine, with_axis};
 
 /// An object whose centre is a stimulus (§2.3): a group's `goal` (pursued) or `threat`
@@ -31,6 +32,24 @@ pub struct Source {
     pub region: Option<[[f32; 3]; 2]>,
 }
 
+/// A state with a position and a velocity (what the world senses, keeps physical and
+/// broadcasts): every model living in a [`FlyWorld`].
+pub trait Kinematic<S>: Send + Sync {
+    /// Its position and velocity.
+    fn kinematics(&self) -> (Vec3<S>, Vec3<S>);
+    /// Its position and velocity, to correct.
+    fn kinematics_mut(&mut self) -> (&mut Vec3<S>, &mut Vec3<S>);
+}
+
+impl<S: SimScalar> Kinematic<S> for FlyState<S> {
+    fn kinematics(&self) -> (Vec3<S>, Vec3<S>) {
+        (self.pos, self.vel)
+    }
+    fn kinematics_mut(&mut self) -> (&mut Vec3<S>, &mut Vec3<S>) {
+        (&mut self.pos, &mut self.vel)
+    }
+}
+
 /// What every insect broadcast at its last step, by slot (`f64` holds `f32` and `Fx` values
 /// exactly).
 #[derive(Clone, Debug, Default)]
@@ -45,7 +64,12 @@ pub struct Sensed {
 
 impl Sensed {
     /// Writes slots `first..first + states.len()` (insects `ids`), in parallel.
-    pub fn write<S: SimScalar>(&mut self, first: usize, ids: &[u32], states: &[FlyState<S>]) {
+    pub fn write<S: SimScalar, K: Kinematic<S>>(
+        &mut self,
+        first: usize,
+        ids: &[u32],
+        states: &[K],
+    ) {
         let r = first..first + states.len();
         self.pos[r.clone()]
             .par_iter_mut()
@@ -54,8 +78,9 @@ impl Sensed {
             .zip(states.par_iter().zip(ids.par_iter()))
             .with_min_len(4096)
             .for_each(|(((p, v), i), (s, &id))| {
-                *p = a3(s.pos);
-                *v = a3(s.vel);
+                let (pos, vel) = s.kinematics();
+                *p = a3(pos);
+                *v = a3(vel);
                 *i = id;
             });
     }
@@ -179,9 +204,60 @@ impl FlyWorld {
     /// ([`confine`]); returns what was corrected (bit 0 an obstacle, bit 1 a wall). ORCA's
     /// obstacle planes keep insects out by themselves; this is the backstop, and every
     /// correction is counted.
-    pub fn confine<S: SimScalar>(&self, s: &mut FlyState<S>) -> u8 {
-        confine(&self.obstacles, self.min, self.max, &mut s.pos, &mut s.vel)
+    pub fn confine<S: SimScalar>(&self, s: &mut impl Kinematic<S>) -> u8 {
+        let (pos, vel) = s.kinematics_mut();
+        confine(&self.obstacles, self.min, self.max, pos, vel)
     }
+
+    /// Applies a timed event of the scenario (`Action` on the object with id `object`): an
+    /// obstacle or a stimulus source added, removed or moved (a sphere is both).
+    pub fn apply(&mut self, object: u16, action: &Action) {
+        let on = match action {
+            Action::Add(_) | Action::Start(_) => Some(true),
+            Action::Remove(_) | Action::Stop(_) => Some(false),
+            Action::Move { .. } => None,
+        };
+        if let Some(o) = self.obstacles.iter_mut().find(|o| o.id == object) {
+            match (on, action) {
+                (Some(active), _) => o.active = active,
+                (None, Action::Move { to, .. }) => {
+                    o.set_center(to);
+                }
+                _ => {}
+            }
+        }
+        if let Some(s) = self.sources.iter_mut().find(|s| s.id == object) {
+            match (on, action) {
+                (Some(active), _) => s.active = active,
+                (None, Action::Move { to, .. }) => {
+                    if let &[x, y, z] = to.as_slice() {
+                        let shift = [x - s.center[0], y - s.center[1], z - s.center[2]];
+                        s.center = [x, y, z];
+                        if let Some(b) = &mut s.region {
+                            b.iter_mut()
+                                .for_each(|c| (0..3).for_each(|k| c[k] += shift[k]));
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+}
+
+/// Whether a body of radius `r` may start at `q` in the container `[min, max]`: one radius off
+/// every active obstacle (a spawn region may hold one: the lamp of Fig. 7 among its moths).
+pub fn clear_of(
+    obstacles: &[BeeObstacle],
+    min: [f32; 3],
+    max: [f32; 3],
+    r: f32,
+    q: [f32; 3],
+) -> bool {
+    obstacles.iter().filter(|o| o.active).all(|o| {
+        let s = o.shape.surface(Vec3::new(q[0], q[1], q[2]), min, max);
+        !s.inside && s.distance >= r
+    })
 }
 
 /// The `O` nearest surfaces offered, nearest first, the earlier offer first on ties.

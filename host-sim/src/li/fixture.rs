@@ -125,6 +125,16 @@ pub fn segment_lengths_mm(seed: u32, n: usize) -> Vec<f64> {
     (0..n).map(|_| segment_length_mm(&mut d)).collect()
 }
 
+/// `n` turning angles (radians, signed) of the fixture's distribution.
+pub fn turning_angles(seed: u32, n: usize) -> Vec<f64> {
+    let mut d = Draws {
+        seed,
+        insect: u32::MAX - 1,
+        n: 0,
+    };
+    (0..n).map(|_| turn(&mut d)).collect()
+}
+
 /// The synthetic tracks of `f` (ids 0.., frame k at time k/fps) and what was drawn.
 pub fn synthetic_tracks(f: &Fixture) -> (Tracks, Drawn) {
     let mut drawn = Drawn::default();

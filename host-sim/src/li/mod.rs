@@ -1,7 +1,12 @@
-//! li2015 on the host (issue 17): the offline data pipeline of §3.1 that turns tracked
-//! trajectories into the model's statistics, and the synthetic tracks that stand in for the
-//! paper's data (which are not public).
+//! li2015 on the host (issue 17): the engine that runs the insects of `swarm_core::li`
+//! (waypoints from the learned distributions, Metropolis-Hastings against the density, ORCA),
+//! the offline data pipeline of §3.1 that turns tracked trajectories into the model's
+//! statistics, and the synthetic tracks that stand in for the paper's data (which are not
+//! public).
 //!
+//! * [`LiSim`]: the engine (the fly's world: container, obstacles, sensed insects);
+//! * [`data`]: the learned tables and the density grid of a group (Gaussian targets,
+//!   sketches, obstacles empty);
 //! * [`segment`]: piecewise-linear segmentation of a track by the R² = 0.9 rule;
 //! * [`stats`]: segment lengths and turning angles of a set of tracks, their moments and
 //!   histograms (the tables [`swarm_core::li::sampler::Table`] samples), and the
@@ -10,9 +15,21 @@
 //!
 //! The per-insect controller (Algorithm 1, Metropolis-Hastings) is [`swarm_core::li`].
 
+mod build;
+pub mod data;
+mod engine;
 pub mod fixture;
+pub(crate) mod scenario;
 pub mod segment;
+mod sim;
 pub mod stats;
+
+pub use build::{bench_li_world, li_frame_samples};
+pub use scenario::{DensitySpec, LiTable, li_params};
+pub use sim::{
+    AnyLiGroup, Counts, LiGroup, LiSim, LiSimFrame, N, O, li_frame, mean_centroid_distance,
+    total_variation,
+};
 
 #[cfg(test)]
 mod tests;

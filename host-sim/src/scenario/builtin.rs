@@ -61,6 +61,7 @@ builtins! {
     "fly-fig6-phase" => "ren2016 Fig. 6: 200 insects in the ordered phase fly off together",
     "fly-fig7-phototaxis" => "ren2016 Fig. 7: 80 moths gather at a street lamp",
     "fly-fig8-escape" => "ren2016 Fig. 8: 100 flies escape a predator crossing the swarm",
+    "li-fig4-confined" => "li2015 Fig. 4: 100 insects sample waypoints toward a measured density",
 }
 
 /// The names of the built-in scenarios (their summaries: [`BUILTINS`]).

@@ -68,6 +68,7 @@ pub use builtin::{BUILTINS, Builtin, builtin, builtin_names, resolve, resolve_wi
 pub use check::GroupCheck;
 pub use diagnostic::{Diagnostic, DiagnosticKind};
 pub use load::check_steps;
+pub(crate) use params::read_table;
 pub use params::{ParamsOverride, Preset, PresetOverride};
 pub use problem::Problem;
 pub use types::{

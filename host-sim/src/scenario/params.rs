@@ -118,7 +118,7 @@ impl<P: ModelParams> fmt::Debug for ParamsOverride<P> {
 
 impl<P: ModelParams<Scalar = f32>> ParamsOverride<P> {
     /// Writes the parameters given as entries of a map, in the order of `P`'s table.
-    fn write_entries<M: SerializeMap>(&self, map: &mut M) -> Result<(), M::Error> {
+    pub(crate) fn write_entries<M: SerializeMap>(&self, map: &mut M) -> Result<(), M::Error> {
         for (spec, value) in self.iter() {
             match value {
                 ParamValue::Real(v) => map.serialize_entry(spec.name, &v)?,
@@ -168,7 +168,7 @@ fn struct_name<P>() -> &'static str {
 
 /// Reads a table whose keys are parameters of `P` or one of `extras`, which `extra` reads
 /// (given the key and the map to take the value from).
-fn read_table<'de, A, P>(
+pub(crate) fn read_table<'de, A, P>(
     mut map: A,
     extras: &'static [&'static str],
     mut extra: impl FnMut(&'static str, &mut A) -> Result<(), A::Error>,
