@@ -367,6 +367,18 @@ const PINNED: &[(&str, &str, u64, u64)] = &[
         0xace63f072f6be22e,
         0x506756210aaa440f,
     ),
+    (
+        "li-fig8-9-cells",
+        "f32",
+        0xe48a0b9a31c0107f,
+        0xffec9cd9a77cf27c,
+    ),
+    (
+        "li-fig8-9-cells",
+        "fixed",
+        0x1759af42462720ed,
+        0xf8915a7a06b22a75,
+    ),
 ];
 
 /// The summary without what depends on the machine and the moment.
