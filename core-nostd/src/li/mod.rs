@@ -17,7 +17,7 @@
 //!   in its parameters.
 //!
 //! `no_std`, no allocation, no panics; generic over [`Scalar`](crate::Scalar). Randomness is
-//! counter-based: streams [`LI_LENGTH`](crate::rand::stream::LI_LENGTH) and the three after
+//! counter-based: streams [`LI_LENGTH`](crate::rand::stream::LI_LENGTH) and the four after
 //! it, one set per proposal.
 //!
 //! ## Example

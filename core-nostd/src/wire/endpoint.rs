@@ -155,7 +155,8 @@ impl<C: Controller, const TX: usize> Core<C, TX> {
 ///   [`MAX_SESSION_FRAME`] (both checked at compile time).
 ///
 /// [`AntDevice`](crate::ant::AntDevice), [`BeeDevice`](crate::bee::BeeDevice),
-/// [`WangDevice`](crate::wang::WangDevice) and [`FlyDevice`](crate::fly::FlyDevice) pick both
+/// [`WangDevice`](crate::wang::WangDevice), [`FlyDevice`](crate::fly::FlyDevice) and
+/// [`LiDevice`](crate::li::LiDevice) pick both
 /// for you.
 ///
 /// Behaviour (`docs/protocol.md`, section 10, is the normative version):

@@ -47,12 +47,12 @@
 //! 2. [`Configure`] → [`Configured`]: the host opens a session (the device checks the
 //!    parameter hash once more);
 //! 3. controller requests ([`AntPlanRequest`], [`AntResolveRequest`], [`BeeStepRequest`],
-//!    [`AdvectRequest`], [`SeparateRequest`], [`FlyStepRequest`]),
+//!    [`AdvectRequest`], [`SeparateRequest`], [`FlyStepRequest`], [`LiStepRequest`]),
 //!    pipelined, each answered by its reply or an [`ErrorReply`] with the same sequence
 //!    number; [`Ping`] → [`Pong`] and [`StatsRequest`] → [`DeviceStats`] at any time.
 //!
 //! The device side is [`DeviceEndpoint`] (aliases [`AntDevice`], [`BeeDevice`],
-//! [`WangDevice`], [`FlyDevice`]): bytes in,
+//! [`WangDevice`], [`FlyDevice`], [`LiDevice`]): bytes in,
 //! reply frames out, fixed buffers, for firmware and for a soft device on a host alike.
 //!
 //! ```
@@ -119,6 +119,10 @@ pub use crate::bee::{
 pub use crate::fly::{
     FlyDevice, FlyStepReply, FlyStepRequest, MAX_FLY_FRAME, MAX_FLY_PAYLOAD, MAX_FLY_REPLY_FRAME,
     MAX_FLY_REPLY_PAYLOAD, WIRE_FLY_NEIGHBOURS, WIRE_FLY_SURFACES, WireFlyFrame,
+};
+pub use crate::li::{
+    LiDevice, LiStepReply, LiStepRequest, MAX_LI_FRAME, MAX_LI_PAYLOAD, MAX_LI_REPLY_FRAME,
+    MAX_LI_REPLY_PAYLOAD, WIRE_LI_NEIGHBOURS, WIRE_LI_SURFACES, WireLiFrame,
 };
 pub use crate::wang::{
     AdvectReply, AdvectRequest, MAX_WANG_FRAME, MAX_WANG_PAYLOAD, MAX_WANG_REPLY_FRAME,

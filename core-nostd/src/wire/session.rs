@@ -56,14 +56,16 @@ impl ControllerKind {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Capacities {
-    /// Neighbours (ant plan and resolve frames, bee frame, wang separate frame, fly frame).
+    /// Neighbours (ant plan and resolve frames, bee frame, wang separate frame, fly and li
+    /// frames).
     pub neighbours: u16,
     /// Environment objects (ant plan frame; 0 for the others).
     pub objects: u16,
     /// Target particles (bee frame; 0 for the others).
     pub targets: u16,
     /// Obstacle surfaces (ant resolve frame, [`crate::ant::SURFACES`]; fly frame,
-    /// [`crate::fly::WIRE_FLY_SURFACES`]; 0 for the others).
+    /// [`crate::fly::WIRE_FLY_SURFACES`]; li frame, [`crate::li::WIRE_LI_SURFACES`]; 0 for
+    /// the others).
     pub surfaces: u16,
 }
 

@@ -1605,7 +1605,15 @@ proptest! {
 /// and the decoder and device behaviour the spec states (sections 3, 5, 6, 7, 10).
 mod spec {
     use super::*;
-    use crate::model::{ModelParams, ParamValue};
+    use crate::li::density::DensityGrid;
+    use crate::li::sampler::Table;
+    use crate::li::waypoint::{SAMPLING_MESO, SAMPLING_MH, SAMPLING_RANDOM};
+    use crate::li::{
+        LiDevice, LiParams, LiState, LiStepReply, LiStepRequest, MAX_LI_FRAME, MAX_LI_PAYLOAD,
+        MAX_LI_REPLY_FRAME, MAX_LI_REPLY_PAYLOAD, WIRE_LI_NEIGHBOURS, WIRE_LI_SURFACES,
+        WireLiFrame,
+    };
+    use crate::model::{ModelParams, ParamValue, Range};
     use crate::scalar::i16f16_bits;
 
     const DOC: &str = include_str!("../../../docs/protocol.md");
@@ -1810,6 +1818,39 @@ mod spec {
     impl Castable for FlyParams<f32> {
         type Fx = FlyParams<Fx>;
     }
+    impl Castable for LiParams<f32> {
+        type Fx = LiParams<Fx>;
+    }
+
+    /// Checks a documented range column (`(a, b]`, `[a, b]` or `a to b`, optionally followed
+    /// by a comma and a rule in words) against the ranges the code validates.
+    fn check_ranges<P: ModelParams>(rows: &[Vec<String>], column: usize) {
+        for row in rows {
+            let (name, cell) = (row[1].as_str(), row[column].as_str());
+            let spec = P::SPECS[P::index_of(name).unwrap()];
+            let documented = if let Some((lo, hi)) = cell.split_once(" to ") {
+                let hi = hi.split(',').next().unwrap().trim();
+                Range::int(lo.parse().unwrap(), hi.parse().unwrap())
+            } else {
+                let close = cell.find(']').unwrap_or_else(|| panic!("{name}: {cell:?}"));
+                let (lo, hi) = cell[1..close].split_once(", ").unwrap();
+                match &cell[..1] {
+                    "(" => Range::above(decimal(lo), decimal(hi)),
+                    "[" => Range::closed(decimal(lo), decimal(hi)),
+                    _ => panic!("{name}: {cell:?}"),
+                }
+            };
+            assert_eq!(documented, spec.range, "{name}: {cell:?}");
+        }
+    }
+
+    /// The decimal numbers in a cell of words (`lo 0.002, hi 0.03, cdf [1]` → 0.002, 0.03, 1).
+    fn numbers_in(cell: &str) -> Vec<f32> {
+        cell.split(|c: char| !(c.is_ascii_digit() || c == '.'))
+            .filter(|w| !w.is_empty() && w != &".")
+            .map(decimal)
+            .collect()
+    }
 
     fn hash_of(cell: &str) -> u64 {
         u64::from_str_radix(cell.trim_start_matches("0x"), 16).unwrap()
@@ -1949,6 +1990,70 @@ mod spec {
         }
         assert_eq!(FlyParams::<f32>::default(), fly[0].1);
         assert_eq!(FlyParams::<Fx>::default(), fly[0].2);
+        let range = header.iter().position(|c| c == "range").unwrap();
+        check_ranges::<FlyParams<f32>>(&rows, range);
+
+        // LiParams: the 12 numbers (fields, default, ranges), then the learned data.
+        let li_f32 = LiParams::<f32>::default();
+        let li_fx = li_f32.cast::<Fx>();
+        assert_eq!(
+            LiParams::<Fx>::default(),
+            li_fx,
+            "the Fx default is the cast f32 one"
+        );
+        let rows = table(text, "`LiParams` field");
+        let header = table_header(text, "`LiParams` field");
+        assert_eq!(header[3..5], ["default()", "range"]);
+        let (numbers, data) = rows.split_at(LiParams::<f32>::SPECS.len());
+        check_fields::<LiParams<f32>>(numbers);
+        check_values(numbers, 3, &li_f32, &li_fx);
+        check_ranges::<LiParams<f32>>(numbers, 4);
+        let data_fields: Vec<[&str; 3]> = data
+            .iter()
+            .map(|r| [r[0].as_str(), r[1].as_str(), r[2].as_str()])
+            .collect();
+        assert_eq!(
+            data_fields,
+            [
+                ["13", "lengths", "LiTable<S>"],
+                ["14", "turns", "LiTable<S>"],
+                ["15", "density", "DensityGrid<S>"],
+            ]
+        );
+        // The data follow the numbers, in this order.
+        let tail = [
+            postcard_bytes(&li_f32.lengths),
+            postcard_bytes(&li_f32.turns),
+            postcard_bytes(&li_f32.density),
+        ]
+        .concat();
+        assert!(postcard_bytes(&li_f32).ends_with(&tail));
+        // The data's default cells.
+        let table_numbers =
+            |t: &Table<f32, { crate::li::BINS }>| [vec![t.lo, t.hi], t.cdf.to_vec()].concat();
+        assert_eq!(numbers_in(&data[0][3]), table_numbers(&li_f32.lengths));
+        assert_eq!(numbers_in(&data[1][3]), table_numbers(&li_f32.turns));
+        let d = &li_f32.density;
+        let mut grid = vec![d.origin.x, d.origin.y, d.origin.z, d.cell];
+        grid.extend(d.dims.map(f32::from));
+        grid.extend(d.weights.iter().map(|&w| f32::from(w)));
+        assert_eq!(numbers_in(&data[2][3]), grid);
+        // The data's ranges: lengths from 0, turns within ±(f32(π) + 0.001).
+        assert_eq!(numbers_in(&data[0][4]), [0.0]);
+        let turn_limit = core::f32::consts::PI + 1e-3;
+        assert_eq!(numbers_in(&data[1][4]), [turn_limit, turn_limit]);
+        assert_eq!(i16f16_bits(turn_limit), 205_953);
+        assert_eq!(format!("{:08x}", turn_limit.to_bits()), "4049203d");
+        // The li default's dumps (after the ant's and the bee's): f32, Fx.
+        let (li_dump_f32, li_dump_fx) = (dump(&blocks[5]), dump(&blocks[6]));
+        assert_eq!(
+            (li_dump_f32.len(), li_dump_fx.len()),
+            (81, 50),
+            "the sizes 10.2 states"
+        );
+        assert_eq!(li_dump_f32, postcard_bytes(&li_f32));
+        assert_eq!(li_dump_fx, postcard_bytes(&li_fx));
+        assert_eq!(blocks.len(), 7, "no other code block in 10.2");
 
         // The hash table, both scalars.
         let rows = table(text, "preset");
@@ -1986,6 +2091,11 @@ mod spec {
             (fly[6].0, params_hash(&fly[6].1), params_hash(&fly[6].2)),
             (fly[7].0, params_hash(&fly[7].1), params_hash(&fly[7].2)),
             (fly[8].0, params_hash(&fly[8].1), params_hash(&fly[8].2)),
+            (
+                "LiParams::default()",
+                params_hash(&li_f32),
+                params_hash(&li_fx),
+            ),
         ];
         assert_eq!(rows.len(), expected.len());
         for (row, (name, f, x)) in rows.iter().zip(expected) {
@@ -2452,5 +2562,643 @@ mod spec {
             refusal(bad.validate()),
             Some(("OutOfRange", "state.density"))
         );
+    }
+
+    /// A postcard encoding of any length (the messages are longer than `postcard_bytes`
+    /// takes).
+    fn encoded_len<T: Serialize>(v: &T) -> usize {
+        let mut buf = vec![0u8; 2 * MAX_FRAME];
+        postcard::to_slice(v, &mut buf).unwrap().len()
+    }
+
+    /// The widest li request and reply with every scalar `w` (4 bytes in `f32`, 5 in `Fx`
+    /// for `i32::MIN`): full lists, every integer at its maximum.
+    fn widest_li<S: Scalar + Serialize>(w: S) -> [usize; 2] {
+        let v = Vec3::new(w, w, w);
+        let state = LiState {
+            pos: v,
+            vel: v,
+            waypoint: v,
+            seg_start: v,
+            age: u16::MAX,
+        };
+        let mut frame = WireLiFrame::<S>::new();
+        while frame
+            .neighbours
+            .push(Neighbour {
+                id: u32::MAX,
+                pos: v,
+                vel: v,
+            })
+            .is_ok()
+        {}
+        while frame
+            .surfaces
+            .push(Surface3 {
+                point: v,
+                normal: v,
+            })
+            .is_ok()
+        {}
+        let ctx = StepCtx {
+            seed: u32::MAX,
+            agent: u32::MAX,
+            step: u32::MAX,
+        };
+        let decision = crate::li::LiDecision {
+            pref: v,
+            proposals: u8::MAX,
+            accepted: true,
+            infeasible: true,
+        };
+        [
+            encoded_len(&LiStepRequest { state, frame, ctx }),
+            encoded_len(&LiStepReply { decision, state }),
+        ]
+    }
+
+    /// The first number of a cell (`771 (MAX_LI_FRAME, likewise)` → 771).
+    fn first_number(cell: &str) -> usize {
+        let digits: String = cell.chars().take_while(char::is_ascii_digit).collect();
+        digits
+            .parse()
+            .unwrap_or_else(|_| panic!("no leading number: {cell:?}"))
+    }
+
+    /// Sections 5, 7, 10.1 and 10.7 for the li controller: its kinds, its message sizes, its
+    /// capacities and its device's buffers and identity; and the 10.7 buffer table for every
+    /// device.
+    #[test]
+    fn li_sizes_buffers_and_identity_as_documented() {
+        // Section 5: the kinds.
+        let kinds = table(section("## 5.", "## 6."), "message");
+        let row = |k: &str| kinds.iter().find(|r| r[0] == k).unwrap().clone();
+        assert_eq!(row("0x50")[1], "LiStepRequest<S>");
+        assert_eq!(row("0x51")[1], "LiStepReply<S>");
+        assert_eq!(kind::LI_STEP_REQUEST, 0x50);
+        assert_eq!(kind::LI_STEP_REPLY, 0x51);
+        assert!(kind::is_reply(0x51) && !kind::is_reply(0x50));
+        for r in ["0x42-0x4F", "0x52-0x7F"] {
+            assert_eq!(row(r)[1], "reserved", "{r}");
+        }
+        // Section 7: the largest payloads, both scalars.
+        let f = widest_li(1.0f32);
+        let x = widest_li(Fx::from_bits(i32::MIN));
+        let messages = table(section("## 7.", "## 8."), "max payload f32 / Fx");
+        let size = |k: &str| messages.iter().find(|r| r[0] == k).unwrap()[3].clone();
+        assert_eq!(size("0x50"), format!("{} / {}", f[0], x[0]));
+        assert_eq!(size("0x51"), format!("{} / {}", f[1], x[1]));
+        assert_eq!((f, x), ([628, 66], [760, 81]));
+        assert_eq!(MAX_LI_PAYLOAD, x[0]);
+        assert_eq!(MAX_LI_REPLY_PAYLOAD, x[1]);
+        assert_eq!(MAX_LI_FRAME, max_frame_len(MAX_LI_PAYLOAD));
+        assert_eq!(MAX_LI_REPLY_FRAME, max_frame_len(MAX_LI_REPLY_PAYLOAD));
+        const { assert!(MAX_LI_PAYLOAD <= MAX_PAYLOAD) };
+        let seven = section("## 7.", "## 8.");
+        for said in [
+            format!("li messages within {MAX_LI_PAYLOAD}"),
+            format!("the longest li frame is {MAX_LI_FRAME} bytes"),
+            format!("`LiStepReply<Fx>`, is {MAX_LI_REPLY_PAYLOAD} bytes"),
+            format!("li\nneighbours {WIRE_LI_NEIGHBOURS}, li surfaces {WIRE_LI_SURFACES}"),
+            format!("The largest payload is {MAX_PAYLOAD}"),
+        ] {
+            assert!(seven.contains(&said), "section 7 says {said:?}");
+        }
+        // 10.1: the device's identity.
+        let params = LiParams::<f32>::default();
+        let dev = LiDevice::<f32>::new(params.clone(), "li-test").unwrap();
+        let id = dev.identity();
+        assert_eq!(id.controller, ControllerKind::LI);
+        assert_eq!(id.controller, ControllerKind(4));
+        let c = id.capacities;
+        assert_eq!(
+            (c.neighbours, c.objects, c.targets, c.surfaces),
+            (16, 0, 0, 4)
+        );
+        assert_eq!(usize::from(c.neighbours), WIRE_LI_NEIGHBOURS);
+        assert_eq!(usize::from(c.surfaces), WIRE_LI_SURFACES);
+        assert_eq!(usize::from(id.max_frame), MAX_LI_FRAME + 1);
+        assert_eq!(id.rx_buffer, 0);
+        assert_eq!(id.params_hash, params_hash(&params).unwrap());
+        let ten_one = section("### 10.1", "### 10.2");
+        for said in [
+            "`4` li, `5`-`127` kept".to_string(),
+            "4 li, 5-127 reserved".to_string(),
+            format!(
+                "li `{{{}, {}, {}, {}}}`",
+                c.neighbours, c.objects, c.targets, c.surfaces
+            ),
+            format!(
+                "`LiDevice` {} (the longest li frame, {MAX_LI_FRAME}, + 1)",
+                id.max_frame
+            ),
+        ] {
+            assert!(ten_one.contains(&said), "10.1 says {said:?}");
+        }
+        // 10.7: every device's buffers (first number of each cell).
+        let buffers = section("### 10.7", "### 10.8");
+        let rows = table(buffers, "li device");
+        let max_frames = [
+            ant_device::<f32>().identity().max_frame,
+            bee_device::<f32>().identity().max_frame,
+            wang_device::<f32>().identity().max_frame,
+            fly_device::<f32>(FlyParams::default()).identity().max_frame,
+            id.max_frame,
+        ];
+        let frames = [
+            MAX_ANT_FRAME,
+            MAX_BEE_FRAME,
+            MAX_WANG_FRAME,
+            MAX_FLY_FRAME,
+            MAX_LI_FRAME,
+        ];
+        let reply_frames = [
+            MAX_ANT_REPLY_FRAME,
+            MAX_BEE_REPLY_FRAME,
+            MAX_WANG_REPLY_FRAME,
+            MAX_FLY_REPLY_FRAME,
+            MAX_LI_REPLY_FRAME,
+        ];
+        for device in 0..5 {
+            let cell = |r: usize| rows[r][1 + device].as_str();
+            assert_eq!(first_number(cell(0)), frames[device], "RX, column {device}");
+            assert_eq!(first_number(cell(1)), usize::from(max_frames[device]));
+            assert_eq!(usize::from(max_frames[device]), frames[device] + 1);
+            assert_eq!(first_number(cell(3)), frames[device], "longest request");
+            assert_eq!(
+                first_number(cell(4)),
+                reply_frames[device],
+                "TX, column {device}"
+            );
+        }
+        assert!(rows[4][5].contains(&format!("{MAX_LI_REPLY_PAYLOAD} B payload")));
+        assert!(buffers.contains("(82, 130, 79, 79 or 89\nbytes)"));
+    }
+
+    /// The kinds of every request: the controllers' request kinds known to this build.
+    fn request_kinds() -> Vec<u8> {
+        (0x10..=0x7fu8)
+            .filter(|&k| kind::name(k).is_some() && !kind::is_reply(k))
+            .collect()
+    }
+
+    /// The error codes a device with an open session answers to an empty frame of each kind.
+    fn codes_for<C: Controller, const RX: usize, const TX: usize>(
+        mut dev: DeviceEndpoint<C, RX, TX>,
+        kinds: &[u8],
+    ) -> Vec<u8> {
+        open(&mut dev, 1);
+        kinds
+            .iter()
+            .map(|&k| {
+                let r = replies(&mut dev, &frame_of_kind(k, u16::from(k), &()));
+                assert_eq!(r.len(), 1, "kind {k:#04x}");
+                let (seq, code) = error_code(&r[0]);
+                assert_eq!(seq, u16::from(k));
+                code
+            })
+            .collect()
+    }
+
+    /// 10.4, `UnknownKind`: the other controllers' requests listed for each device, and the
+    /// reserved ranges, are exactly the kinds each device answers with code 11.
+    #[test]
+    fn unknown_kind_lists_as_documented() {
+        let text = section("### 10.4", "### 10.5");
+        let row = table(text, "the device sends it when")
+            .into_iter()
+            .find(|r| r[0] == "11")
+            .unwrap();
+        let cell = row[2].as_str();
+        let start = "another controller's requests (";
+        let lists = &cell[cell.find(start).unwrap() + start.len()..];
+        let lists = &lists[..lists.find("), a reserved kind (").unwrap()];
+        let hex = |s: &str| u8::from_str_radix(s.trim().trim_start_matches("0x"), 16).unwrap();
+        let mut documented: Vec<(String, Vec<u8>)> = Vec::new();
+        for part in lists.split(", ") {
+            let (kinds, device) = part.split_once(" to ").unwrap();
+            let device = device
+                .trim_start_matches("an ")
+                .trim_start_matches("a ")
+                .trim_end_matches(" device");
+            documented.push((
+                device.to_string(),
+                kinds.split_whitespace().map(hex).collect(),
+            ));
+        }
+        let names: Vec<&str> = documented.iter().map(|d| d.0.as_str()).collect();
+        assert_eq!(names, ["ant", "bee", "wang", "fly", "li"]);
+        // The reserved ranges: every kind from 0x01 to 0x7F this build does not know.
+        let reserved = &cell[cell.find("a reserved kind (").unwrap() + 17..];
+        let reserved = &reserved[..reserved.find(')').unwrap()];
+        let mut unknown: Vec<u8> = Vec::new();
+        for r in reserved.split(", ") {
+            let (lo, hi) = r.split_once('-').unwrap();
+            unknown.extend(hex(lo)..=hex(hi));
+        }
+        assert_eq!(
+            unknown,
+            (0x01..=0x7fu8)
+                .filter(|&k| kind::name(k).is_none())
+                .collect::<Vec<_>>()
+        );
+        let requests = request_kinds();
+        assert_eq!(requests, [0x10, 0x12, 0x20, 0x30, 0x32, 0x40, 0x50]);
+        let all: Vec<u8> = requests.iter().chain(&unknown).copied().collect();
+        let got = [
+            codes_for(ant_device::<f32>(), &all),
+            codes_for(bee_device::<f32>(), &all),
+            codes_for(wang_device::<f32>(), &all),
+            codes_for(fly_device::<f32>(FlyParams::default()), &all),
+            codes_for(
+                LiDevice::<f32>::new(LiParams::default(), "li-test").unwrap(),
+                &all,
+            ),
+        ];
+        for ((device, listed), codes) in documented.iter().zip(got) {
+            for (&k, &code) in all.iter().zip(&codes) {
+                // Its own requests with an empty payload do not decode: Payload.
+                let expected = if listed.contains(&k) || unknown.contains(&k) {
+                    ErrorReply::UNKNOWN_KIND
+                } else {
+                    ErrorReply::PAYLOAD
+                };
+                assert_eq!(code, expected, "{device} device, kind {k:#04x}");
+            }
+            assert!(listed.iter().all(|k| requests.contains(k)), "{device}");
+        }
+    }
+
+    /// 10.2: the li parameters' rules, in their order, with the field each error names.
+    #[test]
+    fn li_params_rules_as_documented() {
+        let ok = LiParams::<f32>::default();
+        assert_eq!(ok.validate(), Ok(()));
+        let bad = |p: &LiParams<f32>| match p.validate() {
+            Err(Error::BadParam { field }) => Some(field),
+            Ok(()) => None,
+            Err(e) => panic!("{e:?}"),
+        };
+        let with_lengths = |lo: f32, hi: f32, cdf: &[f32]| LiParams {
+            lengths: Table {
+                lo,
+                hi,
+                cdf: heapless::Vec::from_slice(cdf).unwrap(),
+            },
+            ..ok.clone()
+        };
+        let with_turns = |lo: f32, hi: f32| LiParams {
+            turns: Table {
+                lo,
+                hi,
+                ..ok.turns.clone()
+            },
+            ..ok.clone()
+        };
+        let with_grid = |origin: Vec3<f32>, cell: f32, dims: [u16; 3], n: usize| LiParams {
+            density: DensityGrid {
+                origin,
+                cell,
+                dims,
+                weights: heapless::Vec::from_slice(&vec![7u8; n]).unwrap(),
+            },
+            ..ok.clone()
+        };
+        let limit = core::f32::consts::PI + 1e-3;
+        let above = f32::from_bits(limit.to_bits() + 1);
+        let origin = Vec3::zero();
+        for (p, refused) in [
+            // Tables: lo < hi, shares non-decreasing in [0, 1], the last exactly 1.
+            (with_lengths(0.0, 0.1, &[0.0, 0.5, 0.5, 1.0]), None),
+            (with_lengths(0.1, 0.1, &[1.0]), Some("lengths")),
+            (with_lengths(0.0, 0.1, &[]), Some("lengths")),
+            (with_lengths(0.0, 0.1, &[0.6, 0.5, 1.0]), Some("lengths")),
+            (with_lengths(0.0, 0.1, &[0.5, 0.999_999]), Some("lengths")),
+            (with_lengths(0.0, 0.1, &[-0.1, 1.0]), Some("lengths")),
+            (with_lengths(0.0, f32::INFINITY, &[1.0]), Some("lengths")),
+            (with_lengths(-0.001, 0.1, &[1.0]), Some("lengths")),
+            // turns within ±(f32(π) + 0.001), limits included.
+            (with_turns(-limit, limit), None),
+            (with_turns(-limit, above), Some("turns")),
+            (with_turns(-above, 0.0), Some("turns")),
+            // Grid: origin a li vector, cell finite and > 0, dims ≥ 1, one weight a cell.
+            (with_grid(origin, 0.5, [16, 16, 16], 4096), None),
+            (
+                with_grid(Vec3::new(16000.0, 0.0, 0.0), 0.5, [1, 1, 1], 1),
+                None,
+            ),
+            (
+                with_grid(Vec3::new(16001.0, 0.0, 0.0), 0.5, [1, 1, 1], 1),
+                Some("density"),
+            ),
+            (with_grid(origin, 0.0, [1, 1, 1], 1), Some("density")),
+            (with_grid(origin, f32::NAN, [1, 1, 1], 1), Some("density")),
+            (with_grid(origin, 0.5, [0, 1, 1], 0), Some("density")),
+            (with_grid(origin, 0.5, [2, 2, 2], 7), Some("density")),
+            // The numbers come first, in table order; then lengths, turns, density.
+            (
+                LiParams {
+                    fallback: 2,
+                    ..with_lengths(0.1, 0.1, &[1.0])
+                },
+                Some("fallback"),
+            ),
+            (
+                LiParams {
+                    turns: with_turns(0.0, 4.0).turns,
+                    ..with_lengths(0.1, 0.1, &[1.0])
+                },
+                Some("lengths"),
+            ),
+            (
+                LiParams {
+                    density: with_grid(origin, 0.0, [1, 1, 1], 1).density,
+                    ..with_turns(0.0, 4.0)
+                },
+                Some("turns"),
+            ),
+        ] {
+            assert_eq!(bad(&p), refused, "{p:?}");
+        }
+        // A device refuses bad parameters at start-up.
+        assert!(LiDevice::<f32>::new(with_turns(0.0, 4.0), "x").is_err());
+    }
+
+    /// Section 7, "The li step", computed from the text alone (in `f32`): the random numbers,
+    /// the table draws, the directions, the grid and the screening give the waypoint, the
+    /// segment start, the proposal count and the acceptance of `li::step`, bit for bit; then
+    /// the preferred velocity, the age and the move. And the li checks of section 7.
+    #[test]
+    fn li_step_as_documented() {
+        // rand and unit_open, as written in section 7.
+        let mix = |mut x: u32| {
+            x ^= x >> 16;
+            x = x.wrapping_mul(0x7feb_352d);
+            x ^= x >> 15;
+            x = x.wrapping_mul(0x846c_a68b);
+            x ^= x >> 16;
+            x
+        };
+        let u = |ctx: StepCtx, stream: u32| {
+            let r = mix(mix(mix(mix(ctx.seed ^ 0x9e37_79b9) ^ ctx.agent) ^ ctx.step) ^ stream);
+            ((r >> 8) as f32 + 0.5) * (1.0 / 16_777_216.0)
+        };
+        assert_eq!(mix(mix(mix(mix(0x9e37_79b9)))), 0x41f3_9e5e);
+        let sample = |t: &Table<f32, { crate::li::BINS }>, u: f32| {
+            let m = t.cdf.len();
+            let k = t.cdf.iter().filter(|&&c| c <= u).count();
+            if k == m {
+                return t.hi;
+            }
+            let b = if k == 0 { 0.0 } else { t.cdf[k - 1] };
+            t.lo + (k as f32 + (u - b) / (t.cdf[k] - b)) * ((t.hi - t.lo) / m as f32)
+        };
+        let direction = |h: Vec3<f32>, theta: f32, phi: f32, z: f32| {
+            let (s_phi, c_phi) = Scalar::sin_cos(phi);
+            let Some(n) = h.normalized() else {
+                let r = Scalar::sqrt((1.0 - z * z).max(0.0));
+                return Vec3::new(r * c_phi, z, r * s_phi);
+            };
+            let (ax, ay, az) = (n.x.abs(), n.y.abs(), n.z.abs());
+            let a = if ax <= ay && ax <= az {
+                Vec3::new(1.0, 0.0, 0.0)
+            } else if ay <= az {
+                Vec3::new(0.0, 1.0, 0.0)
+            } else {
+                Vec3::new(0.0, 0.0, 1.0)
+            };
+            let e1 = n.cross(a).normalized().unwrap();
+            let e2 = n.cross(e1);
+            let (s_t, c_t) = Scalar::sin_cos(theta.abs());
+            n * c_t + (e1 * c_phi + e2 * s_phi) * s_t
+        };
+        let weight = |g: &DensityGrid<f32>, p: Vec3<f32>| -> Option<u8> {
+            let q = [
+                (p.x - g.origin.x) / g.cell,
+                (p.y - g.origin.y) / g.cell,
+                (p.z - g.origin.z) / g.cell,
+            ];
+            let mut i = [0usize; 3];
+            for a in 0..3 {
+                if !q[a].is_finite() || q[a] < 0.0 || q[a].floor() >= f32::from(g.dims[a]) {
+                    return None;
+                }
+                i[a] = q[a].floor() as usize;
+            }
+            let [nx, ny, _] = g.dims.map(usize::from);
+            Some(g.weights[i[0] + nx * (i[1] + ny * i[2])])
+        };
+        // The documented waypoint state: (g, s, proposals, accepted).
+        let waypoint = |st: &LiState<f32>, p: &LiParams<f32>, ctx: StepCtx| {
+            let x = st.pos;
+            let g = if st.age >= p.patience { x } else { st.waypoint };
+            let s = st.seg_start;
+            if (x - g).length_sq() > p.eps * p.eps {
+                return (g, s, 0u8, false);
+            }
+            let w = |c| weight(&p.density, c).unwrap_or(0);
+            let w_x = w(x);
+            let came = x - s;
+            for a in 0..p.proposals {
+                let draw = |k: u32| u(ctx, 0x50 + k + 256 * u32::from(a));
+                let c = if p.sampling == SAMPLING_RANDOM {
+                    let d = &p.density;
+                    let side = |n: u16| d.cell * f32::from(n);
+                    let hi =
+                        d.origin + Vec3::new(side(d.dims[0]), side(d.dims[1]), side(d.dims[2]));
+                    let lo = d.origin;
+                    lo + Vec3::new(
+                        (hi.x - lo.x) * draw(0),
+                        (hi.y - lo.y) * draw(1),
+                        (hi.z - lo.z) * draw(2),
+                    )
+                } else {
+                    let l = sample(&p.lengths, draw(0));
+                    let theta = sample(&p.turns, draw(1));
+                    let phi = (2.0 * draw(2) - 1.0) * core::f32::consts::PI;
+                    let z = 2.0 * draw(3) - 1.0;
+                    let h = if a == 0 { came } else { Vec3::zero() };
+                    x + direction(h, theta, phi, z) * l
+                };
+                let accepted = if p.sampling == SAMPLING_MH {
+                    let w_c = w(c);
+                    w_c > 0 && (w_x <= w_c || draw(4) * f32::from(w_x) < f32::from(w_c))
+                } else {
+                    weight(&p.density, c).is_some()
+                };
+                if accepted {
+                    return (c, x, a + 1, true);
+                }
+            }
+            (x, x, p.proposals, false)
+        };
+        let mut g = Gen::new(2015);
+        let weights: Vec<u8> = (0..64)
+            .map(|_| [0u8, 1, 5, 40, 200][g.below(5) as usize])
+            .collect();
+        let mut params = LiParams::<f32> {
+            density: DensityGrid::new(Vec3::new(-0.5, 0.0, -0.5), 0.25, [4, 4, 4], &weights)
+                .unwrap(),
+            lengths: Table::from_counts(0.01, 0.3, &[5, 1, 3, 8, 2]).unwrap(),
+            turns: Table::from_counts(-1.0, 2.5, &[1, 4, 9, 4, 1, 1]).unwrap(),
+            proposals: 6,
+            patience: 20,
+            ..LiParams::default()
+        };
+        let mut seen = [0usize; 4]; // not arrived, accepted first, accepted later, held
+        for i in 0..1200 {
+            params.sampling = [SAMPLING_MH, SAMPLING_MESO, SAMPLING_RANDOM][i % 3];
+            let pos = g.v3::<f32>(-0.6, 1.1);
+            let state = LiState {
+                pos,
+                vel: g.v3(-0.1, 0.1),
+                waypoint: if g.chance(0.5) { pos } else { g.v3(-0.6, 1.1) },
+                seg_start: if g.chance(0.1) { pos } else { g.v3(-0.6, 1.1) },
+                age: g.below(30) as u16,
+            };
+            let ctx = StepCtx {
+                seed: g.u32(),
+                agent: g.below(8),
+                step: g.u32(),
+            };
+            let frame = WireLiFrame::<f32>::new();
+            let (next, decision) = crate::li::step(&state, &frame, &params, ctx).unwrap();
+            let (wp, s, proposals, accepted) = waypoint(&state, &params, ctx);
+            let what = format!("case {i}: {state:?} {ctx:?} {params:?}");
+            assert_eq!(next.waypoint, wp, "{what}");
+            assert_eq!(next.seg_start, s, "{what}");
+            assert_eq!(
+                (decision.proposals, decision.accepted),
+                (proposals, accepted),
+                "{what}"
+            );
+            seen[match (proposals, accepted) {
+                (0, _) => 0,
+                (1, true) => 1,
+                (_, true) => 2,
+                _ => 3,
+            }] += 1;
+            // The preferred velocity, the age, the move.
+            let d = wp - pos;
+            let reach = params.speed * params.dt;
+            let pref = if d.length_sq() <= reach * reach {
+                d * (1.0 / params.dt)
+            } else {
+                d.normalized().map_or(Vec3::zero(), |n| n * params.speed)
+            };
+            assert_eq!(decision.pref, pref, "{what}");
+            let age = if proposals > 0 { 0 } else { state.age + 1 };
+            assert_eq!(next.age, age);
+            assert_eq!(next.pos, pos + next.vel * params.dt);
+        }
+        assert!(seen.iter().all(|&n| n > 20), "every branch: {seen:?}");
+
+        // The checks, in order, and what is skipped.
+        let p = LiParams::<f32>::default();
+        let ctx = StepCtx {
+            seed: 1,
+            agent: 7,
+            step: 3,
+        };
+        let state = LiState::at(Vec3::new(0.3, 0.3, 0.3));
+        let neighbour = |id: u32, x: f32| Neighbour {
+            id,
+            pos: Vec3::new(x, 0.3, 0.3),
+            vel: Vec3::zero(),
+        };
+        let step = |s: &LiState<f32>, f: &WireLiFrame<f32>| crate::li::step(s, f, &p, ctx);
+        let mut frame = WireLiFrame::<f32>::new();
+        frame.neighbours.push(neighbour(3, 0.31)).unwrap();
+        let reference = step(&state, &frame).unwrap();
+        // An entry with ctx.agent is skipped, not refused.
+        let mut own = frame.clone();
+        own.neighbours.push(neighbour(7, 0.3)).unwrap();
+        assert_eq!(step(&state, &own), Ok(reference));
+        own.neighbours.push(neighbour(7, 0.5)).unwrap();
+        assert_eq!(
+            refusal(step(&state, &own)),
+            Some(("Inconsistent", "frame.neighbours.id"))
+        );
+        // age: any u16; at patience or more the waypoint counts as reached.
+        let far = LiState {
+            waypoint: Vec3::new(0.8, 0.8, 0.8),
+            ..state
+        };
+        assert_eq!(step(&far, &frame).unwrap().1.proposals, 0);
+        for age in [p.patience, u16::MAX] {
+            let old = LiState { age, ..far };
+            let (next, decision) = step(&old, &frame).unwrap();
+            assert!(decision.proposals > 0);
+            assert_eq!((next.seg_start, next.age), (old.pos, 0));
+        }
+        // Field names and codes, state before frame, neighbours before surfaces.
+        let surface = |len: f32| Surface3 {
+            point: Vec3::new(0.0, 0.0, 0.0),
+            normal: Vec3::new(0.0, len, 0.0),
+        };
+        let mut framed = frame.clone();
+        framed.surfaces.push(surface(0.99)).unwrap();
+        framed.surfaces.push(surface(1.01)).unwrap();
+        assert!(step(&state, &framed).is_ok());
+        framed.surfaces.push(surface(0.98)).unwrap();
+        assert_eq!(
+            refusal(step(&state, &framed)),
+            Some(("OutOfRange", "frame.surfaces.normal"))
+        );
+        let mut bad_neighbour = framed.clone();
+        bad_neighbour
+            .neighbours
+            .push(neighbour(4, 16001.0))
+            .unwrap();
+        assert_eq!(
+            refusal(step(&state, &bad_neighbour)),
+            Some(("OutOfRange", "frame.neighbours.pos"))
+        );
+        let v = |x: f32| Vec3::new(x, 0.0, 0.0);
+        for (s, refused) in [
+            (
+                LiState {
+                    pos: v(16000.0),
+                    waypoint: v(16000.0),
+                    seg_start: v(16000.0),
+                    ..state
+                },
+                None,
+            ),
+            (
+                LiState {
+                    pos: v(f32::NAN),
+                    ..state
+                },
+                Some(("NonFinite", "state.pos")),
+            ),
+            (
+                LiState {
+                    vel: v(16001.0),
+                    ..state
+                },
+                Some(("OutOfRange", "state.vel")),
+            ),
+            (
+                LiState {
+                    waypoint: v(f32::INFINITY),
+                    ..state
+                },
+                Some(("NonFinite", "state.waypoint")),
+            ),
+            (
+                LiState {
+                    seg_start: v(-16001.0),
+                    ..state
+                },
+                Some(("OutOfRange", "state.seg_start")),
+            ),
+        ] {
+            assert_eq!(
+                refusal(step(&s, &framed)),
+                refused.or(Some(("OutOfRange", "frame.surfaces.normal"))),
+                "{s:?}"
+            );
+        }
     }
 }
