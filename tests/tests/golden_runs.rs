@@ -368,6 +368,18 @@ const PINNED: &[(&str, &str, u64, u64)] = &[
         0x506756210aaa440f,
     ),
     (
+        "li-fig5-lantern",
+        "f32",
+        0x9ef70b7c56f7a301,
+        0x9a113d5ed62c2b90,
+    ),
+    (
+        "li-fig5-lantern",
+        "fixed",
+        0xc471ccb07b837907,
+        0xe5294802d053bbc3,
+    ),
+    (
         "li-fig8-9-cells",
         "f32",
         0xe48a0b9a31c0107f,

@@ -62,6 +62,7 @@ builtins! {
     "fly-fig7-phototaxis" => "ren2016 Fig. 7: 80 moths gather at a street lamp",
     "fly-fig8-escape" => "ren2016 Fig. 8: 100 flies escape a predator crossing the swarm",
     "li-fig4-confined" => "li2015 Fig. 4: 100 insects sample waypoints toward a measured density",
+    "li-fig5-lantern" => "li2015 Fig. 5 left: 200 midges swarm on a sketched ring round a lantern",
     "li-fig8-9-cells" => "li2015 Figs. 8-9: the Fig. 4 swarm with 2³ density cells spreads out",
 }
 
@@ -81,7 +82,7 @@ fn load_builtin(name: &str) -> Option<Result<(Scenario, Vec<ScenarioWarning>)>> 
     BUILTINS
         .iter()
         .find(|b| b.name == name)
-        .map(|b| load(b.text, &format!("scenarios/{}.toml", b.name), b.name))
+        .map(|b| load(b.text, &format!("scenarios/{}.toml", b.name), b.name, None))
 }
 
 /// A built-in scenario by name, else the scenario file at that path.
