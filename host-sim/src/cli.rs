@@ -1,4 +1,5 @@
-//! The `swarm` command line: list, run and render scenarios, benchmark the engine. The `swarm`
+//! The `swarm` command line: list, run and render scenarios, benchmark the engine, learn a
+//! li2015 model from tracks (`swarm li fit`, `swarm li synth`). The `swarm`
 //! binary is [`main`]; a team that adds a model builds its own `swarm` by registering the
 //! model first:
 //!
@@ -14,6 +15,9 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+use crate::li::fixture::Fixture;
+use crate::li::model::Estimate;
+use crate::li::segment::{R2_MIN, Segmentation, TOLERANCE_C};
 use crate::models;
 use crate::scenario::{Backend, ScalarType};
 
@@ -106,6 +110,111 @@ enum Command {
         /// Write the JSON report here (it is printed too).
         #[arg(long)]
         json: Option<PathBuf>,
+    },
+    /// li2015's data pipeline: learn a model file from tracked trajectories, or write the
+    /// synthetic tracks that stand in for the paper's unpublished data.
+    Li {
+        #[command(subcommand)]
+        command: LiCommand,
+    },
+}
+
+/// How `swarm li fit` cuts tracks into segments.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum SegmentationArg {
+    /// Split a run at its sample farthest from the chord while that is more than c times the
+    /// run's noise (estimated from its second differences).
+    Tolerance,
+    /// The paper's rule: a window is one segment when a line explains R² of its scatter.
+    R2,
+}
+
+/// How `swarm li fit` estimates the tables.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum EstimateArg {
+    /// Fit the process whose segmented tracks reproduce the data's statistics (indirect
+    /// inference: the segmentation's bias cancels).
+    Indirect,
+    /// The segments' own lengths and turns (the paper's method; biased by the sampling and
+    /// the noise).
+    Direct,
+}
+
+#[derive(Subcommand)]
+enum LiCommand {
+    /// Learn a li2015 model file from tracked trajectories: segment lengths, turning angles
+    /// and the visiting-frequency grid, with their provenance.
+    ///
+    /// TRACKS is a track file (CSV with the header `id,time,x,y,z`, one row per insect and
+    /// frame; a missing frame splits a track). By default the tables are those of the
+    /// process whose tracks, segmented the same way, give the data's segment and bending
+    /// statistics (indirect inference, a few seconds per 10⁵ samples); `--estimate direct`
+    /// tabulates the segments as found. The density counts every sample in cubic cells over
+    /// the data's box. Scenarios use the file with `li = { model = "MODEL.toml" }`.
+    Fit {
+        /// The track file.
+        tracks: PathBuf,
+        /// The model file to write (replaced whole, or left as it was on an error).
+        #[arg(long)]
+        out: PathBuf,
+        /// Frame interval in seconds (default: the smallest time step within a track).
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Density cells along the longest side of the data's box (at most 4096 cells in
+        /// all).
+        #[arg(long, default_value_t = 16)]
+        cells: u16,
+        /// How tracks are cut into segments.
+        #[arg(long, value_enum, default_value_t = SegmentationArg::Tolerance)]
+        segmentation: SegmentationArg,
+        /// The tolerance in multiples of the noise (`--segmentation tolerance`).
+        #[arg(long, default_value_t = TOLERANCE_C)]
+        c: f64,
+        /// The goodness of fit (`--segmentation r2`; the paper's 0.9).
+        #[arg(long, default_value_t = R2_MIN)]
+        r2: f64,
+        /// How the tables are estimated.
+        #[arg(long, value_enum, default_value_t = EstimateArg::Indirect)]
+        estimate: EstimateArg,
+        /// Seed of the indirect fit's simulations (the same seed gives the same file).
+        #[arg(long, default_value_t = 1)]
+        seed: u32,
+    },
+    /// Write synthetic insect tracks (a track file, `id,time,x,y,z`) from a documented
+    /// random process with the paper's segment statistics.
+    ///
+    /// The process (`swarm_sim::li::fixture`, spec §2.1): each insect starts at a uniform
+    /// point of a cube in a uniform direction and flies at constant speed along a polyline
+    /// whose segment lengths follow the generalised gamma with the paper's mean 14.57 mm,
+    /// median 7.22 mm and sd 19.01 mm, turning at each vertex by |θ|, θ ~ N(2.34°, 40.02°),
+    /// at a uniform azimuth; every sample gets Gaussian noise. The data are synthetic (the
+    /// paper's are not public). The same options give the same bytes; data/li-synthetic/ was
+    /// made with the defaults.
+    Synth {
+        /// The track file to write.
+        #[arg(long)]
+        out: PathBuf,
+        /// Seed.
+        #[arg(long, default_value_t = 1)]
+        seed: u32,
+        /// Insects (tracks).
+        #[arg(long, default_value_t = 20)]
+        tracks: u32,
+        /// Samples per track.
+        #[arg(long, default_value_t = 1000)]
+        samples: u32,
+        /// Flight speed (m/s).
+        #[arg(long, default_value_t = 0.15)]
+        speed: f64,
+        /// Samples per second.
+        #[arg(long, default_value_t = 100.0)]
+        fps: f64,
+        /// Measurement noise, sd per coordinate (m).
+        #[arg(long, default_value_t = 0.0002)]
+        noise: f64,
+        /// Side of the cube the insects start in (m).
+        #[arg(long, default_value_t = 0.91)]
+        side: f64,
     },
 }
 
@@ -262,6 +371,141 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 crate::output::remove_stale_temps(&path);
                 crate::output::write_atomic_bytes(&path, (text + "\n").as_bytes())?;
             }
+            Ok(())
+        }
+        Command::Li { command } => li(command),
+    }
+}
+
+/// A positive finite number given as option `name`.
+fn positive(name: &str, v: f64) -> Result<f64, Box<dyn std::error::Error>> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("{name}: {v} is not a positive number").into())
+    }
+}
+
+fn li(command: LiCommand) -> Result<(), Box<dyn std::error::Error>> {
+    match command {
+        LiCommand::Fit {
+            tracks,
+            out,
+            dt,
+            cells,
+            segmentation,
+            c,
+            r2,
+            estimate,
+            seed,
+        } => {
+            if let Some(dt) = dt {
+                positive("--dt", dt)?;
+            }
+            let segmentation = match segmentation {
+                SegmentationArg::Tolerance => Segmentation::Tolerance {
+                    c: positive("--c", c)?,
+                },
+                SegmentationArg::R2 if r2 > 0.0 && r2 < 1.0 => Segmentation::R2 { r2 },
+                SegmentationArg::R2 => {
+                    return Err(format!("--r2: {r2} is not in (0, 1)").into());
+                }
+            };
+            // Refuse an output path that cannot be written before the fit, not after.
+            if let Some(dir) = out.parent()
+                && !dir.as_os_str().is_empty()
+                && !dir.is_dir()
+            {
+                return Err(format!("--out: no folder {}", dir.display()).into());
+            }
+            let data = crate::eval::Tracks::read_csv(&tracks, dt)?;
+            let opts = crate::li::FitOptions {
+                segmentation,
+                estimate: match estimate {
+                    EstimateArg::Indirect => Estimate::Indirect,
+                    EstimateArg::Direct => Estimate::Direct,
+                },
+                cells,
+                seed,
+                ..crate::li::FitOptions::default()
+            };
+            let name = tracks.file_name().map_or_else(
+                || tracks.display().to_string(),
+                |n| n.to_string_lossy().into_owned(),
+            );
+            let model = crate::li::fit(&data, &name, &opts)?;
+            model.write(&out)?;
+            let p = &model.provenance;
+            let t = &p.tables;
+            println!(
+                "{}: {} tracks, {} samples, {} segments ({} {}, {} estimate)",
+                tracks.display(),
+                p.tracks,
+                p.samples,
+                p.segments,
+                segmentation.method(),
+                segmentation.parameter(),
+                match p.estimate {
+                    Estimate::Indirect => "indirect",
+                    Estimate::Direct => "direct",
+                },
+            );
+            println!(
+                "  segment length: mean {:.4}, median {:.4} (as segmented: {:.4}, {:.4})",
+                t.length.mean, t.length.median, p.segmented.length.mean, p.segmented.length.median
+            );
+            println!(
+                "  |turn|: median {:.1}° (as segmented: {:.1}°)",
+                t.turn.median.to_degrees(),
+                p.segmented.turn.median.to_degrees()
+            );
+            if let Some(f) = &p.fitted {
+                println!(
+                    "  fitted: speed {:.4}/s, noise {:.2e}, cost {:.1} after {} simulations",
+                    f.speed, f.noise, f.cost, f.evals
+                );
+            }
+            let d = &model.density;
+            println!(
+                "  density: {}x{}x{} cells of {:.4} from {:?}",
+                d.dims[0], d.dims[1], d.dims[2], d.cell, d.origin
+            );
+            println!("  wrote {}", out.display());
+            Ok(())
+        }
+        LiCommand::Synth {
+            out,
+            seed,
+            tracks,
+            samples,
+            speed,
+            fps,
+            noise,
+            side,
+        } => {
+            if tracks == 0 || samples == 0 {
+                return Err("--tracks and --samples: at least 1".into());
+            }
+            let f = Fixture {
+                insects: tracks,
+                frames: samples,
+                speed: positive("--speed", speed)?,
+                fps: positive("--fps", fps)?,
+                noise: if noise.is_finite() && noise >= 0.0 {
+                    noise
+                } else {
+                    return Err(format!("--noise: {noise} is not a number >= 0").into());
+                },
+                side: positive("--side", side)?,
+                seed,
+            };
+            let text = crate::li::synthetic_csv(&f);
+            crate::output::remove_stale_temps(&out);
+            crate::output::write_atomic_bytes(&out, text.as_bytes())?;
+            println!(
+                "wrote {}: {tracks} synthetic tracks of {samples} samples (seed {seed})",
+                out.display()
+            );
             Ok(())
         }
     }

@@ -318,6 +318,81 @@ pub enum SimError {
         /// How many samples there were.
         n: usize,
     },
+    /// A li2015 model file that is not TOML, or whose field is missing, unknown or of the
+    /// wrong type.
+    #[error("{}:{line}:{column}: {}", path.display(), source.message())]
+    LiModelToml {
+        /// The model file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// The reader's error.
+        source: Box<toml::de::Error>,
+    },
+    /// A file that is not a li2015 model file of the version this build reads.
+    #[error(
+        "{}: `format = {}`, `version = {}`: expected a li2015 model file, `format = \"{}\"` \
+         and `version = {}` (written by `swarm li fit`)",
+        path.display(),
+        format.as_deref().unwrap_or("(missing)"),
+        version.as_deref().unwrap_or("(missing)"),
+        crate::li::model::FORMAT,
+        crate::li::model::VERSION
+    )]
+    LiModelVersion {
+        /// The file.
+        path: PathBuf,
+        /// Its `format`, as written (`None`: missing).
+        format: Option<String>,
+        /// Its `version`, as written (`None`: missing).
+        version: Option<String>,
+    },
+    /// A li2015 model file with a value that breaks a rule.
+    #[error("{}:{line}: `{field}`: {problem}", path.display())]
+    LiModelField {
+        /// The model file.
+        path: PathBuf,
+        /// 1-based line of the field.
+        line: usize,
+        /// The field's path (`lengths.counts`, `density.origin[1]`).
+        field: String,
+        /// What is wrong.
+        problem: crate::li::model::ModelProblem,
+    },
+    /// A model file's density grid that does not fit in the world of the scenario using it.
+    #[error(
+        "{}: the density grid spans {grid_min:?} to {grid_max:?}, outside the world {world_min:?} \
+         to {world_max:?}: widen the world to hold the data's box, or give the group its own \
+         `density`",
+        path.display()
+    )]
+    LiModelOutside {
+        /// The model file.
+        path: PathBuf,
+        /// The grid's lower corner.
+        grid_min: [f32; 3],
+        /// The grid's upper corner.
+        grid_max: [f32; 3],
+        /// The world's lower corner.
+        world_min: [f32; 3],
+        /// The world's upper corner.
+        world_max: [f32; 3],
+    },
+    /// Tracks too short for the li2015 pipeline.
+    #[error(
+        "li data: the segmentation found {segments} segments and {turns} turns between them; \
+         fitting needs at least {needed} of each (longer or more tracks)"
+    )]
+    LiTooFewSegments {
+        /// Segments found.
+        segments: usize,
+        /// Turns found.
+        turns: usize,
+        /// The least of each.
+        needed: usize,
+    },
     /// A per-cell array handed to a field solver whose length is not the grid's cell count.
     #[error("field: {what} has {len} values, the grid has {cells} cells")]
     FieldLength {

@@ -7,10 +7,15 @@
 //! * [`LiSim`]: the engine (the fly's world: container, obstacles, sensed insects);
 //! * [`data`]: the learned tables and the density grid of a group (Gaussian targets,
 //!   sketches, obstacles empty);
-//! * [`segment`]: piecewise-linear segmentation of a track by the R² = 0.9 rule;
+//! * [`segment`]: piecewise-linear segmentation of a track (the paper's R² = 0.9 rule, or a
+//!   tolerance that follows the noise);
 //! * [`stats`]: segment lengths and turning angles of a set of tracks, their moments and
 //!   histograms (the tables [`swarm_core::li::sampler::Table`] samples), and the
 //!   visiting-frequency density grid;
+//! * [`infer`]: indirect inference of the segment process behind the tracks (the bias of the
+//!   segmentation cancels);
+//! * [`pipeline`]: tracks → [`model`] file (`swarm li fit`), and the synthetic tracks as a
+//!   track file (`swarm li synth`);
 //! * [`fixture`]: synthetic piecewise-linear tracks from a documented process (spec §2.1).
 //!
 //! The per-insect controller (Algorithm 1, Metropolis-Hastings) is [`swarm_core::li`].
@@ -19,13 +24,18 @@ mod build;
 pub mod data;
 mod engine;
 pub mod fixture;
+pub mod infer;
+pub mod model;
+pub mod pipeline;
 pub(crate) mod scenario;
 pub mod segment;
 mod sim;
 pub mod stats;
 
 pub use build::{bench_li_world, li_frame_samples};
-pub use scenario::{DensitySpec, LiTable, li_params};
+pub use model::LiModel;
+pub use pipeline::{FitOptions, fit, synthetic_csv};
+pub use scenario::{DensitySpec, LiTable, li_params, model_path};
 pub use sim::{
     AnyLiGroup, Counts, LiGroup, LiSim, LiSimFrame, N, O, li_frame, mean_centroid_distance,
     total_variation,

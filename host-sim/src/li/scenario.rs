@@ -1,13 +1,23 @@
 //! What a li2015 group of a scenario is: its parameter table (`li = { sampling = 1, density =
-//! { points = [[0.455, 0.455, 0.455]], sigma = 0.12 } }`: any [`LiParams`] parameter, and the
-//! visiting-frequency grid over the world), and the rules of the model (no `nest`, `goal` or
-//! `threat`: the density is where the swarm goes).
+//! { points = [[0.455, 0.455, 0.455]], sigma = 0.12 } }`: any [`LiParams`] parameter, the
+//! visiting-frequency grid over the world, and a model file), and the rules of the model (no
+//! `nest`, `goal` or `threat`: the density is where the swarm goes).
 //!
-//! The segment-length and turning-angle tables are the synthetic process's (spec §2.1,
-//! [`fixture_tables`]) until the pipeline's model files arrive.
+//! The segment-length and turning-angle tables come from the group's model file (`li = {
+//! model = "data/li-synthetic/model.toml" }`, written by `swarm li fit`: [`LiModel`]), else
+//! they are the synthetic process's (spec §2.1, [`fixture_tables`]). The density is the
+//! group's `density` when it gives one; else the model file's grid, used as it is (same
+//! origin, cells and weights, a free cell at least 1: [`ModelGrid::placed`]) when it lies
+//! inside the world, refused before the run when it does not ([`SimError::LiModelOutside`]);
+//! without either, every free cell alike. Obstacle cells are 0 in every case.
+//!
+//! A model path is relative to the folder of the scenario file that names it (to the current
+//! folder for a scenario without a file).
 
 use std::fmt;
 use std::marker::PhantomData;
+
+use std::path::{Path, PathBuf};
 
 use serde::de::{self, Deserializer, MapAccess, Visitor};
 use serde::ser::{SerializeMap, Serializer};
@@ -16,9 +26,12 @@ use swarm_core::Fx;
 use swarm_core::li::LiParams;
 
 use super::data::{GridShape, fixture_tables, gaussian_weights, sketch_points, sketch_sigma};
-use crate::Result;
+use super::model::LiModel;
+#[cfg(doc)]
+use super::model::ModelGrid;
 use crate::scenario::{Group, GroupCheck, ParamsOverride, Problem, Scenario, read_table};
 use crate::space::{BeeObstacle, Shape3};
+use crate::{Result, SimError};
 
 /// The visiting-frequency grid of a group (§4.3): cells over the world's box, weighted by
 /// Gaussian bumps at `points` and along the `sketch` (spec §2.6), obstacle cells 0; neither
@@ -65,20 +78,30 @@ impl DensitySpec {
     }
 }
 
-/// `li = { .. }`: [`LiParams`] overrides and the group's [`DensitySpec`].
+/// `li = { .. }`: [`LiParams`] overrides, the group's [`DensitySpec`] and model file.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct LiTable {
     /// The parameters set on top of the defaults.
     pub overrides: ParamsOverride<LiParams<f32>>,
     /// The density (default: uniform, 16 cells along the longest side).
     pub density: DensitySpec,
+    /// Whether the table gives `density` (with a `model`, the model's grid is the density
+    /// unless it does).
+    pub density_given: bool,
+    /// The model file (`swarm li fit`) whose tables (and grid) the group uses.
+    pub model: Option<String>,
 }
 
 impl Serialize for LiTable {
     fn serialize<S: Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
         let mut map = serializer.serialize_map(None)?;
         self.overrides.write_entries(&mut map)?;
-        map.serialize_entry("density", &self.density)?;
+        if self.density_given || self.model.is_none() {
+            map.serialize_entry("density", &self.density)?;
+        }
+        if let Some(m) = &self.model {
+            map.serialize_entry("model", m)?;
+        }
         map.end()
     }
 }
@@ -96,7 +119,15 @@ impl<'de> Deserialize<'de> for LiTable {
                 map: A,
             ) -> std::result::Result<LiTable, A::Error> {
                 let mut density = None;
-                let overrides = read_table(map, &["density"], |_, map: &mut A| {
+                let mut model = None;
+                let overrides = read_table(map, &["density", "model"], |key, map: &mut A| {
+                    if key == "model" {
+                        if model.is_some() {
+                            return Err(de::Error::duplicate_field("model"));
+                        }
+                        model = Some(map.next_value()?);
+                        return Ok(());
+                    }
                     if density.is_some() {
                         return Err(de::Error::duplicate_field("density"));
                     }
@@ -105,7 +136,9 @@ impl<'de> Deserialize<'de> for LiTable {
                 })?;
                 Ok(LiTable {
                     overrides,
+                    density_given: density.is_some(),
                     density: density.unwrap_or_default(),
+                    model,
                 })
             }
         }
@@ -125,29 +158,66 @@ fn obstacles(scenario: &Scenario) -> Vec<BeeObstacle> {
         .collect()
 }
 
+/// The file `model` names in `scenario`: relative to the scenario file's folder (to the
+/// current folder for a scenario without a file), or absolute.
+pub fn model_path(scenario: &Scenario, model: &str) -> PathBuf {
+    let model = Path::new(model);
+    match scenario.source.as_deref().and_then(Path::parent) {
+        Some(dir) if model.is_relative() => dir.join(model),
+        _ => model.to_path_buf(),
+    }
+}
+
 /// The li2015 parameters of group `g` of `scenario`: the defaults with its overrides, the
-/// fixture's tables and its density over the world.
+/// tables of its model file (else the fixture's), and its density over the world (its own
+/// `density`, else the model file's grid, else uniform).
 ///
 /// # Errors
 ///
-/// [`SimError::ParamsTable`](crate::SimError::ParamsTable) for a table that is not li
-/// parameters, [`SimError::WrongWorld`](crate::SimError::WrongWorld) for a 2D world,
-/// [`SimError::LiGrid`](crate::SimError::LiGrid) for a grid a device cannot hold (never for
-/// a loaded scenario).
+/// [`SimError::ParamsTable`] for a table that is not li parameters, [`SimError::WrongWorld`]
+/// for a 2D world, [`SimError::LiGrid`] for a grid a device cannot hold (never for a loaded
+/// scenario); what [`LiModel::read`] refuses, and [`SimError::LiModelOutside`] for a model
+/// grid outside the world.
 pub fn li_params(scenario: &Scenario, g: &Group) -> Result<LiParams<f32>> {
     let table = g.params_as::<LiTable>()?;
     let (min, max) = scenario.bounds::<3>("li")?;
-    let d = &table.density;
-    let shape = GridShape::over(min, max, d.cells)?;
-    let sigma = d.sigma().unwrap_or(1.0);
-    let mut points = d.points.clone();
-    points.extend(sketch_points(&d.sketch, 0.5 * sigma));
-    let weights = gaussian_weights(&shape, &points, sigma, &obstacles(scenario), (min, max));
-    let (lengths, turns) = fixture_tables();
+    let model = match &table.model {
+        Some(m) => {
+            let path = model_path(scenario, m);
+            Some((LiModel::read(&path)?, path))
+        }
+        None => None,
+    };
+    let density = match &model {
+        Some((m, path)) if !table.density_given => m
+            .density
+            .placed((min, max), &obstacles(scenario))
+            .map_err(|(grid_min, grid_max)| SimError::LiModelOutside {
+                path: path.clone(),
+                grid_min,
+                grid_max,
+                world_min: min,
+                world_max: max,
+            })?,
+        _ => {
+            let d = &table.density;
+            let shape = GridShape::over(min, max, d.cells)?;
+            let sigma = d.sigma().unwrap_or(1.0);
+            let mut points = d.points.clone();
+            points.extend(sketch_points(&d.sketch, 0.5 * sigma));
+            let weights =
+                gaussian_weights(&shape, &points, sigma, &obstacles(scenario), (min, max));
+            shape.with(&weights)?
+        }
+    };
+    let (lengths, turns) = match &model {
+        Some((m, _)) => (m.lengths.table()?, m.turns.table()?),
+        None => fixture_tables(),
+    };
     Ok(table.overrides.apply(LiParams {
         lengths,
         turns,
-        density: shape.with(&weights)?,
+        density,
         ..LiParams::default()
     }))
 }
@@ -183,7 +253,20 @@ pub(crate) fn check(c: &GroupCheck<'_>) -> std::result::Result<(), Problem> {
     if d.sketch.len() == 1 {
         return Err(c.problem(&at("sketch"), "a sketch needs at least two points"));
     }
-    let params = li_params(c.scenario, g).map_err(|e| c.problem(&at("cells"), e.to_string()))?;
+    if let Some(m) = &table.model {
+        if m.trim().is_empty() {
+            return Err(c.problem(
+                "li.model",
+                "an empty path: name a model file (`swarm li fit`)",
+            ));
+        }
+        LiModel::read(&model_path(c.scenario, m))
+            .map_err(|e| c.problem("li.model", e.to_string()))?;
+    }
+    let params = li_params(c.scenario, g).map_err(|e| match e {
+        SimError::LiModelOutside { .. } => c.problem("li.model", e.to_string()),
+        _ => c.problem(&at("cells"), e.to_string()),
+    })?;
     if params.density.weights.iter().all(|&w| w == 0) {
         return Err(c.problem(
             "li.density",
@@ -214,8 +297,22 @@ mod tests {
         let err = toml::from_str::<LiTable>("density = { cell = 8 }").unwrap_err();
         assert!(err.message().contains("unknown field `cell`"), "{err}");
         assert_eq!(LiTable::default().density.cells, 16);
+        assert!(t.density_given && t.model.is_none());
         // Written and read back: the same table.
         let text = toml::to_string(&t).unwrap();
         assert_eq!(toml::from_str::<LiTable>(&text).unwrap(), t);
+        // A model without a density, and with one: both written back as they were.
+        for text in [
+            "model = \"m.toml\"",
+            "model = \"m.toml\"\ndensity = { cells = 4 }",
+        ] {
+            let t: LiTable = toml::from_str(text).unwrap();
+            assert_eq!(t.model.as_deref(), Some("m.toml"));
+            assert_eq!(t.density_given, text.contains("density"));
+            let again = toml::to_string(&t).unwrap();
+            assert_eq!(toml::from_str::<LiTable>(&again).unwrap(), t);
+        }
+        let err = toml::from_str::<LiTable>("model = 3").unwrap_err();
+        assert!(err.message().contains("invalid type"), "{err}");
     }
 }

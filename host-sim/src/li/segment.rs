@@ -154,3 +154,76 @@ pub fn noise_sd(points: &[[f64; 3]]) -> Option<f64> {
     let (_, median, _) = d.select_nth_unstable_by(mid, f64::total_cmp);
     Some(*median / 0.6745 / 6f64.sqrt())
 }
+
+/// The default of the noise-following tolerance: c = 3.5 (docs/models.md: the value whose
+/// segments come closest to the synthetic process's at the spec's condition).
+pub const TOLERANCE_C: f64 = 3.5;
+
+/// How a track is cut into segments.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Segmentation {
+    /// The paper's rule ([`segment`]): a window is one segment when a line explains at least
+    /// `r2` of its scatter.
+    R2 {
+        /// The goodness of fit (the paper's 0.9).
+        r2: f64,
+    },
+    /// A tolerance that follows the noise ([`segment_by_tolerance`] at `c`·σ̂, σ̂ each
+    /// track's [`noise_sd`]).
+    Tolerance {
+        /// The multiple of the noise.
+        c: f64,
+    },
+}
+
+impl Default for Segmentation {
+    /// [`Segmentation::Tolerance`] at [`TOLERANCE_C`].
+    fn default() -> Self {
+        Segmentation::Tolerance { c: TOLERANCE_C }
+    }
+}
+
+impl Segmentation {
+    /// The segments of one run of consecutive samples (as [`segment`]). With a tolerance, a
+    /// run of fewer than 3 samples (no noise estimate) is one segment, and the noise estimate
+    /// is at least 10⁻⁹ of the median step (a noise-free track is cut at its bends, not at
+    /// rounding errors).
+    pub fn split(&self, points: &[[f64; 3]]) -> Vec<(usize, usize)> {
+        match *self {
+            Segmentation::R2 { r2 } => segment(points, r2),
+            Segmentation::Tolerance { c } => {
+                let Some(sigma) = noise_sd(points) else {
+                    return segment_by_tolerance(points, f64::INFINITY);
+                };
+                let mut steps: Vec<f64> = points
+                    .windows(2)
+                    .map(|w| {
+                        (0..3)
+                            .map(|k| (w[1][k] - w[0][k]).powi(2))
+                            .sum::<f64>()
+                            .sqrt()
+                    })
+                    .collect();
+                let mid = steps.len() / 2;
+                let step = *steps.select_nth_unstable_by(mid, f64::total_cmp).1;
+                segment_by_tolerance(points, c * sigma.max(1e-9 * step))
+            }
+        }
+    }
+
+    /// The method's name in a model file and on the command line (`r2`, `tolerance`).
+    pub fn method(&self) -> &'static str {
+        match self {
+            Segmentation::R2 { .. } => "r2",
+            Segmentation::Tolerance { .. } => "tolerance",
+        }
+    }
+
+    /// Its parameter (R² or c).
+    pub fn parameter(&self) -> f64 {
+        match *self {
+            Segmentation::R2 { r2 } => r2,
+            Segmentation::Tolerance { c } => c,
+        }
+    }
+}

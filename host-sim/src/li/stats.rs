@@ -2,7 +2,7 @@
 //! segments and the turning angles between successive ones (the two distributions of
 //! Algorithm 1), and the visiting frequency of each cell of the space (§4.3).
 
-use super::segment::segment;
+use super::segment::Segmentation;
 use crate::eval::Tracks;
 
 /// The segments of a set of tracks.
@@ -16,12 +16,18 @@ pub struct Segments {
 }
 
 /// The segments of every run of consecutive frames of `tracks` ([`Tracks::runs`]: a gap
-/// starts a new run, and no turn is measured across it), by [`segment`] with `r2_min`.
+/// starts a new run, and no turn is measured across it), by the paper's rule
+/// ([`segment`](super::segment::segment)) with `r2_min`.
 pub fn segments(tracks: &Tracks, r2_min: f64) -> Segments {
+    segments_by(tracks, &Segmentation::R2 { r2: r2_min })
+}
+
+/// The segments of every run of consecutive frames of `tracks`, by `method`.
+pub fn segments_by(tracks: &Tracks, method: &Segmentation) -> Segments {
     let mut out = Segments::default();
     for (_, _, run) in tracks.runs() {
         let mut previous: Option<[f64; 3]> = None;
-        for (a, b) in segment(&run, r2_min) {
+        for (a, b) in method.split(&run) {
             let d = [0, 1, 2].map(|k| run[b][k] - run[a][k]);
             let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
             out.lengths.push(len);

@@ -168,3 +168,82 @@ fn noise_estimate_and_tolerance_segmentation() {
         "the R² rule misses the 30° turn"
     );
 }
+
+/// The process's own |turn| median: the median of |N(2.34°, 40.02°)| (radians).
+pub(crate) fn fixture_turn_median() -> f64 {
+    use super::infer::gamma_p;
+    let (mu, sd) = (2.34f64.to_radians(), 40.02f64.to_radians());
+    let phi = |z: f64| 0.5 * (1.0 + z.signum() * gamma_p(0.5, z * z / 2.0));
+    let share = |m: f64| phi((m - mu) / sd) - phi((-m - mu) / sd);
+    let (mut lo, mut hi) = (0.0, std::f64::consts::PI);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if share(mid) < 0.5 { lo = mid } else { hi = mid }
+    }
+    0.5 * (lo + hi)
+}
+
+/// The recovery table of docs/models.md (L-T16): relative errors of the mean and median
+/// segment length and the median |turn| against the process's (14.57 mm, 7.22 mm, 27.0°),
+/// indirect and direct, per condition and seed. Slow: `LI_TABLE_SEEDS=1,2,3
+/// LI_TABLE_SIZE=100x2000 cargo test --release -p swarm-sim --lib li::tests::recovery_table
+/// -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn recovery_table() {
+    use super::model::Estimate;
+    use super::pipeline::{FitOptions, fit};
+    let seeds: Vec<u32> = std::env::var("LI_TABLE_SEEDS")
+        .unwrap_or_else(|_| "1,2,3".into())
+        .split(',')
+        .map(|s| s.parse().unwrap())
+        .collect();
+    let size = std::env::var("LI_TABLE_SIZE").unwrap_or_else(|_| "20x1000".into());
+    let (insects, frames) = size.split_once('x').unwrap();
+    let (insects, frames): (u32, u32) = (insects.parse().unwrap(), frames.parse().unwrap());
+    let conditions = std::env::var("LI_TABLE_CONDITIONS").unwrap_or_else(|_| "0,1,2,3,4".into());
+    let all = [
+        (0.0002, 0.15),
+        (0.0001, 0.15),
+        (0.0004, 0.15),
+        (0.0002, 0.10),
+        (0.0002, 0.25),
+    ];
+    let turn = fixture_turn_median();
+    for ci in conditions.split(',').map(|c| c.parse::<usize>().unwrap()) {
+        let (noise, speed) = all[ci];
+        for &seed in &seeds {
+            let f = Fixture {
+                insects,
+                frames,
+                noise,
+                speed,
+                seed,
+                ..Fixture::default()
+            };
+            let (tracks, _) = synthetic_tracks(&f);
+            let t0 = std::time::Instant::now();
+            let mut row = format!("noise {:.1} mm, {speed:.2} m/s, seed {seed}:", noise * 1e3);
+            for estimate in [Estimate::Indirect, Estimate::Direct] {
+                let m = fit(
+                    &tracks,
+                    "synthetic",
+                    &FitOptions {
+                        estimate,
+                        ..FitOptions::default()
+                    },
+                )
+                .unwrap();
+                let t = m.provenance.tables;
+                let e = |got: f64, want: f64| (got / want - 1.0) * 100.0;
+                row += &format!(
+                    " {estimate:?} {:+.0} % {:+.0} % {:+.0} % |",
+                    e(t.length.mean, 0.01457),
+                    e(t.length.median, 0.00722),
+                    e(t.turn.median, turn)
+                );
+            }
+            println!("{row} {:.1} s", t0.elapsed().as_secs_f64());
+        }
+    }
+}

@@ -21,17 +21,20 @@ use super::types::{
     Action, Event, Group, Model, Object, ObjectKind, Scenario, Spawn, SpawnRegion, World,
 };
 
-/// The typed scenario of `raw` (named `default_name` when the file has no `name`), checked by
+/// The typed scenario of `raw` (named `default_name` when the file has no `name`, read from
+/// the file `source` if any: the rules resolve the files it names from there), checked by
 /// every rule, with its warnings; or the first problem and the stage that found it
 /// ([`Shape`](DiagnosticKind::Shape): a field that does not fit its form;
 /// [`Rule`](DiagnosticKind::Rule): a rule of the scenario).
 pub(crate) fn build(
     raw: RawScenario,
     default_name: &str,
+    source: Option<&std::path::Path>,
 ) -> Result<(Scenario, Vec<Finding>), (DiagnosticKind, Problem)> {
-    let scenario = raw
+    let mut scenario = raw
         .convert(default_name)
         .map_err(|p| (DiagnosticKind::Shape, p))?;
+    scenario.source = source.map(std::path::Path::to_path_buf);
     let findings = rules::validate(&scenario).map_err(|p| (DiagnosticKind::Rule, p))?;
     Ok((scenario, findings))
 }
@@ -90,7 +93,9 @@ impl RawScenario {
     /// Converted and checked (the serde path: a scenario without a file, named `scenario`
     /// unless it says otherwise; file loading goes through `load.rs`, which adds the lines).
     fn checked(self) -> Result<Scenario, Problem> {
-        build(self, "scenario").map(|(s, _)| s).map_err(|(_, p)| p)
+        build(self, "scenario", None)
+            .map(|(s, _)| s)
+            .map_err(|(_, p)| p)
     }
 }
 

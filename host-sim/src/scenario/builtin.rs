@@ -82,7 +82,7 @@ fn load_builtin(name: &str) -> Option<Result<(Scenario, Vec<ScenarioWarning>)>> 
     BUILTINS
         .iter()
         .find(|b| b.name == name)
-        .map(|b| load(b.text, &format!("scenarios/{}.toml", b.name), b.name))
+        .map(|b| load(b.text, &format!("scenarios/{}.toml", b.name), b.name, None))
 }
 
 /// A built-in scenario by name, else the scenario file at that path.

@@ -36,9 +36,7 @@ impl Scenario {
             path: path.to_owned(),
             source,
         })?;
-        let (mut scenario, warnings) = load(&text, &path.display().to_string(), &stem(path))?;
-        scenario.source = Some(path.to_owned());
-        Ok((scenario, warnings))
+        load(&text, &path.display().to_string(), &stem(path), Some(path))
     }
 
     /// Parses and checks scenario text. `origin` names the text in error messages (a file name
@@ -52,7 +50,7 @@ impl Scenario {
         text: &str,
         origin: &str,
     ) -> Result<(Scenario, Vec<ScenarioWarning>)> {
-        load(text, origin, &stem(Path::new(origin)))
+        load(text, origin, &stem(Path::new(origin)), None)
     }
 
     /// Checks a scenario built or changed in code by the same rules as a loaded file (the
@@ -106,16 +104,18 @@ fn stem(path: &Path) -> String {
     )
 }
 
-/// Parses, converts and validates `text`; errors and warnings name `origin`.
+/// Parses, converts and validates `text` (the file `source`, if any: the scenario's
+/// `source`); errors and warnings name `origin`.
 pub(crate) fn load(
     text: &str,
     origin: &str,
     default_name: &str,
+    source: Option<&Path>,
 ) -> Result<(Scenario, Vec<ScenarioWarning>)> {
     let doc = Document::parse(text, origin)?;
     let raw: RawScenario = doc.deserialize()?;
     let (scenario, findings) =
-        build(raw, default_name).map_err(|(kind, p)| invalid(doc.locate(kind, p)))?;
+        build(raw, default_name, source).map_err(|(kind, p)| invalid(doc.locate(kind, p)))?;
     let warnings = findings
         .into_iter()
         .map(|f| ScenarioWarning {
