@@ -122,9 +122,9 @@ fn the_pipeline_recovers_the_synthetic_process() {
         median * 100.0
     );
     assert!(turn.abs() < 0.10, "median |turn| {:+.1} %", turn * 100.0);
-    // The flight itself is recovered closely: speed and noise within 2 %.
-    assert!(rel(fitted.speed, 0.15).abs() < 0.02, "{}", fitted.speed);
-    assert!(rel(fitted.noise, 0.0002).abs() < 0.02, "{}", fitted.noise);
+    // The flight itself is recovered closely: speed and noise within 3 % (seeds 1-7: 1 %).
+    assert!(rel(fitted.speed, 0.15).abs() < 0.03, "{}", fitted.speed);
+    assert!(rel(fitted.noise, 0.0002).abs() < 0.03, "{}", fitted.noise);
     // The tables are the fitted process's (binned): their moments within 2 % of its own.
     assert!(rel(t.length.mean, fitted.length.mean).abs() < 0.02);
     assert!(rel(t.length.median, fitted.length.median).abs() < 0.02);
