@@ -11,11 +11,9 @@
 use std::time::Duration;
 
 use swarm_core::model::ParamValue;
-use swarm_hil::client::{Client, ClientOptions, RtoOptions};
-use swarm_hil::loopback::with_scalar;
-use swarm_hil::mirror::{MirrorOptions, mirror_with_events};
-use swarm_hil::soft::{SoftDevice, serve};
-use swarm_hil::transport::memory_pair;
+use swarm_hil::client::{ClientOptions, RtoOptions};
+use swarm_hil::loopback::{Line, LinkKind, loopback};
+use swarm_hil::mirror::MirrorOptions;
 use swarm_sim::engine::{Engine, apply_due_events};
 use swarm_sim::li::{LiSim, LiTable, mean_centroid_distance};
 use swarm_sim::scalar::SimScalar;
@@ -26,16 +24,23 @@ fn fig4() -> Scenario {
     scenario::builtin("li-fig4-confined").expect("built-in scenario")
 }
 
-/// `sc` with integer parameter `name` of every group set to `value`.
-fn with_int(sc: &Scenario, name: &str, value: u32) -> Scenario {
+/// `sc` with `edit` applied to the li table of every group.
+fn with_table(sc: &Scenario, edit: impl Fn(&mut LiTable)) -> Scenario {
     let mut sc = sc.clone();
     for g in &mut sc.groups {
         let mut t: LiTable = g.params_as().expect("li parameters");
-        assert!(t.overrides.set(name, ParamValue::Int(value)), "{name}");
+        edit(&mut t);
         g.set_params(&t).expect("a table");
     }
     sc.validate().expect("still valid");
     sc
+}
+
+/// `sc` with integer parameter `name` of every group set to `value`.
+fn with_int(sc: &Scenario, name: &str, value: u32) -> Scenario {
+    with_table(sc, |t| {
+        assert!(t.overrides.set(name, ParamValue::Int(value)), "{name}");
+    })
 }
 
 /// What a run measured: the accumulated density's total variation to the target, the mean
@@ -160,31 +165,30 @@ fn the_swarm_is_densest_at_its_centroid() {
 /// mirrored in memory in both scalars with no mismatch.
 #[test]
 fn the_soft_device_mirrors_the_model() {
-    for scalar in [ScalarType::F32, ScalarType::Fixed] {
-        let mut sc = with_scalar(&fig4(), scalar);
-        sc.set_steps(80);
-        sc.outputs.render = false;
-        sc.outputs.gif = false;
-        let mut engine = swarm_sim::models::engine(&sc, sc.seed).unwrap();
-        let device = engine.device().unwrap().soft;
-        let (dev_end, host_end) = memory_pair();
-        let soft = SoftDevice::spawn(move |stop| serve(device, dev_end, stop).map(|_| ()));
-        let client = ClientOptions {
+    let mut sc = fig4();
+    sc.set_steps(80);
+    sc.outputs.render = false;
+    sc.outputs.gif = false;
+    // A clean line: the timeout's floor well above a descheduled thread (tests run in
+    // parallel).
+    let line = Line {
+        client: ClientOptions {
             rto: RtoOptions {
                 min: Duration::from_millis(50),
                 ..RtoOptions::default()
             },
             ..ClientOptions::default()
-        };
-        let mut client = Client::new(host_end, client);
-        let opts = MirrorOptions {
-            agents: Some(25),
-            steps: 80,
-            session: 17,
-            progress: false,
-        };
-        let r = mirror_with_events(&sc, &mut *engine, &mut client, &opts, &mut |_| Ok(())).unwrap();
-        soft.stop().unwrap();
+        },
+        ..Line::clean(LinkKind::Memory)
+    };
+    let opts = MirrorOptions {
+        agents: Some(25),
+        steps: 80,
+        session: 17,
+        progress: false,
+    };
+    for scalar in [ScalarType::F32, ScalarType::Fixed] {
+        let r = loopback(&sc, scalar, line, &opts).unwrap();
         assert_eq!(r.decisions, 2000, "{scalar:?}");
         assert_eq!(r.mismatches, 0, "{scalar:?}: {}", r.human());
         assert!(r.passed(), "{scalar:?}: {}", r.human());
@@ -214,7 +218,7 @@ fn too_few_cells_do_worse() {
     let runs: Vec<(u16, f64, f64)> = [2u16, 4, 8, 16]
         .into_iter()
         .map(|cells| {
-            let sc = with_cells(&few, cells);
+            let sc = with_table(&few, |t| t.density.cells = cells);
             let mut sim = LiSim::from_scenario(&sc, swarm_tests::seed(sc.seed)).expect("builds");
             for _ in 0..sc.steps {
                 Engine::tick(&mut sim).expect("tick");
@@ -232,18 +236,6 @@ fn too_few_cells_do_worse() {
     for &(_, _, phi) in &runs {
         assert!((0.03..0.3).contains(&phi), "{report}");
     }
-}
-
-/// `sc` with `li.density.cells` of every group set to `cells`.
-fn with_cells(sc: &Scenario, cells: u16) -> Scenario {
-    let mut sc = sc.clone();
-    for g in &mut sc.groups {
-        let mut t: LiTable = g.params_as().expect("li parameters");
-        t.density.cells = cells;
-        g.set_params(&t).expect("a table");
-    }
-    sc.validate().expect("still valid");
-    sc
 }
 
 /// L-T13 and L-T14 on `li-fig5-lantern` (Fig. 5 left): the midges keep to the sketched ring,
