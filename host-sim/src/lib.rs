@@ -56,6 +56,7 @@ pub mod scalar;
 pub mod scenario;
 pub mod space;
 pub mod spawn;
+pub mod swarm3d;
 pub mod wang;
 
 pub use error::{Result, SimError};

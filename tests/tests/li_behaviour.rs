@@ -70,7 +70,7 @@ fn run(sc: &Scenario) -> Measured {
     }
     Measured {
         tv: sim.density_tv().expect("measured"),
-        centroid: sim.centroid_distance / sim.measured as f64,
+        centroid: sim.measures.means().1,
         closest,
         frames,
     }
@@ -224,8 +224,8 @@ fn too_few_cells_do_worse() {
                 Engine::tick(&mut sim).expect("tick");
                 sim.measure();
             }
-            let n = sim.measured as f64;
-            (cells, sim.centroid_distance / n, sim.polarisation / n)
+            let (polarisation, centroid) = sim.measures.means();
+            (cells, centroid, polarisation)
         })
         .collect();
     let report = format!("(cells, centroid distance, Φ): {runs:.3?}");

@@ -1,7 +1,8 @@
 //! Force-based flying insects with 3D ORCA (ren2016) on the host: the world, the sensor
 //! frames, the engine.
 //!
-//! A [`FlySim`] holds a [`FlyWorld`] (the container box, whose walls the insects sense, its
+//! A [`FlySim`] (the shared [`Swarm3d`](crate::swarm3d::Swarm3d) host) holds a
+//! [`World3d`](crate::swarm3d::World3d) (the container box, whose walls the insects sense, its
 //! obstacles, the stimulus sources, and what every insect broadcast at its last step, with a
 //! counting-sort neighbour grid) and the groups of insects, each running
 //! `swarm_core::fly::step_checked` (Algorithm 1: zone forces, friction, stimulus response,
@@ -11,17 +12,14 @@
 //! world is the backstop and counts each time it has to act.
 
 mod build;
-mod engine;
 pub(crate) mod scenario;
 mod sense;
 mod sim;
-mod world;
 
 #[cfg(test)]
 mod tests;
 
-pub use build::{bench_fly_world, fly_frame_samples};
+pub use build::bench_fly_world;
 pub use scenario::{FlyParamsOverride, FlyPreset, fly_params};
 pub use sense::{FlySimFrame, N, O, Stimuli, ZONE_QUOTA, fly_frame, zone_shares};
-pub use sim::{AnyFlyGroup, Counts, FlyGroup, FlySim};
-pub use world::{FlyWorld, Kinematic, Sensed, Source, clear_of, reach};
+pub use sim::{AnyFlyGroup, Counts, Fly, FlyGroup, FlySim, Polarisation};

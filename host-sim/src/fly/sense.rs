@@ -11,10 +11,10 @@ use swarm_core::fly::{
 };
 use swarm_core::{Scalar, Vec3};
 
-use super::world::{FlyWorld, reach};
 use crate::nearest::select_bands;
 use crate::scalar::{SimScalar, v3};
 use crate::space::at;
+use crate::swarm3d::{World3d, reach};
 
 /// Neighbour capacity of a fly frame (the wire's).
 pub const N: usize = WIRE_FLY_NEIGHBOURS;
@@ -56,7 +56,7 @@ pub struct Stimuli {
 /// Neighbours are banded by squared distance into the zones of Eq. 5 (`[0, r_rep)`,
 /// `[r_rep, r_ali)`, `[r_ali, r_att)`) and each band gives its nearest [`zone_shares`].
 pub fn fly_frame<S: SimScalar>(
-    w: &FlyWorld,
+    w: &World3d,
     slot: usize,
     p: &FlyParams<S>,
     stimuli: Stimuli,
@@ -92,7 +92,7 @@ pub fn fly_frame<S: SimScalar>(
 /// ([`Source::region`](super::world::Source::region)) a threat is where the insect's heading
 /// meets its walls ([`echo_point`]) and a goal its nearest point (none inside it).
 fn stimulus<S: SimScalar>(
-    w: &FlyWorld,
+    w: &World3d,
     me: Vec3<S>,
     vel: Vec3<S>,
     r_res: S,

@@ -1,21 +1,32 @@
-//! The ren2016 engine: every insect goes through `swarm_core::fly::step_checked` each step
-//! (Algorithm 1: forces, ORCA, move), in parallel and deterministically: a step reads only
-//! what every insect broadcast at the previous one (position and actual velocity, as RVO2
-//! does), so any thread count gives the same bits. Then the world keeps the new states
-//! physical (the backstop: ORCA's obstacle planes should leave it nothing to do) and counts
-//! every correction.
+//! The ren2016 engine: a [`Swarm3d`] of insects each going through
+//! `swarm_core::fly::step_checked` every step (Algorithm 1: forces, ORCA, move) on the frame
+//! [`fly_frame`] builds, with the group's stimuli as its inputs; the world keeps the new
+//! states physical (the backstop: ORCA's obstacle planes should leave it nothing to do) and
+//! counts every correction. The summary adds the polarisation.
 
-use rayon::prelude::*;
-use swarm_core::fly::{self, FlyDecision, FlyParams, FlyState};
-use swarm_core::{Checked, Fx, Scalar, StepCtx};
+use swarm_core::fly::{
+    self, FlyDecision, FlyDevice, FlyParams, FlyState, FlyStep, FlyStepReply, FlyStepRequest,
+};
+use swarm_core::wire::Endpoint;
+use swarm_core::{Checked, StepCtx, Vec3};
 
-use super::sense::{Stimuli, fly_frame};
-use super::world::FlyWorld;
-use crate::by_scalar;
+use super::sense::{FlySimFrame, N, Stimuli, fly_frame};
+use crate::engine::{Exchange, soft_name};
 use crate::error::{Result, SimError};
-use crate::grid::permuted;
-use crate::par::for_each_agent;
-use crate::scalar::{AgentGroup, ByScalar, SimScalar};
+use crate::output::Summary;
+use crate::scalar::SimScalar;
+use crate::swarm3d::{AnyGroup3d, Group3d, Kinematic, Model3d, Step3d, Swarm3d, reach};
+
+/// The ren2016 model over both scalar types (the [`Model3d`] of [`FlySim`]).
+#[derive(Clone, Copy, Debug)]
+pub enum Fly {}
+
+/// A ren2016 swarm (or several) in its world.
+pub type FlySim = Swarm3d<Fly>;
+/// A group of ren2016 insects sharing parameters, stimuli and a scalar type.
+pub type FlyGroup<S> = Group3d<Fly, S>;
+/// A group of either scalar type.
+pub type AnyFlyGroup = AnyGroup3d<Fly>;
 
 /// What happened in one step, or since the start (one count per insect and step).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -39,289 +50,145 @@ impl std::ops::AddAssign for Counts {
     }
 }
 
-/// A group of insects sharing parameters, stimuli and a scalar type. The group owns the world
-/// slots `first..first + len`; `ids` keeps each insect's stable id while slots are reordered.
-#[derive(Clone, Debug)]
-pub struct FlyGroup<S> {
-    /// Group name.
-    pub name: String,
-    /// First world slot of the group.
-    pub first: usize,
-    /// Controller parameters (validated).
-    pub params: Checked<FlyParams<S>>,
-    /// The sources it pursues and escapes.
-    pub stimuli: Stimuli,
-    /// Current states, by slot.
-    pub states: Vec<FlyState<S>>,
-    /// Stable agent id of each slot.
-    pub ids: Vec<u32>,
-    /// The last step's decisions, by slot.
-    pub decisions: Vec<FlyDecision<S>>,
-    /// Whether each insect's last frame was truncated.
-    pub truncated: Vec<bool>,
-    /// What the world corrected at the last step, by slot: bit 0 an obstacle, bit 1 a wall.
-    pub corrected: Vec<u8>,
-    pub(crate) next: Vec<FlyState<S>>,
+/// The polarisation accumulated over a run.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Polarisation {
+    /// Σ of the polarisation after each measured step.
+    pub sum: f64,
+    /// The steps measured.
+    pub steps: u64,
 }
 
-impl<S: SimScalar> FlyGroup<S> {
-    /// A group of insects starting in `states`, occupying slots (and ids) from `first` on.
-    pub fn new(
-        name: String,
-        first: usize,
-        params: Checked<FlyParams<S>>,
+impl Polarisation {
+    /// The mean (0 before any step).
+    pub fn mean(&self) -> f64 {
+        self.sum / self.steps.max(1) as f64
+    }
+}
+
+impl<S: SimScalar> Kinematic<S> for FlyState<S> {
+    fn kinematics(&self) -> (Vec3<S>, Vec3<S>) {
+        (self.pos, self.vel)
+    }
+    fn kinematics_mut(&mut self) -> (&mut Vec3<S>, &mut Vec3<S>) {
+        (&mut self.pos, &mut self.vel)
+    }
+}
+
+impl<S: SimScalar> Step3d<S> for FlyParams<S> {
+    type Decision = FlyDecision<S>;
+    type Frame = FlySimFrame<S>;
+    type Inputs = Stimuli;
+    type Counts = Counts;
+    const STEP: &'static str = "fly step";
+
+    fn frame(
+        &self,
+        w: &crate::swarm3d::World3d,
+        slot: usize,
         stimuli: Stimuli,
-        states: Vec<FlyState<S>>,
-    ) -> Self {
-        let n = states.len();
-        FlyGroup {
-            name,
-            first,
-            params,
-            stimuli,
-            ids: (first as u32..(first + n) as u32).collect(),
-            decisions: vec![FlyDecision::default(); n],
-            truncated: vec![false; n],
-            corrected: vec![0; n],
-            next: states.clone(),
-            states,
-        }
+    ) -> (Self::Frame, bool) {
+        fly_frame(w, slot, self, stimuli)
     }
-
-    /// The random-number context of group slot `k` at step `step`.
-    pub(super) fn ctx(&self, seed: u32, step: u32, k: usize) -> StepCtx {
-        StepCtx {
-            seed,
-            agent: self.ids[k],
-            step,
-        }
+    fn step(
+        params: &Checked<Self>,
+        state: &FlyState<S>,
+        frame: &Self::Frame,
+        ctx: StepCtx,
+    ) -> swarm_core::Result<(FlyState<S>, FlyDecision<S>)> {
+        fly::step_checked(state, frame, params, ctx)
     }
-
-    /// Runs every insect's step on its frame: the decisions and the next states as the
-    /// controller gave them (not yet kept physical).
-    fn decide(&mut self, w: &FlyWorld, seed: u32, step: u32) -> Result<()> {
-        let (mut next, mut decisions, mut truncated) = (
-            std::mem::take(&mut self.next),
-            std::mem::take(&mut self.decisions),
-            std::mem::take(&mut self.truncated),
-        );
-        let this = &*self;
-        let result = for_each_agent(
-            next.par_iter_mut()
-                .zip(decisions.par_iter_mut())
-                .zip(truncated.par_iter_mut()),
-            || (),
-            |(), k, ((out, dec), cut)| {
-                let (frame, more) = fly_frame(w, this.first + k, &this.params, this.stimuli);
-                let ctx = this.ctx(seed, step, k);
-                let (s, d) = fly::step_checked(&this.states[k], &frame, &this.params, ctx)
-                    .map_err(|e| SimError::controller("fly step", step, ctx.agent, e))?;
-                *out = s;
-                *dec = d;
-                *cut = more;
-                Ok(())
-            },
-        );
-        self.next = next;
-        self.decisions = decisions;
-        self.truncated = truncated;
-        result
-    }
-
-    /// Keeps the next states physical, makes them current and writes the sensed world;
-    /// returns this step's counts.
-    fn commit(&mut self, w: &mut FlyWorld) -> Counts {
-        let world = &*w;
-        self.next
-            .par_iter_mut()
-            .zip(self.corrected.par_iter_mut())
-            .with_min_len(1024)
-            .for_each(|(s, fix)| *fix = world.confine(s));
-        w.sensed.write(self.first, &self.ids, &self.next);
-        std::mem::swap(&mut self.states, &mut self.next);
-        self.counts()
-    }
-
-    /// What happened to this group at the last step.
-    pub fn counts(&self) -> Counts {
-        let mut c = Counts::default();
-        for ((d, &t), &fix) in self
-            .decisions
-            .iter()
-            .zip(&self.truncated)
-            .zip(&self.corrected)
-        {
-            c.infeasible += u64::from(d.infeasible);
-            c.truncated += u64::from(t);
-            c.obstacle += u64::from(fix & 1);
-            c.bounds += u64::from(fix >> 1 & 1);
-        }
-        c
-    }
-
-    /// Sorts the group's slots by their cell in the world's grid: changes no result, only
-    /// memory locality. Rewrites the group's part of the sensed world.
-    fn reorder(&mut self, w: &mut FlyWorld) {
-        let perm = w.grid.order_of(&self.states, |s| {
-            let p = s.pos.to_f32();
-            [p.x, p.y, p.z]
-        });
-        self.states = permuted(&self.states, &perm);
-        self.decisions = permuted(&self.decisions, &perm);
-        self.truncated = permuted(&self.truncated, &perm);
-        self.corrected = permuted(&self.corrected, &perm);
-        self.ids = permuted(&self.ids, &perm);
-        self.next.clone_from(&self.states);
-        w.sensed.write(self.first, &self.ids, &self.states);
-    }
-
-    /// This step's next states as the controller gave them, by slot (after
-    /// [`FlySim::decide_all`], before [`FlySim::publish`]).
-    pub(super) fn decided(&self) -> &[FlyState<S>] {
-        &self.next
-    }
-
-    /// The states in id order, with their last decisions.
-    pub fn by_id(&self) -> Vec<(u32, FlyState<S>, FlyDecision<S>)> {
-        let mut v: Vec<_> = (0..self.states.len())
-            .map(|k| (self.ids[k], self.states[k], self.decisions[k]))
-            .collect();
-        v.sort_unstable_by_key(|e| e.0);
-        v
-    }
-}
-
-/// A group of either scalar type.
-pub type AnyFlyGroup = ByScalar<FlyGroup<f32>, FlyGroup<Fx>>;
-
-crate::scalar::agent_group!(FlyGroup);
-
-/// A ren2016 swarm (or several) in its world.
-#[derive(Clone, Debug)]
-pub struct FlySim {
-    /// The world and the sensed state of every insect.
-    pub world: FlyWorld,
-    /// The groups, in slot order.
-    pub groups: Vec<AnyFlyGroup>,
-    /// The run's seed (escape angles, white and Gaussian noise, spawn).
-    pub seed: u32,
-    /// The next step to run.
-    pub step: u32,
-    /// Re-sort the slots by grid cell every this many steps (0: never). Changes no result.
-    pub reorder_every: u32,
-    /// What happened at the last step.
-    pub last: Counts,
-    /// What happened since the start.
-    pub total: Counts,
-    /// Σ of the polarisation after each step, and the steps measured.
-    pub polarisation: (f64, u64),
-    /// Insects closer than this count as a collision: 2·radius (the groups' largest).
-    pub collision_distance: f32,
-}
-
-impl FlySim {
-    /// A simulation of `groups` (contiguous slots, in order) in `world`.
-    pub fn new(mut world: FlyWorld, groups: Vec<AnyFlyGroup>, seed: u32) -> Self {
-        let n = groups.iter().map(AnyFlyGroup::len).sum();
-        world.resize(n);
-        for g in &groups {
-            by_scalar!(g, g => world.sensed.write(g.first, &g.ids, &g.states));
-        }
-        let radius = groups
-            .iter()
-            .map(|g| by_scalar!(g, g => g.params.radius.to_f32()))
-            .fold(0.0, f32::max);
-        let mut sim = FlySim {
-            world,
-            groups,
-            seed,
-            step: 0,
-            reorder_every: 16,
-            last: Counts::default(),
-            total: Counts::default(),
-            polarisation: (0.0, 0),
-            collision_distance: 2.0 * radius,
+    fn exchange(
+        agent: u32,
+        (state, frame, ctx): (FlyState<S>, Self::Frame, StepCtx),
+        (decision, next): (FlyDecision<S>, FlyState<S>),
+    ) -> Result<Exchange> {
+        let request = FlyStepRequest { state, frame, ctx };
+        let reply = FlyStepReply {
+            decision,
+            state: next,
         };
-        sim.reorder();
-        sim
+        Exchange::of::<FlyParams<S>, FlyStep>(agent, &request, &reply)
     }
-
-    /// Number of insects.
-    pub fn agents(&self) -> usize {
-        self.world.len()
-    }
-
-    /// Sorts every group's slots by grid cell (memory locality for the neighbour queries).
-    pub fn reorder(&mut self) {
-        self.world.index_positions();
-        for g in &mut self.groups {
-            by_scalar!(g, g => g.reorder(&mut self.world));
+    fn count(d: &FlyDecision<S>, truncated: bool, fix: u8) -> Counts {
+        Counts {
+            infeasible: u64::from(d.infeasible),
+            truncated: u64::from(truncated),
+            obstacle: u64::from(fix & 1),
+            bounds: u64::from(fix >> 1 & 1),
         }
     }
-
-    /// Every insect decides from the previous step's sensed world (nothing is published).
-    ///
-    /// # Errors
-    ///
-    /// [`SimError::Controller`] for a frame or state the controller refused.
-    pub fn decide_all(&mut self) -> Result<()> {
-        let (seed, step) = (self.seed, self.step);
-        self.world.index_positions();
-        for g in &mut self.groups {
-            by_scalar!(g, g => g.decide(&self.world, seed, step))?;
-        }
-        Ok(())
+    /// `label` 1 while it escapes a predator, `motion` 1 when its ORCA program was infeasible.
+    fn marks(s: &FlyState<S>, d: &FlyDecision<S>) -> (u8, u8) {
+        (u8::from(s.escaping), u8::from(d.infeasible))
     }
-
-    /// Confines the decided states, makes them current (broadcast) and moves the step on;
-    /// returns this step's counts.
-    pub fn publish(&mut self) -> Counts {
-        let mut c = Counts::default();
-        for g in &mut self.groups {
-            c += by_scalar!(g, g => g.commit(&mut self.world));
-        }
-        self.last = c;
-        self.total += c;
-        self.step += 1;
-        if self.reorder_every > 0 && self.step.is_multiple_of(self.reorder_every) {
-            self.reorder();
-        }
-        c
+    fn at(pos: Vec3<S>) -> FlyState<S> {
+        FlyState::new(pos, Vec3::zero())
     }
-
-    /// One whole step ([`FlySim::decide_all`] then [`FlySim::publish`]).
-    ///
-    /// # Errors
-    ///
-    /// As [`FlySim::decide_all`].
-    pub fn step(&mut self) -> Result<Counts> {
-        self.decide_all()?;
-        Ok(self.publish())
+    fn radius(&self) -> f32 {
+        self.radius.to_f32()
     }
-
-    /// Every insect's position, in id order.
-    pub fn positions_by_id(&self) -> Vec<[f64; 3]> {
-        self.by_id(|s| s.pos.as_slice())
+    fn orca_radius(&self) -> f32 {
+        self.orca_radius().to_f32()
     }
-
-    /// Every insect's actual velocity, in id order.
-    pub fn velocities_by_id(&self) -> Vec<[f64; 3]> {
-        self.by_id(|s| s.vel.as_slice())
+    fn range(&self) -> f32 {
+        self.r_att.to_f32()
     }
-
-    fn by_id(&self, of: impl Fn(&super::world::Sensed) -> &[[f64; 3]]) -> Vec<[f64; 3]> {
-        let s = &self.world.sensed;
-        let mut out = vec![[0.0; 3]; s.id.len()];
-        for (v, &id) in of(s).iter().zip(&s.id) {
-            out[id as usize] = *v;
-        }
-        out
+    fn reach(&self) -> f32 {
+        reach(self.orca_radius(), self.tau, self.max_speed).to_f32()
     }
+    /// The fly node's endpoint (its buffer sizes).
+    fn soft(params: &Checked<Self>) -> Result<Box<dyn Endpoint + Send>> {
+        let p: &FlyParams<S> = params;
+        let device = FlyDevice::<S>::new(*p, &soft_name::<FlyParams<S>>());
+        Ok(Box::new(device.map_err(SimError::Device)?))
+    }
+}
 
+impl Model3d for Fly {
+    type Params<S: SimScalar> = FlyParams<S>;
+    type Inputs = Stimuli;
+    type Counts = Counts;
+    type Measures = Polarisation;
+
+    fn cast<S: SimScalar>(p: &FlyParams<f32>) -> FlyParams<S> {
+        p.cast()
+    }
     /// Adds the polarisation of the current velocities to the running mean.
-    pub fn measure(&mut self) {
-        let phi = crate::eval::frame_polarisation(&self.velocities_by_id());
-        self.polarisation.0 += phi;
-        self.polarisation.1 += 1;
+    fn measure(sim: &mut FlySim) {
+        let phi = crate::eval::frame_polarisation(&sim.velocities_by_id());
+        sim.measures.sum += phi;
+        sim.measures.steps += 1;
+    }
+    /// What ORCA and the world did (infeasible programs, truncated frames, corrections) and
+    /// the polarisation.
+    fn closing(sim: &FlySim, summary: &mut Summary) -> String {
+        let t = sim.total;
+        let decisions = (sim.agents() as u64 * u64::from(sim.step)).max(1) as f64;
+        let share = |n: u64| 100.0 * n as f64 / decisions;
+        let polarisation = sim.measures.mean();
+        for (key, value) in [
+            ("orca_infeasible_percent", share(t.infeasible)),
+            ("frames_truncated_percent", share(t.truncated)),
+            ("polarisation_mean", polarisation),
+        ] {
+            summary.extra.insert(key.into(), value.into());
+        }
+        summary
+            .extra
+            .insert("world_contacts_obstacle".into(), t.obstacle.into());
+        summary
+            .extra
+            .insert("world_contacts_bounds".into(), t.bounds.into());
+        format!(
+            "ORCA was infeasible for {:.3} % of the decisions, {:.2} % of the frames held only \
+             the {N} nearest of the insects within r_att, polarisation {polarisation:.2} on \
+             average; the world put insects back out of obstacles {} times and inside the \
+             container {} times",
+            share(t.infeasible),
+            share(t.truncated),
+            t.obstacle,
+            t.bounds
+        )
     }
 }

@@ -4,7 +4,8 @@
 //! statistics, and the synthetic tracks that stand in for the paper's data (which are not
 //! public).
 //!
-//! * [`LiSim`]: the engine (the fly's world: container, obstacles, sensed insects);
+//! * [`LiSim`]: the engine (the shared [`Swarm3d`](crate::swarm3d::Swarm3d) host: container,
+//!   obstacles, sensed insects);
 //! * [`data`]: the learned tables and the density grid of a group (Gaussian targets,
 //!   sketches, obstacles empty);
 //! * [`segment`]: piecewise-linear segmentation of a track (the paper's R² = 0.9 rule, or a
@@ -22,7 +23,6 @@
 
 mod build;
 pub mod data;
-mod engine;
 pub mod fixture;
 pub mod infer;
 pub mod model;
@@ -32,13 +32,13 @@ pub mod segment;
 mod sim;
 pub mod stats;
 
-pub use build::{bench_li_world, li_frame_samples};
+pub use build::bench_li_world;
 pub use model::LiModel;
 pub use pipeline::{FitOptions, fit, synthetic_csv};
 pub use scenario::{DensitySpec, LiTable, li_params, model_path};
 pub use sim::{
-    AnyLiGroup, Counts, LiGroup, LiSim, LiSimFrame, N, O, li_frame, mean_centroid_distance,
-    total_variation,
+    AnyLiGroup, Counts, Li, LiGroup, LiMeasures, LiSim, LiSimFrame, N, O, li_frame,
+    mean_centroid_distance, total_variation,
 };
 
 #[cfg(test)]

@@ -23,7 +23,7 @@ use crate::bees::{BeeTarget, BeeWorld};
 use crate::by_scalar;
 use crate::engine::{Device, Engine, Exchange};
 use crate::error::{Result, SimError};
-use crate::fly::{Counts, FlyGroup, FlySim, FlyWorld};
+use crate::fly::{Counts, FlyGroup, FlySim};
 use crate::gpu::Gpu;
 use crate::gpu::bee::world::{GridShape3, world_words};
 use crate::gpu::grid::GpuGrid;
@@ -36,6 +36,7 @@ use crate::output::{Frame, Summary};
 use crate::scalar::{AgentGroup, SimScalar};
 use crate::scenario::Action;
 use crate::space::SURFACE_OFFSET;
+use crate::swarm3d::World3d;
 
 /// Words of the tick's atomics (`FLY_SHARED_*` in `fly_tick.wgsl`).
 const SHARED_WORDS: usize = 18;
@@ -123,9 +124,9 @@ struct Bound {
 
 /// The container, its obstacles and the stimulus sources in the layout of the bee world's words
 /// (`bee_world.wgsl`, whose obstacle geometry the 3D models share): the sources as targets
-/// without particles (`bee_world_target_center` is [`FlyWorld::source`]: the first active one of
+/// without particles (`bee_world_target_center` is [`World3d::source`]: the first active one of
 /// the id), r_att as the neighbour range.
-fn space_world(w: &FlyWorld) -> BeeWorld {
+fn space_world(w: &World3d) -> BeeWorld {
     let mut b = BeeWorld::new(w.min, w.max, w.range, w.reach);
     b.obstacles.clone_from(&w.obstacles);
     b.targets = w
@@ -140,7 +141,7 @@ fn space_world(w: &FlyWorld) -> BeeWorld {
 }
 
 /// The words the host computes in the insects' scalar: the world, the confinement boxes.
-fn world_and_boxes<S: Word + SimScalar>(w: &FlyWorld, shape: &GridShape3) -> (Vec<u32>, Vec<u32>) {
+fn world_and_boxes<S: Word + SimScalar>(w: &World3d, shape: &GridShape3) -> (Vec<u32>, Vec<u32>) {
     (
         world_words::<S>(&space_world(w), shape),
         confine_boxes::<S>(&w.obstacles),
@@ -157,8 +158,8 @@ fn group_words(sim: &FlySim) -> Vec<u32> {
     let mut out = Vec::new();
     for g in &sim.groups {
         by_scalar!(g, g => {
-            let regions = [region(g.stimuli.goal), region(g.stimuli.threat)];
-            layout::write_group(&mut out, &g.params, g.stimuli, regions);
+            let regions = [region(g.inputs.goal), region(g.inputs.threat)];
+            layout::write_group(&mut out, &g.params, g.inputs, regions);
         });
     }
     out
@@ -181,7 +182,7 @@ impl Seen {
         }
     }
 
-    fn fill_group<S: Word + SimScalar>(&self, g: &mut FlyGroup<S>, w: &mut FlyWorld) {
+    fn fill_group<S: Word + SimScalar>(&self, g: &mut FlyGroup<S>, w: &mut World3d) {
         let state = |words: &[u32], slot: usize| {
             layout::read_state::<S>(&words[slot * STATE_WORDS..(slot + 1) * STATE_WORDS])
         };
@@ -217,7 +218,7 @@ pub struct GpuFlySim {
 }
 
 /// The scalar of a group.
-fn scalar_of<S: Scalar>(_: &FlyGroup<S>) -> ScalarKind {
+fn scalar_of<S: SimScalar>(_: &FlyGroup<S>) -> ScalarKind {
     S::KIND
 }
 

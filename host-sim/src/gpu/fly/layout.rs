@@ -135,7 +135,7 @@ pub fn read_decision<S: Word>(w: &[u32]) -> FlyDecision<S> {
 
 /// Appends the [`GROUP_WORDS`] words of a group with parameters `p` responding to `stimuli`,
 /// whose goal and threat have the regions `regions` (`[min, max]`, `None` for a source with a
-/// centre only: [`Source::region`](crate::fly::Source::region)).
+/// centre only: [`Source::region`](crate::swarm3d::Source::region)).
 pub fn write_group<S: Word + SimScalar>(
     out: &mut Vec<u32>,
     p: &FlyParams<S>,

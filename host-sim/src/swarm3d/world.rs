@@ -1,11 +1,11 @@
-//! The ren2016 world: a container (the world's box, whose walls the insects sense like the
-//! midges' glass box of Fig. 1), the obstacles in it, the stimulus sources (objects whose
-//! centre is a target to pursue or a predator to escape, moved by scenario events), and the
-//! *sensed* state of every insect: what it broadcast at its last step (position and actual
-//! velocity), read by every neighbour's next step.
+//! The world of the 3D flying models: a container (the world's box, whose walls the insects
+//! sense like the midges' glass box of ren2016's Fig. 1), the obstacles in it, the stimulus
+//! sources (objects whose centre is a target to pursue or a predator to escape, moved by
+//! scenario events), and the *sensed* state of every insect: what it broadcast at its last
+//! step (position and actual velocity), read by every neighbour's next step.
 
 use rayon::prelude::*;
-use swarm_core::fly::{FlyState, Surface};
+use swarm_core::orca3d::Surface;
 use swarm_core::{Scalar, Vec3};
 
 use crate::grid::Grid;
@@ -13,7 +13,7 @@ use crate::scalar::{SimScalar, a3};
 use crate::scenario::Action;
 use crate::space::{BeeObstacle, at, axis, confine, with_axis};
 
-/// An object whose centre is a stimulus (§2.3): a group's `goal` (pursued) or `threat`
+/// An object whose centre is a stimulus (ren2016 §2.3): a group's `goal` (pursued) or `threat`
 /// (escaped).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Source {
@@ -33,21 +33,12 @@ pub struct Source {
 }
 
 /// A state with a position and a velocity (what the world senses, keeps physical and
-/// broadcasts): every model living in a [`FlyWorld`].
+/// broadcasts): every model living in a [`World3d`].
 pub trait Kinematic<S>: Send + Sync {
     /// Its position and velocity.
     fn kinematics(&self) -> (Vec3<S>, Vec3<S>);
     /// Its position and velocity, to correct.
     fn kinematics_mut(&mut self) -> (&mut Vec3<S>, &mut Vec3<S>);
-}
-
-impl<S: SimScalar> Kinematic<S> for FlyState<S> {
-    fn kinematics(&self) -> (Vec3<S>, Vec3<S>) {
-        (self.pos, self.vel)
-    }
-    fn kinematics_mut(&mut self) -> (&mut Vec3<S>, &mut Vec3<S>) {
-        (&mut self.pos, &mut self.vel)
-    }
 }
 
 /// What every insect broadcast at its last step, by slot (`f64` holds `f32` and `Fx` values
@@ -95,7 +86,7 @@ impl Sensed {
 
 /// The container, its obstacles and stimulus sources, and the sensed insects.
 #[derive(Clone, Debug, Default)]
-pub struct FlyWorld {
+pub struct World3d {
     /// Lower corner of the container.
     pub min: [f32; 3],
     /// Upper corner.
@@ -120,15 +111,15 @@ pub fn reach<S: Scalar>(radius: S, tau: S, max_speed: S) -> S {
     radius + tau * max_speed
 }
 
-impl FlyWorld {
+impl World3d {
     /// An empty container `[min, max]` with neighbour range `range` and surface range `reach`.
     pub fn new(min: [f32; 3], max: [f32; 3], range: f32, reach: f32) -> Self {
-        FlyWorld {
+        World3d {
             min,
             max,
             range,
             reach,
-            ..FlyWorld::default()
+            ..World3d::default()
         }
     }
 
@@ -295,7 +286,7 @@ mod tests {
 
     #[test]
     fn surfaces_are_the_nearest_walls_and_obstacles_within_reach() {
-        let mut w = FlyWorld::new([0.0; 3], [10.0; 3], 2.0, 3.0);
+        let mut w = World3d::new([0.0; 3], [10.0; 3], 2.0, 3.0);
         w.obstacles.push(BeeObstacle::new(
             0,
             "ball",
