@@ -288,6 +288,30 @@ impl Shape3 {
         }
     }
 
+    /// Whether the shape's interior meets the open axis-aligned box `(lo, hi)` (exact for
+    /// every shape: the squared distance from the ball's centre, or the shaft's axis in x-z, to
+    /// the box below the radius squared, and the intervals overlapping on the other axes).
+    pub fn meets_box(&self, lo: [f32; 3], hi: [f32; 3]) -> bool {
+        let gap = |c: f32, k: usize| (lo[k] - c).max(c - hi[k]).max(0.0);
+        let overlap = |a: f32, b: f32, k: usize| a < hi[k] && b > lo[k];
+        match *self {
+            Shape3::Sphere { center, radius } => {
+                let d2: f32 = (0..3).map(|k| gap(center[k], k).powi(2)).sum();
+                d2 < radius * radius
+            }
+            Shape3::Box { min, max } => (0..3).all(|k| overlap(min[k], max[k], k)),
+            Shape3::Shaft {
+                center,
+                radius,
+                y_min,
+                y_max,
+            } => {
+                let d2 = gap(center[0], 0).powi(2) + gap(center[1], 2).powi(2);
+                d2 < radius * radius && overlap(y_min, y_max, 1)
+            }
+        }
+    }
+
     /// The closest surface point to `p`, with the faces lying on or beyond the world bounds
     /// `[lo, hi]` closed (a bee is never pushed out of the world through them).
     pub fn surface<S: Scalar>(&self, p: Vec3<S>, lo: [f32; 3], hi: [f32; 3]) -> Surface<S> {

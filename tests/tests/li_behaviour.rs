@@ -91,18 +91,19 @@ fn closest_pair(pos: &[[f64; 3]]) -> f64 {
 /// off a negligible tail).
 const TARGET_CENTROID: f64 = 0.12 * 1.595_769;
 
-/// L-T7, L-T9 and L-T12 over Fig. 4's three methods (measured, seeds 1-3):
+/// L-T7, L-T9 and L-T12 over Fig. 4's three methods (measured, seeds 1-4):
 ///
 /// | method | density TV | centroid distance (target 0.191) |
 /// |---|---|---|
-/// | meso + macro | 0.189-0.205 | 0.245-0.250 |
-/// | meso | 0.601-0.608 | 0.384-0.386 |
-/// | random | 0.252-0.265 | 0.238-0.239 |
+/// | meso + macro | 0.133-0.143 | 0.212-0.217 |
+/// | meso | 0.585-0.609 | 0.376-0.386 |
+/// | random | 0.252-0.267 | 0.238-0.241 |
 ///
-/// Meso + macro matches the density best, with the spec's margin of 0.2 over meso and 0.03
-/// over random (the spec's 0.2 over random held for waypoints, not positions: see the module
-/// comment); meso spreads farther than random, as the paper's Fig. 8 says, and meso + macro
-/// comes closer to the data's centroid distance than meso. ORCA keeps every pair apart.
+/// Meso + macro matches the density best, with the spec's margin of 0.2 over meso and 0.08
+/// over random (measured ≥ 0.112; the spec's 0.2 over random held for waypoints, not
+/// positions: see the module comment); the distance to the centroid is ordered meso > random >
+/// meso + macro, as the paper's Fig. 8, and meso + macro comes closest to the data's. ORCA
+/// keeps every pair apart.
 #[test]
 fn metropolis_hastings_matches_the_density_best() {
     let sc = fig4();
@@ -113,9 +114,11 @@ fn metropolis_hastings_matches_the_density_best() {
         "TV mh {:.3} meso {:.3} random {:.3}; centroid mh {:.3} meso {:.3} random {:.3}",
         mh.tv, meso.tv, random.tv, mh.centroid, meso.centroid, random.centroid
     );
+    eprintln!("{report}");
     assert!(mh.tv < meso.tv - 0.2, "{report}");
-    assert!(mh.tv < random.tv - 0.03, "{report}");
+    assert!(mh.tv < random.tv - 0.08, "{report}");
     assert!(meso.centroid > random.centroid + 0.1, "{report}");
+    assert!(random.centroid > mh.centroid + 0.01, "{report}");
     assert!(
         (mh.centroid - TARGET_CENTROID).abs() < (meso.centroid - TARGET_CENTROID).abs() - 0.1,
         "{report}"
@@ -203,10 +206,10 @@ fn the_soft_device_mirrors_the_model() {
 ///
 /// | cells | centroid distance (target 0.191) | Φ |
 /// |---|---|---|
-/// | 2³ | 0.376-0.385 | 0.090-0.095 |
-/// | 4³ | 0.245-0.251 | 0.088-0.091 |
-/// | 8³ | 0.233-0.244 | 0.090-0.095 |
-/// | 16³ | 0.245-0.250 | 0.089-0.092 |
+/// | 2³ | 0.376-0.386 | 0.088-0.090 |
+/// | 4³ | 0.233-0.237 | 0.089-0.094 |
+/// | 8³ | 0.206-0.214 | 0.088-0.094 |
+/// | 16³ | 0.212-0.217 | 0.088-0.091 |
 ///
 /// The "too many cells" side of the paper does not appear up to the 16³ a device holds (the
 /// density here is exact, not estimated from sparse data). Φ (the polarisation) of
@@ -242,11 +245,12 @@ fn too_few_cells_do_worse() {
 /// fill it all round (each of 12 sectors holds at least half its even share of insect-time),
 /// and no insect and no accepted waypoint is ever inside the lantern.
 ///
-/// Measured, seeds 1-4, after the first 10 s: 0.69-0.79 of insect-time within 2σ of the
-/// circle (the density's own share is 0.865; uniform over the box would be 0.28), the least
-/// sector 0.056-0.066 (even: 0.083), never nearer the lantern's centre than 0.32 m. The
-/// spec's 80 % within 2σ is not met: the insects' time is spread flatter than the density,
-/// as in Fig. 4 (docs/models.md, "positions are not the waypoints"); held here at 0.6.
+/// Measured, seeds 1-4, after the first 10 s: 0.76-0.80 of insect-time within 2σ of the
+/// circle (the density's own share is 0.866 at the cells' centres, 0.855 for positions spread
+/// through the cells; uniform over the box would be 0.28), the least sector 0.056-0.067 (even:
+/// 0.083), never nearer the lantern's centre than 0.32 m. The spec's 80 % within 2σ is met by
+/// one seed of four: ORCA's planes spread the 200 midges (without them 0.82-0.83, seed 1; see
+/// docs/models.md); held here at 0.7.
 #[test]
 fn midges_keep_to_the_sketched_ring_round_the_lantern() {
     let sc = scenario::builtin("li-fig5-lantern").expect("built-in scenario");
@@ -300,7 +304,7 @@ fn midges_keep_to_the_sketched_ring_round_the_lantern() {
          centre {closest_to_lantern:.3}"
     );
     eprintln!("{report}");
-    assert!(share >= 0.6, "{report}");
+    assert!(share >= 0.7, "{report}");
     assert!(least >= 0.5 / 12.0, "{report}");
     assert!(closest_to_lantern > lantern, "{report}");
 }

@@ -344,8 +344,26 @@ fn an_insect_with_nowhere_to_go_holds() {
     .unwrap();
     assert_eq!((next.proposals, next.accepted), (32, false));
     assert_eq!(next.waypoint.waypoint, v(0.0, 0.0, 0.0));
-    // The heading is forgotten: the next proposal takes a uniform direction.
-    assert_eq!(next.waypoint.seg_start, v(0.0, 0.0, 0.0));
+    // K = 32 rejections reversed the heading an even number of times: the next proposal
+    // turns from the heading it came with.
+    assert_eq!(next.waypoint.seg_start, v(-0.1, 0.0, 0.0));
+    // With K odd, from the reversed heading.
+    let odd = Screening::<f32> {
+        proposals: 31,
+        ..params
+    };
+    let next = next_waypoint(
+        v(0.0, 0.0, 0.0),
+        &here,
+        &lengths,
+        &turns,
+        &density,
+        &odd,
+        ctx(3, 3),
+    )
+    .unwrap();
+    assert_eq!((next.proposals, next.accepted), (31, false));
+    assert_eq!(next.waypoint.seg_start, v(0.1, 0.0, 0.0));
 }
 
 /// The same code in fixed point: a proposal from an arrived insect lies within the length

@@ -28,7 +28,8 @@ wire_type! {
         /// K: proposals per arrival (≥ 1). The paper resamples a rejected waypoint ("another
         /// waypoint would be sampled", spec L9; ours K = 32); 1 is standard
         /// Metropolis-Hastings, one proposal. When all K are rejected the insect holds (its
-        /// waypoint is its position) and proposes again at the next step.
+        /// waypoint is its position) and proposes again at the next step, from the heading
+        /// the rejections left ([`next_waypoint`]).
         pub proposals: u8,
         /// How waypoints are drawn: [`SAMPLING_MH`], [`SAMPLING_MESO`] or
         /// [`SAMPLING_RANDOM`].
@@ -121,13 +122,19 @@ pub fn accept<S: Scalar>(w_x: u8, w_g: u8, u: S) -> bool {
 /// * arrived: up to K proposals, each `g = x + l·o` with `l` drawn from `lengths`, `o =
 ///   direction(x − s, θ)` and θ drawn from `turns` (radians; its magnitude is the cone
 ///   angle), screened by [`accept`] against `density`; the first accepted one becomes the
-///   waypoint and `s = x`; if none is, the insect holds (`g = x`, and `s = x`).
+///   waypoint and `s = x`; if none is, the insect holds (`g = x`, the heading reversed once per
+///   rejection, see below).
 ///
-/// Ours (spec L9, docs/models.md): only the first proposal turns from the previous heading;
-/// a resampled one (a ≥ 1) and the proposal after a hold take a uniform direction (`direction`
-/// of a zero `d`). A rejection says "not that way": redrawing in the same cone kept a swarm
-/// that had drifted out of its target heading on out (measured on Fig. 4: the swarm's mean
-/// distance to its centroid 0.31 m against the target's 0.19; 0.25 with the uniform redraw).
+/// Ours (spec L9, docs/models.md): a rejection reverses the heading the next proposal turns
+/// from (proposal a turns from `came` = x − s when a is even, from −`came` when a is odd), and
+/// a hold keeps the heading as K rejections left it (s = x − `came` for K even, x + `came` for
+/// K odd, or s = x when that point is out of range). This is the lifted ("guided walk")
+/// Metropolis-Hastings of Gustafson (1998) on the chain of (position, heading): the proposal
+/// turns the heading by the data's angle at a uniform azimuth, which is symmetric under
+/// reversal (from −o the angle back to −d is the same), so the density stays the chain's
+/// stationary law while the insects keep the data's persistence. Redrawing in the same cone
+/// kept insects circling at the edge of the density; a uniform redraw left them spread flatter
+/// than the density (docs/models.md gives the measurements).
 ///
 /// [`SAMPLING_MESO`] accepts any proposal inside the grid; [`SAMPLING_RANDOM`] proposes a
 /// point uniform in the grid's box instead of `x + l·o`, accepted when inside.
@@ -179,7 +186,7 @@ pub fn next_waypoint<S: Scalar, const L: usize, const T: usize>(
             let (l, theta) = (lengths.sample(u1), turns.sample(u2));
             let phi = (u3 * S::from_i32(2) - S::ONE) * pi::<S>();
             let z = draw(stream::LI_HEIGHT) * S::from_i32(2) - S::ONE;
-            let heading = if a == 0 { came } else { Vec3::zero() };
+            let heading = if a.is_multiple_of(2) { came } else { -came };
             pos + direction(heading, theta, phi, z) * l
         };
         let accepted = if params.sampling == SAMPLING_MH {
@@ -198,10 +205,21 @@ pub fn next_waypoint<S: Scalar, const L: usize, const T: usize>(
             });
         }
     }
+    // Held: the heading as the K rejections reversed it.
+    let seg_start = if params.proposals.is_multiple_of(2) {
+        current.seg_start
+    } else {
+        let s = pos + came;
+        if check_vec(s, "seg_start").is_ok() {
+            s
+        } else {
+            pos
+        }
+    };
     Ok(Next {
         waypoint: Waypoint {
             waypoint: pos,
-            seg_start: pos,
+            seg_start,
         },
         proposals: params.proposals,
         accepted: false,

@@ -3017,7 +3017,7 @@ mod spec {
                     let theta = sample(&p.turns, draw(1));
                     let phi = (2.0 * draw(2) - 1.0) * core::f32::consts::PI;
                     let z = 2.0 * draw(3) - 1.0;
-                    let h = if a == 0 { came } else { Vec3::zero() };
+                    let h = if a.is_multiple_of(2) { came } else { -came };
                     x + direction(h, theta, phi, z) * l
                 };
                 let accepted = if p.sampling == SAMPLING_MH {
@@ -3030,7 +3030,12 @@ mod spec {
                     return (c, x, a + 1, true);
                 }
             }
-            (x, x, p.proposals, false)
+            let s_held = if p.proposals.is_multiple_of(2) {
+                s
+            } else {
+                x + came
+            };
+            (x, s_held, p.proposals, false)
         };
         let mut g = Gen::new(2015);
         let weights: Vec<u8> = (0..64)
@@ -3041,7 +3046,7 @@ mod spec {
                 .unwrap(),
             lengths: Table::from_counts(0.01, 0.3, &[5, 1, 3, 8, 2]).unwrap(),
             turns: Table::from_counts(-1.0, 2.5, &[1, 4, 9, 4, 1, 1]).unwrap(),
-            proposals: 6,
+            proposals: 5,
             patience: 20,
             ..LiParams::default()
         };

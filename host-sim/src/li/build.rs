@@ -47,13 +47,7 @@ where
     let scale = (n.max(1) as f32 / 100.0).cbrt();
     let side = 0.91 * scale;
     let shape = GridShape::over([0.0; 3], [side; 3], 16).expect("16³ cells fit");
-    let weights = gaussian_weights(
-        &shape,
-        &[[side / 2.0; 3]],
-        0.12 * scale,
-        &[],
-        ([0.0; 3], [side; 3]),
-    );
+    let weights = gaussian_weights(&shape, &[[side / 2.0; 3]], 0.12 * scale, &[]);
     let (lengths, turns) = fixture_tables();
     let params = LiParams {
         lengths,

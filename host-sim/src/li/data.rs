@@ -135,10 +135,21 @@ impl GridShape {
     }
 }
 
+/// Whether the cell of side `cell` centred at `c` is clear of every active obstacle (ours):
+/// a cell any part of which lies inside an obstacle gets weight 0, so no point inside an
+/// obstacle lies in a cell Metropolis-Hastings accepts (L-T13), however coarse the grid.
+pub fn cell_clear(obstacles: &[BeeObstacle], c: [f32; 3], cell: f32) -> bool {
+    let (lo, hi) = (c.map(|x| x - 0.5 * cell), c.map(|x| x + 0.5 * cell));
+    obstacles
+        .iter()
+        .filter(|o| o.active)
+        .all(|o| !o.shape.meets_box(lo, hi))
+}
+
 /// The weights of a sum of Gaussian bumps (spec §2.6: w_c = Σ_q exp(−‖c − q‖²/2σ²) over the
 /// `points` q, at each cell's centre c), scaled so the largest is 255, and at least 1 in
-/// every free cell; a cell whose centre is inside an active obstacle is 0. No points: every
-/// free cell 255 (a uniform density).
+/// every free cell; a cell that may touch an active obstacle ([`cell_clear`]) is 0. No
+/// points: every free cell 255 (a uniform density).
 ///
 /// The floor of 1 (ours, docs/models.md): Metropolis-Hastings never accepts a zero cell, so an
 /// insect in a region of zero cells (spawned there, or pushed there by its neighbours) could
@@ -149,18 +160,12 @@ pub fn gaussian_weights(
     points: &[[f32; 3]],
     sigma: f32,
     obstacles: &[BeeObstacle],
-    bounds: ([f32; 3], [f32; 3]),
 ) -> Vec<u8> {
     let inv = 1.0 / (2.0 * f64::from(sigma) * f64::from(sigma));
     let raw: Vec<f64> = (0..shape.len())
         .map(|i| {
             let c = shape.centre(i);
-            let free = obstacles.iter().filter(|o| o.active).all(|o| {
-                !o.shape
-                    .surface(Vec3::new(c[0], c[1], c[2]), bounds.0, bounds.1)
-                    .inside
-            });
-            if !free {
+            if !cell_clear(obstacles, c, shape.cell) {
                 return 0.0;
             }
             if points.is_empty() {
@@ -272,13 +277,25 @@ mod tests {
             true,
         );
         let ball = [ball];
-        let w = gaussian_weights(&g, &[[0.5; 3]], 0.1, &ball, ([0.0; 3], [1.0; 3]));
+        let w = gaussian_weights(&g, &[[0.5; 3]], 0.1, &ball);
         let at = |p: [usize; 3]| w[p[0] + 8 * (p[1] + 8 * p[2])];
         assert_eq!(at([3, 3, 3]), 255);
         assert!(at([3, 3, 3]) > at([2, 3, 3]) && at([2, 3, 3]) > at([1, 3, 3]));
         assert_eq!(at([0, 0, 0]), 1, "far free cells keep the floor");
-        let uniform = gaussian_weights(&g, &[], 0.1, &ball, ([0.0; 3], [1.0; 3]));
+        let uniform = gaussian_weights(&g, &[], 0.1, &ball);
         assert_eq!(uniform[6 + 8 * (6 + 8 * 6)], 0, "the ball's cell");
+        // The ball (0.65-0.95) reaches into the cells of 0.625-0.75 on every axis, not those
+        // of 0.5-0.625: a cell any part of which is inside is empty, and only those.
+        assert_eq!(
+            uniform[5 + 8 * (6 + 8 * 6)],
+            0,
+            "a cell the ball reaches into"
+        );
+        assert_eq!(
+            uniform[4 + 8 * (6 + 8 * 6)],
+            255,
+            "a cell it does not reach"
+        );
         assert_eq!(uniform[0], 255);
     }
 

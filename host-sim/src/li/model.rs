@@ -70,6 +70,7 @@ use swarm_core::li::{BINS, LiTable};
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
 
+use super::data::cell_clear;
 use super::stats::histogram;
 use crate::error::{Result, SimError};
 use crate::space::BeeObstacle;
@@ -360,9 +361,10 @@ impl ModelGrid {
 
     /// The grid placed in a world `[min, max]` (the rule of a scenario that uses a model
     /// file): as it is, cell for cell, when it lies inside the world (within 10⁻⁴ of the
-    /// world's longest side); cells whose centre is inside an active obstacle set to 0, and
-    /// every other cell at least 1 (ours, as the Gaussian densities of
-    /// [`gaussian_weights`](super::data::gaussian_weights): Metropolis-Hastings never enters
+    /// world's longest side); cells any part of which is inside an active obstacle
+    /// ([`cell_clear`]) set to 0, and every other cell at least 1 (ours, as the Gaussian
+    /// densities of [`gaussian_weights`](super::data::gaussian_weights): Metropolis-Hastings
+    /// never enters
     /// a zero cell, so an insect in a cell the data never visited could not leave it; with
     /// the floor it wanders until it finds the visited ones). Outside the grid the density
     /// is 0, as everywhere a grid does not cover: spawn the insects inside it.
@@ -389,12 +391,11 @@ impl ModelGrid {
             .map(|(i, &w)| {
                 let idx = [i % nx, (i / nx) % ny, i / (nx * ny)];
                 let c = [0, 1, 2].map(|k| self.origin[k] + (idx[k] as f32 + 0.5) * self.cell);
-                let inside = obstacles.iter().filter(|o| o.active).any(|o| {
-                    o.shape
-                        .surface(Vec3::new(c[0], c[1], c[2]), world.0, world.1)
-                        .inside
-                });
-                if inside { 0 } else { w.max(1) }
+                if cell_clear(obstacles, c, self.cell) {
+                    w.max(1)
+                } else {
+                    0
+                }
             })
             .collect();
         let o = self.origin;

@@ -205,8 +205,7 @@ pub fn li_params(scenario: &Scenario, g: &Group) -> Result<LiParams<f32>> {
             let sigma = d.sigma().unwrap_or(1.0);
             let mut points = d.points.clone();
             points.extend(sketch_points(&d.sketch, 0.5 * sigma));
-            let weights =
-                gaussian_weights(&shape, &points, sigma, &obstacles(scenario), (min, max));
+            let weights = gaussian_weights(&shape, &points, sigma, &obstacles(scenario));
             shape.with(&weights)?
         }
     };
