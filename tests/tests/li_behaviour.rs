@@ -308,3 +308,139 @@ fn midges_keep_to_the_sketched_ring_round_the_lantern() {
     assert!(least >= 0.5 / 12.0, "{report}");
     assert!(closest_to_lantern > lantern, "{report}");
 }
+
+/// One geometry of [`the_density_is_matched_on_other_geometries`]: the world's upper corner
+/// (the lower is the origin), insects and their spawn box, the Gaussian points and σ, cells
+/// along the longest side.
+struct Geometry {
+    max: [f32; 3],
+    count: u32,
+    spawn: [[f32; 3]; 2],
+    points: Vec<[f32; 3]>,
+    sigma: f32,
+    cells: u16,
+}
+
+impl Geometry {
+    /// The scenario, `sampling` 0 or 1.
+    fn scenario(&self, sampling: u32) -> Scenario {
+        let [x, y, z] = self.max;
+        let [[a, b, c], [d, e, f]] = self.spawn;
+        let points: Vec<String> = self
+            .points
+            .iter()
+            .map(|p| format!("[{}, {}, {}]", p[0], p[1], p[2]))
+            .collect();
+        let text = format!(
+            "name = \"li-geometry\"\nseed = 1\nsteps = 8000\n\
+             world = {{ dim = 3, min = [0, 0, 0], max = [{x}, {y}, {z}] }}\n\
+             [[groups]]\nname = \"midges\"\nmodel = \"li\"\ncount = {}\n\
+             spawn = {{ min = [{a}, {b}, {c}], max = [{d}, {e}, {f}] }}\n\
+             li = {{ sampling = {sampling}, density = {{ cells = {}, points = [{}], \
+             sigma = {} }} }}\n",
+            self.count,
+            self.cells,
+            points.join(", "),
+            self.sigma
+        );
+        Scenario::from_str(&text, "li-geometry").expect("a valid scenario")
+    }
+}
+
+/// What a geometry's run gave after it settled (steps 3,000 on, every 10th): the total
+/// variation of the insects' positions to the density grid, their mean distance to their
+/// centroid and the grid's own, and the closest pair over the whole run.
+fn settled(sc: &Scenario) -> (f64, f64, f64, f64) {
+    let d = swarm_sim::li::li_params(sc, &sc.groups[0])
+        .expect("params")
+        .density;
+    let [nx, ny, nz] = d.dims.map(usize::from);
+    let cell = f64::from(d.cell);
+    let origin = [d.origin.x, d.origin.y, d.origin.z].map(f64::from);
+    let centre = |i: usize| {
+        let idx = [i % nx, (i / nx) % ny, i / (nx * ny)];
+        [0, 1, 2].map(|k| origin[k] + (idx[k] as f64 + 0.5) * cell)
+    };
+    let total: f64 = d.weights.iter().map(|&w| f64::from(w)).sum();
+    let mass = |i: usize| f64::from(d.weights[i]) / total;
+    let mean = [0, 1, 2].map(|k| (0..d.weights.len()).map(|i| mass(i) * centre(i)[k]).sum());
+    let own: f64 = (0..d.weights.len())
+        .map(|i| mass(i) * dist(centre(i), mean))
+        .sum();
+    let mut sim = LiSim::from_scenario(sc, swarm_tests::seed(sc.seed)).expect("builds");
+    let mut visits = vec![0u64; d.weights.len()];
+    let (mut spread, mut frames, mut closest) = (0.0, 0u32, f64::INFINITY);
+    for step in 0..sc.steps {
+        Engine::tick(&mut sim).expect("tick");
+        let pos = sim.positions_by_id();
+        closest = closest.min(closest_pair(&pos));
+        if step < 3000 || step % 10 != 0 {
+            continue;
+        }
+        for p in &pos {
+            let q = [0, 1, 2].map(|k| ((p[k] - origin[k]) / cell).floor());
+            if (0..3).all(|k| q[k] >= 0.0 && (q[k] as usize) < d.dims[k] as usize) {
+                visits[q[0] as usize + nx * (q[1] as usize + ny * q[2] as usize)] += 1;
+            }
+        }
+        let c = centroid(&pos);
+        spread += pos.iter().map(|p| dist(*p, c)).sum::<f64>() / pos.len() as f64;
+        frames += 1;
+    }
+    assert_eq!(visits.len(), nx * ny * nz);
+    let tv = swarm_sim::li::total_variation(&visits, &d.weights).expect("visited");
+    (tv, spread / f64::from(frames), own, closest)
+}
+
+/// Generality of L-T7/L-T9 beyond the built-in scenario: on boxes of 0.5 to 2 m (one not a
+/// cube), 30 to 300 insects, a Gaussian off-centre, two Gaussians, a wide one, Metropolis-
+/// Hastings matches the density far better than Algorithm 1 alone, and the swarm's spread
+/// about its centroid comes within 15 % of the density's own (measured, seed 1: TV 0.20-0.33
+/// against meso's 0.55-0.65, spread 0.130, 0.396, 0.510 m against the density's 0.130, 0.378,
+/// 0.495); ORCA keeps every pair apart. The 300 insects start packed in a corner of the density's support and must spread
+/// to its width: spawned through the whole 2 m box, most of which is at the density's floor
+/// (the Gaussian is below 1/510 of its peak beyond 3.5σ), they wander at random there and
+/// after 80 s are still 31 % wider than the density (docs/models.md).
+#[test]
+fn the_density_is_matched_on_other_geometries() {
+    let cases = [
+        Geometry {
+            max: [0.5, 0.5, 0.5],
+            count: 30,
+            spawn: [[0.0; 3], [0.5; 3]],
+            points: vec![[0.2, 0.3, 0.25]],
+            sigma: 0.08,
+            cells: 12,
+        },
+        Geometry {
+            max: [1.6, 0.8, 1.2],
+            count: 150,
+            spawn: [[0.0; 3], [1.6, 0.8, 1.2]],
+            points: vec![[0.5, 0.4, 0.6], [1.1, 0.4, 0.6]],
+            sigma: 0.15,
+            cells: 16,
+        },
+        Geometry {
+            max: [2.0, 2.0, 2.0],
+            count: 300,
+            spawn: [[0.6; 3], [0.9; 3]],
+            points: vec![[1.0, 1.0, 1.0]],
+            sigma: 0.3,
+            cells: 16,
+        },
+    ];
+    for g in &cases {
+        let (tv, spread, own, closest) = settled(&g.scenario(0));
+        let (meso_tv, meso_spread, _, _) = settled(&g.scenario(1));
+        let report = format!(
+            "{:?}, {} insects: TV mh {tv:.3} meso {meso_tv:.3}; spread mh {spread:.3} meso \
+             {meso_spread:.3}, the density's {own:.3}; closest {closest:.4}",
+            g.max, g.count
+        );
+        eprintln!("{report}");
+        assert!(tv < meso_tv - 0.15, "{report}");
+        assert!((spread - own).abs() < 0.15 * own, "{report}");
+        assert!((spread - own).abs() < (meso_spread - own).abs(), "{report}");
+        assert!(closest >= 2.0 * 0.0045 * (1.0 - 1e-3), "{report}");
+    }
+}
