@@ -38,7 +38,7 @@ use swarm_core::Vec3;
 use swarm_core::li::waypoint::direction;
 use swarm_core::rand::rand;
 
-use super::segment::{Segmentation, noise_sd};
+use super::segment::{Segmentation, noise_sd, step_lengths};
 use crate::error::{Result, SimError};
 
 /// The windows (samples) between which the bending of the path is measured.
@@ -371,15 +371,7 @@ fn run_stats(run: &[[f64; 3]], seg: &Segmentation) -> RunStats {
             }
         }
     }
-    s.steps = run
-        .windows(2)
-        .map(|w| {
-            (0..3)
-                .map(|k| (w[1][k] - w[0][k]).powi(2))
-                .sum::<f64>()
-                .sqrt()
-        })
-        .collect();
+    s.steps = step_lengths(run);
     s
 }
 

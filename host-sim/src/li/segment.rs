@@ -195,15 +195,7 @@ impl Segmentation {
                 let Some(sigma) = noise_sd(points) else {
                     return segment_by_tolerance(points, f64::INFINITY);
                 };
-                let mut steps: Vec<f64> = points
-                    .windows(2)
-                    .map(|w| {
-                        (0..3)
-                            .map(|k| (w[1][k] - w[0][k]).powi(2))
-                            .sum::<f64>()
-                            .sqrt()
-                    })
-                    .collect();
+                let mut steps = step_lengths(points);
                 let mid = steps.len() / 2;
                 let step = *steps.select_nth_unstable_by(mid, f64::total_cmp).1;
                 segment_by_tolerance(points, c * sigma.max(1e-9 * step))
@@ -226,4 +218,17 @@ impl Segmentation {
             Segmentation::Tolerance { c } => c,
         }
     }
+}
+
+/// The distance between each pair of consecutive points.
+pub(crate) fn step_lengths(points: &[[f64; 3]]) -> Vec<f64> {
+    points
+        .windows(2)
+        .map(|w| {
+            (0..3)
+                .map(|k| (w[1][k] - w[0][k]).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .collect()
 }
