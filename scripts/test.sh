@@ -18,6 +18,7 @@ CI="${CI:-false}"
 passed=0
 failed=0
 failures=()
+timings=()
 
 say() { printf '\n\033[1m==> %s\033[0m\n' "$*"; }
 warn() { printf '\n\033[1;33m!!! %s\033[0m\n' "$*" >&2; }
@@ -25,6 +26,7 @@ warn() { printf '\n\033[1;33m!!! %s\033[0m\n' "$*" >&2; }
 stage() {
     local name="$1"; shift
     say "$name"
+    local start=$SECONDS
     if "$@"; then
         passed=$((passed + 1))
     else
@@ -32,6 +34,7 @@ stage() {
         failures+=("$name")
         warn "FAILED: $name"
     fi
+    timings+=("$((SECONDS - start)) s  $name")
 }
 
 # --- system packages -------------------------------------------------------------------
@@ -102,6 +105,7 @@ elif ((firmware_ok == 1)); then
 fi
 
 echo
+printf 'time per stage:\n'; printf '  %s\n' "${timings[@]}"
 if ((failed > 0)); then
     printf 'failed stages:\n'; printf '  - %s\n' "${failures[@]}"
 fi
