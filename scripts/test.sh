@@ -86,10 +86,10 @@ stage "swarm-core builds without std, every backend" bash -c '
     cargo build -q -p swarm-core --no-default-features --features libm &&
     cargo build -q -p swarm-core --features fixed,serde,defmt'
 stage "swarm-core with feature small (the ant node's size options) passes its unit tests" \
-    cargo test -q -p swarm-core --release --features small --lib
+    cargo test -q -p swarm-core --profile ci --features small --lib
 stage "cargo doc (warnings are errors)" env RUSTDOCFLAGS="-D warnings" cargo doc -q --workspace --no-deps
 stage "docs/protocol.md: the Python reference appendices run and every assertion holds" python3 scripts/protocol-reference.py
-stage "cargo test --workspace (unit, property, integration, doc tests)" cargo test --workspace --release
+stage "cargo test --workspace (unit, property, integration, doc tests)" cargo test --workspace --profile ci
 
 if ((QUICK == 1)); then
     warn "--quick: SKIPPING the firmware build and QEMU tests"

@@ -56,13 +56,14 @@ const WANG_GROUP_RANGE2: u32 = 14u;
 const WANG_NO_FIELD: u32 = 0xffffffffu;
 
 // A field's header (layout.rs, FIELD_*): cells along x, y, z; the grid's lower corner and cell
-// (f32 bits, converted here as `guide_at` converts them); where its guides (three f32 bits a
-// cell) and its goal bits (a bit a cell) start.
+// (f32 bits, converted here as `guide_at` converts them); where its cell records start (a word
+// a cell, `GuideCell`: the guide's x, y, z as i8 in bits 0-23, the goal flag in bit 24); the
+// guides' scale (f32 bits: a component q stands for f32(q)·scale).
 const WANG_FIELD_DIMS: u32 = 0u;
 const WANG_FIELD_MIN: u32 = 3u;
 const WANG_FIELD_CELL: u32 = 6u;
-const WANG_FIELD_GUIDES: u32 = 7u;
-const WANG_FIELD_GOALS: u32 = 8u;
+const WANG_FIELD_CELLS: u32 = 7u;
+const WANG_FIELD_SCALE: u32 = 8u;
 
 // The words of `wang_shared` (engine.rs, SHARED_*): this tick's refusals (n - the lowest slot
 // refused, 0 for none; advect, separate), corrections (obstacle, bounds) and insects pushed,
@@ -170,12 +171,18 @@ fn wang_axis(p: S, min_bits: u32, cell_bits: u32, n: u32) -> WangAxis {
     return WangAxis(u32(i), u32(i) + 1u, s_clamp_to(s_sub(u, s_from_i32(i)), S_ZERO, S_ONE));
 }
 
-// The stored guide of cell c of the field at `f`, in S.
-fn wang_cell_guide(f: u32, c: vec3<u32>) -> vec3<S> {
-    let at = wang_fields[f + WANG_FIELD_GUIDES] + 3u * wang_cell_index(f, c);
-    return vec3<S>(s_from_f32(bitcast<f32>(wang_fields[at])),
-                   s_from_f32(bitcast<f32>(wang_fields[at + 1u])),
-                   s_from_f32(bitcast<f32>(wang_fields[at + 2u])));
+// The record of cell c of the field at `f`.
+fn wang_cell_record(f: u32, c: vec3<u32>) -> u32 {
+    return wang_fields[wang_fields[f + WANG_FIELD_CELLS] + wang_cell_index(f, c)];
+}
+
+// GuideCell::guide of a record of the field at `f`, in S: each sign-extended byte times the scale.
+fn wang_record_guide(f: u32, record: u32) -> vec3<S> {
+    let scale = bitcast<f32>(wang_fields[f + WANG_FIELD_SCALE]);
+    let r = bitcast<i32>(record);
+    return vec3<S>(s_from_f32(f32(extractBits(r, 0u, 8u)) * scale),
+                   s_from_f32(f32(extractBits(r, 8u, 8u)) * scale),
+                   s_from_f32(f32(extractBits(r, 16u, 8u)) * scale));
 }
 
 // CellGrid::index: x + nx·(y + ny·z).
@@ -185,10 +192,6 @@ fn wang_cell_index(f: u32, c: vec3<u32>) -> u32 {
     return c.x + nx * (c.y + ny * c.z);
 }
 
-fn wang_is_goal(f: u32, c: vec3<u32>) -> bool {
-    let x = wang_cell_index(f, c);
-    return ((wang_fields[wang_fields[f + WANG_FIELD_GOALS] + x / 32u] >> (x % 32u)) & 1u) != 0u;
-}
 
 // CostField::guide_at for the field at word `f`: the trilinear interpolation of the 8
 // surrounding cell guides (weights multiplied x, y, z; corners in the order of bit k = axis k),
@@ -217,8 +220,9 @@ fn wang_guide_at(f: u32, p: vec3<S>) -> vec3<S> {
                 cell[k] = ax[k].lower;
             }
         }
-        sum = geom_vec3_add(sum, geom_vec3_mul(wang_cell_guide(f, cell), w));
-        if (!wang_is_goal(f, cell)) {
+        let record = wang_cell_record(f, cell);
+        sum = geom_vec3_add(sum, geom_vec3_mul(wang_record_guide(f, record), w));
+        if (((record >> 24u) & 1u) == 0u) {
             reach = s_add(reach, w);
         }
     }
@@ -236,7 +240,7 @@ fn wang_guide_at(f: u32, p: vec3<S>) -> vec3<S> {
     for (var k = 0u; k < 3u; k = k + 1u) {
         nearest[k] = select(ax[k].lower, ax[k].upper, ax[k].t >= half);
     }
-    return wang_cell_guide(f, nearest);
+    return wang_record_guide(f, wang_cell_record(f, nearest));
 }
 
 // ---- the nearest boundary (host-sim/src/wang/world.rs) ----

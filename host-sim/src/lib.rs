@@ -48,6 +48,7 @@ pub mod huge;
 pub mod li;
 pub mod models;
 pub(crate) mod nearest;
+pub mod obstacle_index;
 pub mod orca;
 pub mod output;
 mod par;

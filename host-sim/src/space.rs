@@ -6,6 +6,7 @@
 
 use swarm_core::{Scalar, Vec2, Vec3};
 
+use crate::obstacle_index::ObstacleIndex;
 use crate::scalar::{SimScalar, a3};
 use crate::scenario::ObjectKind;
 
@@ -399,13 +400,23 @@ impl BeeObstacle {
     }
 }
 
+/// A point as `f32` coordinates (for [`ObstacleIndex`]).
+#[inline(always)]
+pub fn a3f<S: Scalar>(p: Vec3<S>) -> [f32; 3] {
+    let p = p.to_f32();
+    [p.x, p.y, p.z]
+}
+
 /// Keeps a point physical: out of every active obstacle of `obstacles` (put back on the
 /// surface, [`SURFACE_OFFSET`] along the normal, the inward normal velocity removed) and inside
 /// the bounds `[min, max]` (clamped, the outward velocity removed), in the point's scalar.
 /// Returns what was corrected: bit 0 an obstacle, bit 1 the bounds. Shared by the 3D models
 /// (the bee world's [`BeeWorld::confine`](crate::bees::BeeWorld::confine), the wang2014 engine).
+/// `index` narrows the obstacles visited ([`ObstacleIndex::NONE`]: all of them); it changes no
+/// result.
 pub fn confine<S: SimScalar>(
     obstacles: &[BeeObstacle],
+    index: &ObstacleIndex,
     min: [f32; 3],
     max: [f32; 3],
     pos: &mut Vec3<S>,
@@ -417,7 +428,11 @@ pub fn confine<S: SimScalar>(
     let mut flags = 0u8;
     for _ in 0..4 {
         let mut moved = false;
-        for o in obstacles.iter().filter(|o| o.active) {
+        // The index is asked again after each move: a push may carry p into another cell.
+        let mut from = 0;
+        while let Some(i) = index.next_near(obstacles, a3f(p), from) {
+            from = i + 1;
+            let o = &obstacles[i];
             if !o.may_be_within(a3(p), 0.0) {
                 continue;
             }

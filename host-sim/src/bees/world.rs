@@ -11,6 +11,7 @@ use swarm_core::bee::BeeState;
 use swarm_core::{Scalar, Vec3};
 
 use crate::grid::Grid;
+use crate::obstacle_index::ObstacleIndex;
 use crate::scalar::{SimScalar, a3};
 use crate::scenario::ObjectKind;
 pub use crate::space::{
@@ -244,7 +245,14 @@ impl BeeWorld {
     /// bounds (clamped, the outward velocity removed), in the bee's scalar. Returns what was
     /// corrected: bit 0 an obstacle, bit 1 the bounds.
     pub fn confine<S: SimScalar>(&self, s: &mut BeeState<S>) -> u8 {
-        confine(&self.obstacles, self.min, self.max, &mut s.pos, &mut s.vel)
+        confine(
+            &self.obstacles,
+            &ObstacleIndex::NONE,
+            self.min,
+            self.max,
+            &mut s.pos,
+            &mut s.vel,
+        )
     }
 
     /// Whether `p` lies inside an active obstacle (strictly; see [`Shape3::surface`]), in the

@@ -114,17 +114,43 @@ pub struct CostField {
     pub solve: Solve,
 }
 
-/// What the step reads of a cell, in one aligned 16-byte record: a trilinear sample touches 8
-/// cells, one cache line each at most. The records live on huge pages ([`HugeSlice`]): the
-/// samples are scattered over the field.
-#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-#[repr(C, align(16))]
-pub(super) struct GuideCell {
-    /// The unit vector `−∇C/‖∇C‖` (node gradient one-sided towards the smaller neighbour, spec
-    /// W9); zero in goal cells and unreachable cells.
-    pub(super) guide: [f32; 3],
-    /// 1 for a goal cell, else 0.
-    pub(super) goal: u32,
+/// The step of the quantised guides: a stored component `q` (−127..=127) stands for
+/// `q · GUIDE_SCALE` (an `f32` product, so every implementation decodes the same bits; the GPU
+/// reads the scale from the field's header).
+pub const GUIDE_SCALE: f32 = 1.0 / 127.0;
+
+/// What the step reads of a cell, in one 32-bit word: the unit guide `−∇C/‖∇C‖` quantised to
+/// 8 bits a component (bits 0-7, 8-15, 16-23: x, y, z as two's-complement `i8` multiples of
+/// [`GUIDE_SCALE`]) and the goal flag (bit 24). A trilinear sample touches 8 cells scattered
+/// over three rows and two layers of the grid; at 4 bytes a cell a field of 4·10⁶ cells fits a
+/// server's last-level cache (it was 16 bytes with `f32` components: docs/benchmarks.md,
+/// W-T21). The quantisation moves a component by at most 1/254 before the sample is
+/// renormalised (docs/models.md).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(transparent)]
+pub struct GuideCell(pub u32);
+
+impl GuideCell {
+    /// The record of a cell with unit (or zero) guide `guide`.
+    pub fn new(guide: [f32; 3], goal: bool) -> Self {
+        let q = |v: f32, shift: u32| {
+            let q = (v * 127.0).round().clamp(-127.0, 127.0) as i8;
+            u32::from(q as u8) << shift
+        };
+        GuideCell(q(guide[0], 0) | q(guide[1], 8) | q(guide[2], 16) | u32::from(goal) << 24)
+    }
+
+    /// The stored guide, decoded: each component `q · GUIDE_SCALE`.
+    #[inline]
+    pub fn guide(self) -> [f32; 3] {
+        [0, 8, 16].map(|shift| f32::from((self.0 >> shift) as u8 as i8) * GUIDE_SCALE)
+    }
+
+    /// Whether the cell is a goal cell.
+    #[inline]
+    pub fn is_goal(self) -> bool {
+        self.0 >> 24 & 1 != 0
+    }
 }
 
 /// A heap entry: a tentative cost and its cell. Ordered so that `BinaryHeap` pops the smallest
@@ -223,10 +249,7 @@ impl CostField {
         let cells: Vec<GuideCell> = guide::descent(grid, &cost, goal)
             .into_iter()
             .zip(goal)
-            .map(|(guide, &goal)| GuideCell {
-                guide,
-                goal: u32::from(goal),
-            })
+            .map(|(guide, &goal)| GuideCell::new(guide, goal))
             .collect();
         let cells = HugeSlice::from_slice(&cells);
         Ok(CostField {
@@ -263,15 +286,21 @@ impl CostField {
     /// Whether cell `index` is a goal cell (false past the last cell).
     #[inline]
     pub fn is_goal(&self, index: usize) -> bool {
-        self.cells.get(index).is_some_and(|c| c.goal != 0)
+        self.cells.get(index).is_some_and(|c| c.is_goal())
+    }
+
+    /// The record of cell `index` (the zero record past the last cell): what the GPU uploads.
+    #[inline]
+    pub fn cell(&self, index: usize) -> GuideCell {
+        self.cells.get(index).copied().unwrap_or_default()
     }
 
     /// The unit vector `−∇C/‖∇C‖` of cell `index` (node gradient one-sided towards the
-    /// smaller neighbour, spec W9); zero in goal cells, unreachable cells and past the last
-    /// cell.
+    /// smaller neighbour, spec W9) as stored, quantised ([`GuideCell`]); zero in goal cells,
+    /// unreachable cells and past the last cell.
     #[inline]
     pub fn guide(&self, index: usize) -> [f32; 3] {
-        self.cells.get(index).map_or([0.0; 3], |c| c.guide)
+        self.cells.get(index).map_or([0.0; 3], |c| c.guide())
     }
 }
 

@@ -95,7 +95,8 @@ impl CostField {
     /// 2. for the corners `c = 0..8` (bit k of c: the upper cell on axis k, so the order is
     ///    (0,0,0), (1,0,0), (0,1,0), (1,1,0), (0,0,1), …) the weight `w = 1·w_x·w_y·w_z`
     ///    (`t` or `1 − t`, multiplied in that order) and `sum += v·w`, `v` the corner's stored
-    ///    vector converted with `S::from_f32`;
+    ///    vector (decoded, [`GuideCell::guide`](super::GuideCell::guide)) converted with
+    ///    `S::from_f32`;
     /// 3. if `sum.length() ≥ 10⁻³`: `sum.normalized()`; otherwise the stored vector of the
     ///    nearest cell (per axis the upper cell where `t ≥ ½`), converted, not renormalised.
     ///
@@ -149,10 +150,10 @@ impl CostField {
             let (x, y, z) = (part[0][c & 1], part[1][c >> 1 & 1], part[2][c >> 2 & 1]);
             let w = S::ONE * x.1 * y.1 * z.1;
             let i = x.0 + y.0 + z.0;
-            let cell = &cells[i];
-            let [gx, gy, gz] = cell.guide;
+            let cell = cells[i];
+            let [gx, gy, gz] = cell.guide();
             sum += Vec3::from_f32(gx, gy, gz) * w;
-            if cell.goal == 0 {
+            if !cell.is_goal() {
                 reach += w;
             }
         }

@@ -48,6 +48,6 @@ mod grid;
 mod guide;
 mod sdf;
 
-pub use fmm::{CostField, CostWeights, Solve};
+pub use fmm::{CostField, CostWeights, GUIDE_SCALE, GuideCell, Solve};
 pub use grid::{CellGrid, MAX_CELLS};
 pub use sdf::{SignedDistance, repulsion, repulsion_in};

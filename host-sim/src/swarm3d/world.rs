@@ -9,6 +9,7 @@ use swarm_core::orca3d::Surface;
 use swarm_core::{Scalar, Vec3};
 
 use crate::grid::Grid;
+use crate::obstacle_index::ObstacleIndex;
 use crate::scalar::{SimScalar, a3};
 use crate::scenario::Action;
 use crate::space::{BeeObstacle, at, axis, confine, with_axis};
@@ -197,7 +198,14 @@ impl World3d {
     /// correction is counted.
     pub fn confine<S: SimScalar>(&self, s: &mut impl Kinematic<S>) -> u8 {
         let (pos, vel) = s.kinematics_mut();
-        confine(&self.obstacles, self.min, self.max, pos, vel)
+        confine(
+            &self.obstacles,
+            &ObstacleIndex::NONE,
+            self.min,
+            self.max,
+            pos,
+            vel,
+        )
     }
 
     /// Applies a timed event of the scenario (`Action` on the object with id `object`): an

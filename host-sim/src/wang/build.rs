@@ -346,7 +346,7 @@ where
                 vel: Vec3::zero(),
             };
             // Spawned inside an obstacle: on its surface instead.
-            confine(&w.obstacles, w.min, w.max, &mut s.pos, &mut s.vel);
+            confine(&w.obstacles, &w.near, w.min, w.max, &mut s.pos, &mut s.vel);
             s
         })
         .collect();

@@ -180,7 +180,8 @@ impl<S: SimScalar> WangGroup<S> {
     fn place(&mut self, w: &mut WangWorld) -> (u64, u64) {
         let (lo, hi) = (w.min, w.max);
         let r = self.first..self.first + self.states.len();
-        let (obstacles, moved, id) = (&w.obstacles, &mut w.moved[r.clone()], &mut w.id[r]);
+        let (obstacles, near) = (&w.obstacles, &w.near);
+        let (moved, id) = (&mut w.moved[r.clone()], &mut w.id[r]);
         self.placed
             .par_iter_mut()
             .zip(self.moved.par_iter())
@@ -190,7 +191,7 @@ impl<S: SimScalar> WangGroup<S> {
             .with_min_len(1024)
             .for_each(|((((s, m), fix), (out, id)), &i)| {
                 *s = *m;
-                *fix = confine(obstacles, lo, hi, &mut s.pos, &mut s.vel);
+                *fix = confine(obstacles, near, lo, hi, &mut s.pos, &mut s.vel);
                 *out = a3(s.pos);
                 *id = i;
             });
@@ -226,7 +227,7 @@ impl<S: SimScalar> WangGroup<S> {
     /// Confines x_{k+1}, makes it current; returns the corrections and the insects pushed.
     fn commit(&mut self, w: &WangWorld) -> Counts {
         let (lo, hi) = (w.min, w.max);
-        let obstacles = &w.obstacles;
+        let (obstacles, near) = (&w.obstacles, &w.near);
         // The decided states become current (`next` keeps the old ones until the next step).
         std::mem::swap(&mut self.states, &mut self.next);
         let (obstacle, bounds, pushed) = self
@@ -236,7 +237,7 @@ impl<S: SimScalar> WangGroup<S> {
             .zip(self.pushes.par_iter())
             .with_min_len(1024)
             .map(|((s, c), &n)| {
-                let fix = confine(obstacles, lo, hi, &mut s.pos, &mut s.vel);
+                let fix = confine(obstacles, near, lo, hi, &mut s.pos, &mut s.vel);
                 *c |= fix;
                 (
                     u64::from(fix & 1),

@@ -15,8 +15,9 @@ use swarm_core::{Scalar, Vec2, Vec3};
 use crate::Result;
 use crate::fields::{CellGrid, CostField, CostWeights, SignedDistance, Solve};
 use crate::grid::Grid;
+use crate::obstacle_index::ObstacleIndex;
 use crate::scalar::{SimScalar, a3};
-use crate::space::{BeeObstacle, Shape3, at, axis, with_axis};
+use crate::space::{BeeObstacle, Shape3, a3f, at, axis, with_axis};
 
 /// The area a goal stands for: where the navigation field is zero and toward which it leads.
 #[derive(Clone, Debug, PartialEq)]
@@ -83,6 +84,9 @@ pub struct WangWorld {
     /// Stable agent ids, by slot.
     pub id: Vec<u32>,
     pub(crate) mde_grid: Grid,
+    /// The broad phase of the active obstacles for [`WangWorld::boundary`] and the
+    /// confinement, rebuilt with the fields ([`WangWorld::solve_if_dirty`]).
+    pub near: ObstacleIndex,
 }
 
 impl WangWorld {
@@ -108,6 +112,7 @@ impl WangWorld {
             moved: Vec::new(),
             id: Vec::new(),
             mde_grid: Grid::default(),
+            near: ObstacleIndex::NONE,
         })
     }
 
@@ -154,6 +159,7 @@ impl WangWorld {
             fields.push((g.id, field));
         }
         self.fields = fields;
+        self.near = ObstacleIndex::build(&self.obstacles, self.min, self.max, self.d0);
         self.dirty = false;
         Ok(())
     }
@@ -224,9 +230,9 @@ impl WangWorld {
             }
         };
         let pf = a3(p);
-        for o in self.obstacles.iter().filter(|o| o.active) {
+        self.near.each_near(&self.obstacles, a3f(p), |o| {
             if !o.may_be_within(pf, f64::from(self.d0)) {
-                continue;
+                return;
             }
             let s = o.shape.surface(p, self.min, self.max);
             let d = if s.inside { S::ZERO } else { s.distance };
@@ -240,7 +246,7 @@ impl WangWorld {
                     axis,
                 },
             );
-        }
+        });
         let (lo, hi) = (at::<S>(self.min), at::<S>(self.max));
         for k in 0..3 {
             for (face, sign) in [(lo, S::ONE), (hi, -S::ONE)] {

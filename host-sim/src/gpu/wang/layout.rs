@@ -9,7 +9,7 @@ use swarm_core::Error;
 use swarm_core::wang::{WangParams, WangState};
 
 use crate::error::Result;
-use crate::fields::CostField;
+use crate::fields::{CostField, GUIDE_SCALE};
 use crate::gpu::status;
 use crate::gpu::words::Word;
 use crate::scalar::SimScalar;
@@ -35,7 +35,7 @@ pub const GROUP_RANGE2: usize = 14;
 pub const NO_FIELD: u32 = u32::MAX;
 
 /// Words of a field's header: cells along x, y, z; the lower corner and the cell (`f32`
-/// bits); where its guides and its goal bits start.
+/// bits); where its cell records start; the guides' scale (`f32` bits).
 pub const FIELD_HEADER_WORDS: usize = 9;
 /// Field words: the cells along x, y and z (`WANG_FIELD_DIMS`).
 pub const FIELD_DIMS: usize = 0;
@@ -43,14 +43,13 @@ pub const FIELD_DIMS: usize = 0;
 pub const FIELD_MIN: usize = 3;
 /// Field word: the cell's edge, as `f32` bits.
 pub const FIELD_CELL: usize = 6;
-/// Field word: where the guides start (three `f32` bits a cell, in [`CellGrid::index`]
-/// order).
+/// Field word: where the cell records start (one [`GuideCell`](crate::fields::GuideCell) word a cell, in
+/// [`CellGrid::index`] order: the guide quantised to 8 bits a component, the goal flag).
 ///
 /// [`CellGrid::index`]: crate::fields::CellGrid::index
-pub const FIELD_GUIDES: usize = 7;
-/// Field word: where the goal bits start (bit `i % 32` of word `i / 32`: cell `i` is a goal
-/// cell).
-pub const FIELD_GOALS: usize = 8;
+pub const FIELD_CELLS: usize = 7;
+/// Field word: [`GUIDE_SCALE`] as `f32` bits (a stored component `q` is `f32(q) · scale`).
+pub const FIELD_SCALE: usize = 8;
 
 /// The WGSL constants of the layout and their values (checked against `wang_tick.wgsl` by a
 /// test).
@@ -66,8 +65,8 @@ pub const WGSL_CONSTANTS: &[(&str, u32)] = &[
     ("WANG_FIELD_DIMS", FIELD_DIMS as u32),
     ("WANG_FIELD_MIN", FIELD_MIN as u32),
     ("WANG_FIELD_CELL", FIELD_CELL as u32),
-    ("WANG_FIELD_GUIDES", FIELD_GUIDES as u32),
-    ("WANG_FIELD_GOALS", FIELD_GOALS as u32),
+    ("WANG_FIELD_CELLS", FIELD_CELLS as u32),
+    ("WANG_FIELD_SCALE", FIELD_SCALE as u32),
 ];
 
 /// The fields the wang2014 controller names in its errors, by their code in a status word
@@ -160,7 +159,7 @@ pub fn write_group<S: Word + SimScalar>(
     out.resize(start + GROUP_WORDS, 0);
 }
 
-/// The fields' words: each field's header ([`FIELD_HEADER_WORDS`]), guides and goal bits, one
+/// The fields' words: each field's header ([`FIELD_HEADER_WORDS`]) and cell records, one
 /// after the other; and where each starts, by goal id.
 pub fn field_words(fields: &[(u16, CostField)]) -> (Vec<u32>, Vec<(u16, u32)>) {
     let mut out = Vec::new();
@@ -169,20 +168,12 @@ pub fn field_words(fields: &[(u16, CostField)]) -> (Vec<u32>, Vec<(u16, u32)>) {
         let start = out.len();
         at.push((*goal, start as u32));
         let g = &f.grid;
-        let cells = g.len();
-        let guides = start + FIELD_HEADER_WORDS;
-        let goals = guides + 3 * cells;
         out.extend(g.dims);
         out.extend(g.min.map(f32::to_bits));
         out.push(g.cell.to_bits());
-        out.push(guides as u32);
-        out.push(goals as u32);
-        out.extend((0..cells).flat_map(|i| f.guide(i).map(f32::to_bits)));
-        let mut bits = vec![0u32; cells.div_ceil(32)];
-        for i in (0..cells).filter(|&i| f.is_goal(i)) {
-            bits[i / 32] |= 1 << (i % 32);
-        }
-        out.extend(bits);
+        out.push((start + FIELD_HEADER_WORDS) as u32);
+        out.push(GUIDE_SCALE.to_bits());
+        out.extend((0..g.len()).map(|i| f.cell(i).0));
     }
     (out, at)
 }
