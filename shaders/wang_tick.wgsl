@@ -176,13 +176,18 @@ fn wang_cell_record(f: u32, c: vec3<u32>) -> u32 {
     return wang_fields[wang_fields[f + WANG_FIELD_CELLS] + wang_cell_index(f, c)];
 }
 
-// GuideCell::guide of a record of the field at `f`, in S: each sign-extended byte times the scale.
+// One component of a record: the sign-extended byte at `shift` times the scale, in S.
+fn wang_record_component(record: u32, shift: u32, scale: f32) -> S {
+    let v = f32(extractBits(bitcast<i32>(record), shift, 8u)) * scale;
+    return s_from_f32(v);
+}
+
+// GuideCell::guide of a record of the field at `f`, in S.
 fn wang_record_guide(f: u32, record: u32) -> vec3<S> {
     let scale = bitcast<f32>(wang_fields[f + WANG_FIELD_SCALE]);
-    let r = bitcast<i32>(record);
-    return vec3<S>(s_from_f32(f32(extractBits(r, 0u, 8u)) * scale),
-                   s_from_f32(f32(extractBits(r, 8u, 8u)) * scale),
-                   s_from_f32(f32(extractBits(r, 16u, 8u)) * scale));
+    return vec3<S>(wang_record_component(record, 0u, scale),
+                   wang_record_component(record, 8u, scale),
+                   wang_record_component(record, 16u, scale));
 }
 
 // CellGrid::index: x + nx·(y + ny·z).

@@ -237,7 +237,13 @@ impl<S: SimScalar> WangGroup<S> {
             .zip(self.pushes.par_iter())
             .with_min_len(1024)
             .map(|((s, c), &n)| {
-                let fix = confine(obstacles, near, lo, hi, &mut s.pos, &mut s.vel);
+                // Not pushed, the state is x* as placed; if placing corrected nothing, x* was
+                // physical and confining it again would change nothing: skipped, same bits.
+                let fix = if n == 0 && *c == 0 {
+                    0
+                } else {
+                    confine(obstacles, near, lo, hi, &mut s.pos, &mut s.vel)
+                };
                 *c |= fix;
                 (
                     u64::from(fix & 1),
