@@ -84,6 +84,14 @@ pub fn a3<S: SimScalar>(v: Vec3<S>) -> [f64; 3] {
     [v.x.to_f64(), v.y.to_f64(), v.z.to_f64()]
 }
 
+/// A vector as `f32` coordinates (the obstacle broad phase's key,
+/// [`ObstacleIndex`](crate::obstacle_index::ObstacleIndex)).
+#[inline(always)]
+pub fn a3f<S: Scalar>(v: Vec3<S>) -> [f32; 3] {
+    let v = v.to_f32();
+    [v.x, v.y, v.z]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

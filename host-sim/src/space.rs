@@ -7,7 +7,7 @@
 use swarm_core::{Scalar, Vec2, Vec3};
 
 use crate::obstacle_index::ObstacleIndex;
-use crate::scalar::{SimScalar, a3};
+use crate::scalar::{SimScalar, a3, a3f};
 use crate::scenario::ObjectKind;
 
 /// How far outside the surface the world puts a bee it pushes out of an obstacle.
@@ -398,13 +398,6 @@ impl BeeObstacle {
         self.aabb = self.shape.aabb();
         moved
     }
-}
-
-/// A point as `f32` coordinates (for [`ObstacleIndex`]).
-#[inline(always)]
-pub fn a3f<S: Scalar>(p: Vec3<S>) -> [f32; 3] {
-    let p = p.to_f32();
-    [p.x, p.y, p.z]
 }
 
 /// Keeps a point physical: out of every active obstacle of `obstacles` (put back on the

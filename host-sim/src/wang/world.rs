@@ -16,8 +16,8 @@ use crate::Result;
 use crate::fields::{CellGrid, CostField, CostWeights, SignedDistance, Solve};
 use crate::grid::Grid;
 use crate::obstacle_index::ObstacleIndex;
-use crate::scalar::{SimScalar, a3};
-use crate::space::{BeeObstacle, Shape3, a3f, at, axis, with_axis};
+use crate::scalar::{SimScalar, a3, a3f};
+use crate::space::{BeeObstacle, Shape3, at, axis, with_axis};
 
 /// The area a goal stands for: where the navigation field is zero and toward which it leads.
 #[derive(Clone, Debug, PartialEq)]
