@@ -114,6 +114,26 @@ impl CostField {
         self.cell_guide(nearest)
     }
 
+    /// Loads the cache lines a [`guide_at`](CostField::guide_at) at `p` reads (the lower x
+    /// corner of its four rows, an approximation in `f32`) and returns a value made from them,
+    /// to be passed to [`std::hint::black_box`]. Touching the cells of a block of insects in one
+    /// tight loop, before their steps, puts those loads in flight together (a field larger than
+    /// the caches misses at almost every row otherwise, one insect at a time: W-T21's finer
+    /// grid). Changes no result; any `p` is safe (clamped into the grid).
+    pub fn warm(&self, p: [f32; 3]) -> u32 {
+        let g = &self.grid;
+        let at = |k: usize| {
+            let u = (p[k] - g.min[k]) / g.cell - 0.5;
+            // `as` saturates (NaN → 0); the upper row clamps to the last cell.
+            let i = (u as u32).min(g.dims[k] - 1);
+            (i as usize, (i + 1).min(g.dims[k] - 1) as usize)
+        };
+        let (x, (y0, y1), (z0, z1)) = (at(0).0, at(1), at(2));
+        let (nx, ny) = (g.dims[0] as usize, g.dims[1] as usize);
+        let row = |y: usize, z: usize| self.cells[x + nx * (y + ny * z)].0;
+        row(y0, z0) ^ row(y1, z0) ^ row(y0, z1) ^ row(y1, z1)
+    }
+
     /// The stored guide of a cell in `S`.
     fn cell_guide<S: Scalar>(&self, cell: [u32; 3]) -> Vec3<S> {
         let [x, y, z] = self.guide(self.grid.index(cell));

@@ -26,6 +26,9 @@ use crate::par::for_each_agent;
 use crate::scalar::{AgentGroup, ByScalar, SimScalar, a3, v3};
 use crate::space::confine;
 
+/// Insects whose field cells [`WangGroup::warm`] loads at once, ahead of their steps.
+const WARM_BLOCK: usize = 64;
+
 /// The MDE neighbours of a separate frame (the wire's capacity).
 pub const K: usize = WIRE_WANG_NEIGHBOURS;
 
@@ -156,6 +159,22 @@ impl<S: SimScalar> WangGroup<S> {
         }
     }
 
+    /// Touches the goal field's cells that the insects in slots `k..k + WARM_BLOCK` will
+    /// sample ([`CostField::warm`](crate::fields::CostField::warm)): their cache misses then
+    /// overlap instead of stalling one insect after another. Changes no result.
+    fn warm(&self, w: &WangWorld, k: usize) {
+        let Some(field) = w.field(self.goal) else {
+            return;
+        };
+        let end = (k + WARM_BLOCK).min(self.states.len());
+        let mut acc = 0;
+        for s in &self.states[k..end] {
+            let p = s.pos.to_f32();
+            acc ^= field.warm([p.x, p.y, p.z]);
+        }
+        std::hint::black_box(acc);
+    }
+
     /// Phase 1: every insect's tentative move (eq. 9).
     fn advect(&mut self, w: &WangWorld, seed: u32, step: u32) -> Result<()> {
         let mut moved = std::mem::take(&mut self.moved);
@@ -164,6 +183,9 @@ impl<S: SimScalar> WangGroup<S> {
             moved.par_iter_mut(),
             || (),
             |(), k, out| {
+                if k % WARM_BLOCK == 0 {
+                    this.warm(w, k);
+                }
                 let s = &this.states[k];
                 let frame = this.advect_frame(w, s);
                 let ctx = this.ctx(seed, step, k);

@@ -744,3 +744,19 @@ fn guide_records_round_trip() {
         [1.0, -1.0]
     );
 }
+
+/// `warm` reads inside the grid for any point: outside it on every side, non-finite, huge.
+#[test]
+fn warm_takes_any_point() {
+    let (grid, _, field) = spheres().build();
+    let hi = grid.max();
+    let odd = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, -1e30, 1e30, 0.0];
+    for x in odd.iter().chain(&[grid.min[0], hi[0]]) {
+        for y in odd.iter().chain(&[hi[1]]) {
+            std::hint::black_box(field.warm([*x, *y, hi[2] + 1.0]));
+        }
+    }
+    for p in random_points(&grid, 12, 2_000) {
+        std::hint::black_box(field.warm(p));
+    }
+}
