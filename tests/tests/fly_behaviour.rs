@@ -8,7 +8,7 @@
 use swarm_core::fly::FlyParams;
 use swarm_core::model::ParamValue;
 use swarm_sim::engine::{Engine, apply_due_events};
-use swarm_sim::eval::frame_polarisation;
+use swarm_sim::eval::{Tracks, evaluate, frame_polarisation};
 use swarm_sim::fly::{FlyParamsOverride, FlySim, fly_params};
 use swarm_sim::scenario::{self, Scenario, builtin_names};
 use swarm_tests::{centroid, dist};
@@ -19,10 +19,15 @@ fn load(name: &str) -> Scenario {
 
 /// `sc` with parameter `name` of every group set to `value` (a control run).
 fn with_param(sc: &Scenario, name: &str, value: f32) -> Scenario {
+    with_value(sc, name, ParamValue::Real(value))
+}
+
+/// `sc` with parameter `name` of every group set to `value`.
+fn with_value(sc: &Scenario, name: &str, value: ParamValue<f32>) -> Scenario {
     let mut sc = sc.clone();
     for g in &mut sc.groups {
         let mut o: FlyParamsOverride = g.params_as().expect("fly parameters");
-        assert!(o.overrides.set(name, ParamValue::Real(value)), "{name}");
+        assert!(o.overrides.set(name, value), "{name}");
         g.set_params(&o).expect("a table");
     }
     sc
@@ -434,4 +439,65 @@ fn fig6_the_swarm_orders_when_noise_falls_and_alignment_rises() {
     eprintln!("polarisation before the switch {disordered:.3}, after {ordered:.3}");
     assert!(disordered < 0.3, "before the switch: {disordered}");
     assert!(ordered > 0.7, "after the switch: {ordered}");
+}
+
+/// The tracks of `sc` run with each of `seeds` for `steps` ticks, every tick a frame, the runs
+/// pooled as one swarm (insect `id` of run `k` is track `k·count + id`).
+fn tracks(sc: &Scenario, seeds: impl IntoIterator<Item = u32>, steps: u32) -> Tracks {
+    let dt = f64::from(fly_params(&sc.groups[0]).expect("fly parameters").dt);
+    let mut samples = Vec::new();
+    for (k, seed) in seeds.into_iter().enumerate() {
+        let mut sim = FlySim::from_scenario(sc, seed).expect("builds");
+        for frame in 0..steps {
+            apply_due_events(&mut sim, sc);
+            Engine::tick(&mut sim).expect("tick");
+            let pos = sim.positions_by_id();
+            let first = (k * pos.len()) as u64;
+            samples.extend(
+                pos.into_iter()
+                    .enumerate()
+                    .map(|(id, p)| (first + id as u64, i64::from(frame), p)),
+            );
+        }
+    }
+    Tracks::from_samples(dt, samples)
+}
+
+/// R-T16 (Fig. 10's pipeline end to end), in part: the fruit-fly column with curl noise,
+/// three runs pooled, is the reference; the same column with each of the four noise functions,
+/// three other runs pooled, are the candidates. With a curl reference the metrics, PDFs, L1
+/// and entropy weights must tell the white and Gaussian noises (which vibrate in place) far
+/// below curl (by 0.22-0.88 over seeds 1-8; asked: 0.1). Curl against Perlin (both smooth,
+/// static fields) is not separable this way: curl ranks first for 6 of seeds 1-8, Perlin for
+/// seeds 4 and 7 (0.96 against 0.76, 0.93 against 0.69), so the test asks for curl among the
+/// first two. The weights of Eq. 9 are printed; over those seeds they span 0.09-0.23, against
+/// 0.120-0.194 in the paper's twelve reported sets.
+#[test]
+fn fig10_curl_noise_outranks_white_and_gaussian_noise() {
+    let sc = load("fly-fig2-fruitfly");
+    let steps = 2000;
+    const RUNS: u32 = 3;
+    let seed = swarm_tests::seed(sc.seed);
+    let reference = tracks(&sc, (0..RUNS).map(|k| seed.wrapping_add(k)), steps);
+    let names = ["curl", "perlin", "white", "gaussian"];
+    let candidates: Vec<Tracks> = (0..names.len())
+        .map(|noise| {
+            let c = with_value(&sc, "noise", ParamValue::Int(noise as u32));
+            tracks(&c, (0..RUNS).map(|k| seed.wrapping_add(1000 + k)), steps)
+        })
+        .collect();
+    let e = evaluate(&reference, &candidates.iter().collect::<Vec<_>>());
+    let w = &e.weighting;
+    eprintln!("scores {:?} ({names:?})\nweights {:?}", w.scores, w.weights);
+    let curl = w.scores[0];
+    assert!(
+        curl > w.scores[2] + 0.1 && curl > w.scores[3] + 0.1,
+        "curl {curl} against white and Gaussian: {:?}",
+        w.scores
+    );
+    assert!(
+        w.scores.iter().filter(|&&s| s > curl).count() <= 1,
+        "curl not among the first two: {:?}",
+        w.scores
+    );
 }
