@@ -46,8 +46,8 @@ const FLY_DECISION_WORDS: u32 = 4u;
 // A group's words (layout.rs, GROUP_*): the sixteen parameters in S in FlyParams' order, then
 // orca_neighbours, noise, fallback, escape_sides, the goal's and the threat's object ids
 // (FLY_NO_SOURCE: none), r_att, r_rep and r_ali squared in S (the selection's bands), and the
-// goal's and the threat's regions (FLY_REGION_WORDS each: 1 for a `region`, then its lower and
-// upper corners in S).
+// goal's and the threat's regions (FLY_REGION_WORDS each: FLY_REGION_BOX or FLY_REGION_CAVE, 0
+// for a source with a centre only, then its lower and upper corners in S).
 const FLY_GROUP_WORDS: u32 = 40u;
 const FLY_GROUP_ORCA_NEIGHBOURS: u32 = 16u;
 const FLY_GROUP_GOAL: u32 = 20u;
@@ -57,6 +57,8 @@ const FLY_GROUP_REP2: u32 = 23u;
 const FLY_GROUP_ALI2: u32 = 24u;
 const FLY_GROUP_REGIONS: u32 = 26u;
 const FLY_REGION_WORDS: u32 = 7u;
+const FLY_REGION_BOX: u32 = 1u;
+const FLY_REGION_CAVE: u32 = 2u;
 // Entries a truncated frame keeps for each farther zone with members (sense.rs, ZONE_QUOTA).
 const FLY_ZONE_QUOTA: u32 = 3u;
 const FLY_NO_SOURCE: u32 = 0xffffffffu;
@@ -257,6 +259,24 @@ fn fly_nearest_outside(p: vec3<S>, lo: vec3<S>, hi: vec3<S>) -> GeomOptionVec3 {
     return GeomOptionVec3(any(q != p), q);
 }
 
+// ahead_point (sense.rs): the echo ahead in the cave [lo, hi], or the point r_res/2 ahead when
+// the walls are farther; none for an insect at rest.
+fn fly_ahead_point(p: vec3<S>, vel: vec3<S>, lo: vec3<S>, hi: vec3<S>, r_res: S) -> GeomOptionVec3 {
+    let wall = fly_echo_point(p, vel, lo, hi);
+    if (!wall.is_some) {
+        return wall;
+    }
+    let half = s_mul(r_res, s_from_f32(0.5f));
+    let dir = geom_vec3_normalized(vel);
+    if (!dir.is_some) {
+        return dir;
+    }
+    if (geom_vec3_length_sq(geom_vec3_sub(wall.value, p)) > s_mul(half, half)) {
+        return GeomOptionVec3(true, geom_vec3_add(p, geom_vec3_mul(dir.value, half)));
+    }
+    return wall;
+}
+
 // Three S words of group g from word k on.
 fn fly_group_vec3(g: u32, k: u32) -> vec3<S> {
     return vec3<S>(fly_group_s(g, k), fly_group_s(g, k + 1u), fly_group_s(g, k + 2u));
@@ -264,9 +284,10 @@ fn fly_group_vec3(g: u32, k: u32) -> vec3<S> {
 
 // stimulus (sense.rs): the group's threat (kind FLY_STIMULUS_PREDATOR) or goal if it is active
 // and within r_res (squared in S, H(0) = 1): its centre, or for a region the echo ahead (a
-// threat) or its nearest point (a goal).
+// threat), the echo ahead or the point r_res/2 ahead (a cave's goal) or its nearest point (a
+// goal).
 fn fly_tick_source(f: ptr<function, FlyFrame>, g: u32, kind: u32, me: vec3<S>, vel: vec3<S>,
-                   r2: S) -> bool {
+                   r_res: S, r2: S) -> bool {
     let threat = kind == FLY_STIMULUS_PREDATOR;
     let id = fly_group_u(g, select(FLY_GROUP_GOAL, FLY_GROUP_THREAT, threat));
     if (id == FLY_NO_SOURCE) {
@@ -274,11 +295,14 @@ fn fly_tick_source(f: ptr<function, FlyFrame>, g: u32, kind: u32, me: vec3<S>, v
     }
     var c = bee_world_target_center(id);
     let r = FLY_GROUP_REGIONS + select(0u, FLY_REGION_WORDS, threat);
-    if (c.is_some && fly_group_u(g, r) != 0u) {
+    let region = fly_group_u(g, r);
+    if (c.is_some && region != 0u) {
         let lo = fly_group_vec3(g, r + 1u);
         let hi = fly_group_vec3(g, r + 4u);
         if (threat) {
             c = fly_echo_point(me, vel, lo, hi);
+        } else if (region == FLY_REGION_CAVE) {
+            c = fly_ahead_point(me, vel, lo, hi, r_res);
         } else {
             c = fly_nearest_outside(me, lo, hi);
         }
@@ -365,8 +389,8 @@ fn fly_tick_frame(f: ptr<function, FlyFrame>, i: u32, g: u32, p: FlyParams, me: 
     }
     let r2 = s_mul(p.r_res, p.r_res);
     let vel = fly_tick_vel(i);
-    if (!fly_tick_source(f, g, FLY_STIMULUS_PREDATOR, me, vel, r2)) {
-        fly_tick_source(f, g, FLY_STIMULUS_TARGET, me, vel, r2);
+    if (!fly_tick_source(f, g, FLY_STIMULUS_PREDATOR, me, vel, p.r_res, r2)) {
+        fly_tick_source(f, g, FLY_STIMULUS_TARGET, me, vel, p.r_res, r2);
     }
     fly_tick_surfaces(f, me, fly_reach(p));
     return near.within > FLY_NEIGHBOURS;

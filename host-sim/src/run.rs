@@ -428,6 +428,8 @@ fn shape_of(name: &str, kind: &ObjectKind, from: u32, to: Option<u32>) -> Option
             Shape::circle(*center, *radius, ShapeKind::Target)
         }
         ObjectKind::Region { min, max } => Shape::cuboid(*min, *max, ShapeKind::Target),
+        // The cave is the world the insects fly in: its walls are the render's frame.
+        ObjectKind::Cave { .. } => return None,
     };
     let from = (from > 0).then_some(from);
     Some(shape.named(name).during(from, to))

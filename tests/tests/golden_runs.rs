@@ -356,6 +356,18 @@ const PINNED: &[(&str, &str, u64, u64)] = &[
         0x795cb6fb488cd141,
     ),
     (
+        "fly-fig9-bats",
+        "f32",
+        0x5358a48c98ae4084,
+        0x189832e759553177,
+    ),
+    (
+        "fly-fig9-bats",
+        "fixed",
+        0x282b27b2956783e4,
+        0x7c573f730e31104e,
+    ),
+    (
         "li-fig4-confined",
         "f32",
         0x2d7b66910bb8a45f,

@@ -89,6 +89,40 @@ pub fn frame_polarisation(vel: &[[f64; 3]]) -> f64 {
     (sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]).sqrt() / n
 }
 
+/// The milling order of one frame about `center` (spec R-T23, Fig. 9): ‖Σ ρ_i × v_i‖ /
+/// Σ ‖ρ_i‖‖v_i‖ with ρ_i = r_i − c, the swarm's rotation about whatever axis it turns round;
+/// about a given `axis` â (the cave's), |Σ (ρ_i × v_i)·â| / Σ ‖ρ_i‖‖v_i‖ with ρ_i the offset
+/// from the axis (perpendicular to it). 1 when every insect circles the same way, about 0 for
+/// a swarm at random or moving along one heading; 0 without motion or with a zero axis.
+pub fn frame_milling(
+    pos: &[[f64; 3]],
+    vel: &[[f64; 3]],
+    center: [f64; 3],
+    axis: Option<[f64; 3]>,
+) -> f64 {
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let norm = |a: [f64; 3]| dot(a, a).sqrt();
+    let unit = match axis {
+        Some(a) if norm(a) == 0.0 => return 0.0,
+        Some(a) => Some(a.map(|c| c / norm(a))),
+        None => None,
+    };
+    let (mut turn, mut scale) = ([0.0; 3], 0.0);
+    for (p, v) in pos.iter().zip(vel) {
+        let mut rho: [f64; 3] = std::array::from_fn(|k| p[k] - center[k]);
+        if let Some(a) = unit {
+            let along = dot(rho, a);
+            rho = std::array::from_fn(|k| rho[k] - along * a[k]);
+        }
+        turn[0] += rho[1] * v[2] - rho[2] * v[1];
+        turn[1] += rho[2] * v[0] - rho[0] * v[2];
+        turn[2] += rho[0] * v[1] - rho[1] * v[0];
+        scale += norm(rho) * norm(*v);
+    }
+    let turn = unit.map_or(norm(turn), |a| dot(turn, a).abs());
+    if scale > 0.0 { turn / scale } else { 0.0 }
+}
+
 /// The mean over frames of ‖(1/N) Σ v̂_i‖, velocities by forward differences (frames where
 /// no insect moves are skipped).
 pub fn polarisation(tracks: &Tracks) -> f64 {

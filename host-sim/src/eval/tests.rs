@@ -176,3 +176,31 @@ fn the_same_process_scores_higher() {
     assert!(e.weighting.scores[0] > e.weighting.scores[1], "{e:?}");
     assert!(e.polarisation.1.iter().all(|p| (0.0..=1.0).contains(p)));
 }
+
+/// Milling is 1 for insects circling a vertical axis the same way (at any height and radius,
+/// about the axis; about the centre only in its plane), 0 for half of them circling each way,
+/// small for one common heading, 0 without motion.
+#[test]
+fn milling_about_an_axis() {
+    let (c, up) = ([20.0, 5.0, 20.0], Some([0.0, 3.0, 0.0]));
+    let ring = |k: usize, way: f64| {
+        let th = k as f64 * 0.7;
+        let r = 3.0 + k as f64 % 5.0;
+        let p = [c[0] + r * th.cos(), k as f64 % 7.0, c[2] + r * th.sin()];
+        (p, [-way * th.sin() * 2.0, 0.0, way * th.cos() * 2.0])
+    };
+    let (pos, vel): (Vec<_>, Vec<_>) = (0..40).map(|k| ring(k, 1.0)).unzip();
+    assert!((frame_milling(&pos, &vel, c, up) - 1.0).abs() < 1e-12);
+    let free = frame_milling(&pos, &vel, c, None);
+    assert!(free > 0.5 && free < 1.0, "{free}");
+    let flat: Vec<[f64; 3]> = pos.iter().map(|p| [p[0], c[1], p[2]]).collect();
+    assert!((frame_milling(&flat, &vel, c, None) - 1.0).abs() < 1e-12);
+    let (pos, vel): (Vec<_>, Vec<_>) = (0..40)
+        .map(|k| ring(k, if k % 2 == 0 { 1.0 } else { -1.0 }))
+        .unzip();
+    assert!(frame_milling(&pos, &vel, c, up) < 0.2);
+    let along = vec![[1.0, 0.0, 0.5]; pos.len()];
+    assert!(frame_milling(&pos, &along, c, up) < 0.2);
+    assert_eq!(frame_milling(&pos, &vec![[0.0; 3]; pos.len()], c, up), 0.0);
+    assert_eq!(frame_milling(&pos, &vel, c, Some([0.0; 3])), 0.0);
+}

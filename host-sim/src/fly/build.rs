@@ -53,7 +53,7 @@ fn source_of(
     let id = scenario.object_id(name).ok_or_else(no_object)?;
     let o = &scenario.objects[usize::from(id)];
     let (center, region) = match o.kind {
-        ObjectKind::Region { min, max } => (
+        ObjectKind::Region { min, max } | ObjectKind::Cave { min, max } => (
             std::array::from_fn(|k| 0.5 * (min[k] + max[k])),
             Some([min, max]),
         ),
@@ -71,6 +71,7 @@ fn source_of(
             center,
             active: o.active,
             region,
+            cave: matches!(o.kind, ObjectKind::Cave { .. }),
         });
     }
     Ok(Some(id))

@@ -21,5 +21,7 @@ mod tests;
 
 pub use build::bench_fly_world;
 pub use scenario::{FlyParamsOverride, FlyPreset, fly_params};
-pub use sense::{FlySimFrame, N, O, Stimuli, ZONE_QUOTA, fly_frame, zone_shares};
+pub use sense::{
+    FlySimFrame, N, O, Stimuli, ZONE_QUOTA, ahead_point, echo_point, fly_frame, zone_shares,
+};
 pub use sim::{AnyFlyGroup, Counts, Fly, FlyGroup, FlySim, Polarisation};

@@ -68,9 +68,9 @@ pub fn fly_params(g: &Group) -> Result<FlyParams<f32>> {
 
 /// The kinds a goal or threat may be: objects with a centre `[x, y, z]` (a solid sphere is
 /// also an obstacle, as the predator of Fig. 8 and the lamp of Fig. 7), or a `region` (a
-/// threat's walls sensed ahead, the bats' echolocation of Fig. 9; a goal's nearest point, the
-/// locusts' crop field of Fig. 4).
-pub(crate) const SOURCE_KINDS: [&str; 4] = ["zone", "target", "sphere", "region"];
+/// threat's walls sensed ahead; a goal's nearest point, the locusts' crop field of Fig. 4), or
+/// a `cave` (a goal's walls or the air ahead, pursued: the bats' echolocation of Fig. 9).
+pub(crate) const SOURCE_KINDS: [&str; 5] = ["zone", "target", "sphere", "region", "cave"];
 
 /// The rules of a ren2016 group: no ant `nest`; a `goal` (the target it pursues) and a
 /// `threat` (the predator it escapes), each optional, objects with a centre; parameters the controller accepts (in fixed point too for a fixed
@@ -109,7 +109,7 @@ fn stimulus_object(
             field,
             format!(
                 "`{name}` is a `{kind}`, expected an object with a centre `[x, y, z]` (`zone`, \
-                 `target` or `sphere`) or a `region`"
+                 `target` or `sphere`), a `region` or a `cave`"
             ),
         ));
     }

@@ -102,6 +102,7 @@ fn stimulus<S: SimScalar>(
         let s = w.source(id?)?;
         let pos = match (s.region, kind) {
             (Some([lo, hi]), STIMULUS_PREDATOR) => echo_point(me, vel, at::<S>(lo), at::<S>(hi))?,
+            (Some([lo, hi]), _) if s.cave => ahead_point(me, vel, at::<S>(lo), at::<S>(hi), r_res)?,
             (Some([lo, hi]), _) => nearest_outside(me, at::<S>(lo), at::<S>(hi))?,
             (None, _) => at::<S>(s.center),
         };
@@ -149,6 +150,28 @@ pub fn echo_point<S: Scalar>(
     .flatten()
     .fold(None, |m: Option<S>, t| Some(m.map_or(t, |m| m.min(t))))?;
     Some(p + dir * t.max(S::ZERO))
+}
+
+/// The echo a bat flying inside the cave `[lo, hi]` pursues (Fig. 9, ours: "a changing
+/// stimulus in front of each bat"): the [`echo_point`] ahead, or the point half the visual
+/// range `r_res` ahead when the walls are farther (`t = min(t_wall, r_res/2)` along the unit
+/// heading, so the stimulus is always in range). Pursued, it drives the bat forward along its
+/// heading; the walls turn it. `None` for an insect at rest.
+pub fn ahead_point<S: Scalar>(
+    p: Vec3<S>,
+    vel: Vec3<S>,
+    lo: Vec3<S>,
+    hi: Vec3<S>,
+    r_res: S,
+) -> Option<Vec3<S>> {
+    let wall = echo_point(p, vel, lo, hi)?;
+    let half = r_res * S::from_f32(0.5);
+    let dir = vel.normalized()?;
+    Some(if (wall - p).length_sq() > half * half {
+        p + dir * half
+    } else {
+        wall
+    })
 }
 
 #[cfg(test)]
@@ -200,6 +223,31 @@ mod tests {
             let near = nearest_outside(v(50.0, 5.0, -3.0), lo, hi).unwrap();
             assert_eq!(near, v(40.0, 5.0, 0.0));
             assert!(nearest_outside(v(20.0, 5.0, 20.0), lo, hi).is_none());
+        }
+        check::<f32>();
+        check::<swarm_core::Fx>();
+    }
+
+    /// In a cave the stimulus is r_res/2 ahead while the wall is farther, the wall once it is
+    /// nearer, and none at rest.
+    #[test]
+    fn a_cave_echoes_ahead_within_half_the_range() {
+        fn check<S: SimScalar>() {
+            let v = |x: f32, y: f32, z: f32| Vec3::<S>::from_f32(x, y, z);
+            let (lo, hi, r) = (v(0.0, 0.0, 0.0), v(40.0, 10.0, 40.0), S::from_f32(8.0));
+            let close = |a: Vec3<S>, b: [f32; 3]| {
+                let d = [
+                    a.x.to_f32() - b[0],
+                    a.y.to_f32() - b[1],
+                    a.z.to_f32() - b[2],
+                ];
+                assert!(d.iter().all(|d| d.abs() < 1e-3), "{a:?} vs {b:?}");
+            };
+            let far = ahead_point(v(20.0, 5.0, 20.0), v(3.0, 0.0, 4.0), lo, hi, r).unwrap();
+            close(far, [22.4, 5.0, 23.2]);
+            let wall = ahead_point(v(20.0, 5.0, 38.0), v(0.0, 0.0, 2.0), lo, hi, r).unwrap();
+            close(wall, [20.0, 5.0, 40.0]);
+            assert!(ahead_point(v(1.0, 1.0, 1.0), v(0.0, 0.0, 0.0), lo, hi, r).is_none());
         }
         check::<f32>();
         check::<swarm_core::Fx>();

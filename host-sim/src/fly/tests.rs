@@ -131,29 +131,36 @@ fn insects_spawn_off_the_obstacles_in_their_region() {
     }
 }
 
-/// A `region` threat is an echo source: the bats of Fig. 9 hear the wall ahead of them. The
-/// stimulus is that wall point while it is within r_res, nothing at rest; the GPU engine
-/// refuses it by name until it senses echoes too.
-#[test]
-fn a_region_threat_echoes_the_wall_ahead() {
-    let text = r#"
+/// Two bats near the +x wall of a 40 × 10 × 40 cave, whose `role` (`threat` or `goal`) is an
+/// object of kind `kind`.
+fn echo_world(role: &str, kind: &str) -> crate::scenario::Scenario {
+    let text = format!(
+        r#"
 name = "echo"
 steps = 10
-world = { dim = 3, min = [0, 0, 0], max = [40, 10, 40] }
+world = {{ dim = 3, min = [0, 0, 0], max = [40, 10, 40] }}
 [[groups]]
 name = "bats"
 model = "fly"
 count = 2
-threat = "cave"
-spawn = { min = [30, 4, 18], max = [32, 6, 22] }
-fly = { preset = "bats" }
+{role} = "cave"
+spawn = {{ min = [35.5, 4, 18], max = [37.5, 6, 22] }}
+fly = {{ preset = "bats" }}
 [[objects]]
 name = "cave"
-kind = "region"
+kind = "{kind}"
 min = [0, 0, 0]
 max = [40, 10, 40]
-"#;
-    let sc = crate::scenario::Scenario::from_str(text, "echo.toml").unwrap();
+"#
+    );
+    crate::scenario::Scenario::from_str(&text, "echo.toml").unwrap()
+}
+
+/// A `region` threat is an echo source: the bats hear the wall ahead of them. The stimulus is
+/// that wall point while it is within r_res, nothing at rest.
+#[test]
+fn a_region_threat_echoes_the_wall_ahead() {
+    let sc = echo_world("threat", "region");
     let mut sim = FlySim::from_scenario(&sc, 1).unwrap();
     let p = fly_params(&sc.groups[0]).unwrap();
     let stimuli = Stimuli {
@@ -181,4 +188,38 @@ max = [40, 10, 40]
             .stimulus
             .is_none()
     );
+}
+
+/// A `cave` goal is the echo ahead, pursued (the bats of Fig. 9): the wall point while it is
+/// within r_res/2, else the point r_res/2 ahead; nothing at rest.
+#[test]
+fn a_cave_goal_is_the_echo_ahead() {
+    let sc = echo_world("goal", "cave");
+    let mut sim = FlySim::from_scenario(&sc, 1).unwrap();
+    let p = fly_params(&sc.groups[0]).unwrap();
+    let stimuli = Stimuli {
+        goal: Some(0),
+        threat: None,
+    };
+    let me = sim.world.sensed.pos[0].map(|c| c as f32);
+    assert!(
+        fly_frame::<f32>(&sim.world, 0, &p, stimuli)
+            .0
+            .stimulus
+            .is_none()
+    );
+    let sensed = |sim: &FlySim| {
+        let s = fly_frame::<f32>(&sim.world, 0, &p, stimuli)
+            .0
+            .stimulus
+            .expect("the echo");
+        assert_eq!(s.kind, swarm_core::fly::STIMULUS_TARGET);
+        [s.pos.x, s.pos.y, s.pos.z]
+    };
+    // Heading +x: the wall x = 40 is nearer than r_res/2 = 5.
+    sim.world.sensed.vel[0] = [2.0, 0.0, 0.0];
+    assert_eq!(sensed(&sim), [40.0, me[1], me[2]]);
+    // Heading −x: the wall is farther; the point 5 ahead.
+    sim.world.sensed.vel[0] = [-2.0, 0.0, 0.0];
+    assert_eq!(sensed(&sim), [me[0] - 0.5 * p.r_res, me[1], me[2]]);
 }

@@ -354,7 +354,7 @@ impl RawObject {
                 &["center", "radius", "particles"],
             ),
             K::Polygon => (&["points"], &["points"]),
-            K::Box | K::Region => (&["min", "max"], &["min", "max"]),
+            K::Box | K::Region | K::Cave => (&["min", "max"], &["min", "max"]),
             K::Shaft => (
                 &["center", "radius", "y_min", "y_max"],
                 &["center", "radius", "y_min", "y_max"],
@@ -453,6 +453,10 @@ impl RawObject {
                 min: array(self.min.as_deref().unwrap_or(&[]), "min", "[x, y, z]")?,
                 max: array(self.max.as_deref().unwrap_or(&[]), "max", "[x, y, z]")?,
             },
+            K::Cave => ObjectKind::Cave {
+                min: array(self.min.as_deref().unwrap_or(&[]), "min", "[x, y, z]")?,
+                max: array(self.max.as_deref().unwrap_or(&[]), "max", "[x, y, z]")?,
+            },
             K::Shaft => ObjectKind::Shaft {
                 center: array(
                     self.center.as_deref().unwrap_or(&[]),
@@ -486,6 +490,7 @@ fn tag_name(tag: KindTag) -> &'static str {
         KindTag::Target => "target",
         KindTag::Zone => "zone",
         KindTag::Region => "region",
+        KindTag::Cave => "cave",
     }
 }
 
@@ -542,6 +547,11 @@ impl From<Object> for RawObject {
                 raw.min = Some(min.to_vec());
                 raw.max = Some(max.to_vec());
                 KindTag::Region
+            }
+            ObjectKind::Cave { min, max } => {
+                raw.min = Some(min.to_vec());
+                raw.max = Some(max.to_vec());
+                KindTag::Cave
             }
         };
         raw

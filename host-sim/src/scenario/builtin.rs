@@ -61,6 +61,7 @@ builtins! {
     "fly-fig6-phase" => "ren2016 Fig. 6: 200 insects in the ordered phase fly off together",
     "fly-fig7-phototaxis" => "ren2016 Fig. 7: 80 moths gather at a street lamp",
     "fly-fig8-escape" => "ren2016 Fig. 8: 100 flies escape a predator crossing the swarm",
+    "fly-fig9-bats" => "ren2016 Fig. 9: 500 bats echolocating in a cave mill round its axis",
     "li-fig4-confined" => "li2015 Fig. 4: 100 insects sample waypoints toward a measured density",
     "li-fig5-lantern" => "li2015 Fig. 5 left: 200 midges swarm on a sketched ring round a lantern",
     "li-fig8-9-cells" => "li2015 Figs. 8-9: the Fig. 4 swarm with 2³ density cells spreads out",

@@ -173,6 +173,7 @@ pub(crate) enum KindTag {
     Target,
     Zone,
     Region,
+    Cave,
 }
 
 /// `[[objects]]`: every geometry field of every kind, optional; the conversion checks that

@@ -465,6 +465,17 @@ pub enum ObjectKind {
         /// Upper corner `[x, y, z]`.
         max: [f32; 3],
     },
+    /// 3D fly models: a box-shaped enclosure the insects fly inside and sense by echo (the
+    /// bats' cave of ren2016 Fig. 9); not an obstacle (the world's walls keep them in). As a
+    /// goal, each insect pursues the echo ahead of it: the point where its heading meets the
+    /// walls, or half its visual range ahead when they are farther; as a threat, it escapes
+    /// the wall ahead (as a `region` threat).
+    Cave {
+        /// Lower corner `[x, y, z]`.
+        min: [f32; 3],
+        /// Upper corner `[x, y, z]`.
+        max: [f32; 3],
+    },
 }
 
 impl ObjectKind {
@@ -483,6 +494,7 @@ impl ObjectKind {
             ObjectKind::Target { .. } => "target",
             ObjectKind::Zone { .. } => "zone",
             ObjectKind::Region { .. } => "region",
+            ObjectKind::Cave { .. } => "cave",
         }
     }
 
@@ -500,7 +512,8 @@ impl ObjectKind {
             | ObjectKind::Shaft { .. }
             | ObjectKind::Target { .. }
             | ObjectKind::Zone { .. }
-            | ObjectKind::Region { .. } => 3,
+            | ObjectKind::Region { .. }
+            | ObjectKind::Cave { .. } => 3,
         }
     }
 
@@ -529,7 +542,10 @@ impl ObjectKind {
             ObjectKind::Sphere { center, .. }
             | ObjectKind::Target { center, .. }
             | ObjectKind::Zone { center, .. } => Some(center),
-            ObjectKind::Polygon { .. } | ObjectKind::Box { .. } | ObjectKind::Region { .. } => None,
+            ObjectKind::Polygon { .. }
+            | ObjectKind::Box { .. }
+            | ObjectKind::Region { .. }
+            | ObjectKind::Cave { .. } => None,
         }
     }
 
@@ -554,7 +570,10 @@ impl ObjectKind {
             | ObjectKind::Shaft { radius, .. }
             | ObjectKind::Target { radius, .. }
             | ObjectKind::Zone { radius, .. } => Some(*radius),
-            ObjectKind::Polygon { .. } | ObjectKind::Box { .. } | ObjectKind::Region { .. } => None,
+            ObjectKind::Polygon { .. }
+            | ObjectKind::Box { .. }
+            | ObjectKind::Region { .. }
+            | ObjectKind::Cave { .. } => None,
         }
     }
 
@@ -571,9 +590,10 @@ impl ObjectKind {
             ObjectKind::Sphere { center, .. }
             | ObjectKind::Target { center, .. }
             | ObjectKind::Zone { center, .. } => set_array(center, to),
-            ObjectKind::Polygon { .. } | ObjectKind::Box { .. } | ObjectKind::Region { .. } => {
-                false
-            }
+            ObjectKind::Polygon { .. }
+            | ObjectKind::Box { .. }
+            | ObjectKind::Region { .. }
+            | ObjectKind::Cave { .. } => false,
         }
     }
 

@@ -31,6 +31,10 @@ pub struct Source {
     /// insect's heading meets them); as a goal, an area pursued toward its nearest point (the
     /// locusts' crop field of Fig. 4: nothing to pursue once inside).
     pub region: Option<[[f32; 3]; 2]>,
+    /// The region is a `cave` the insects fly inside (Fig. 9): as a goal, each insect pursues
+    /// the echo ahead of it ([`ahead_point`](crate::fly::ahead_point)); as a threat, it
+    /// is a `region`.
+    pub cave: bool,
 }
 
 /// A state with a position and a velocity (what the world senses, keeps physical and

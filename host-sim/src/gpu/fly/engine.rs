@@ -151,15 +151,13 @@ fn world_and_boxes<S: Word + SimScalar>(w: &World3d, shape: &GridShape3) -> (Vec
 /// Every group's words ([`layout::write_group`]), with the regions its goal and threat have now
 /// (uploaded again with the world: `Engine::apply` shifts a region it moves).
 fn group_words(sim: &FlySim) -> Vec<u32> {
-    let region = |id: Option<u16>| {
-        let id = id?;
-        sim.world.sources.iter().find(|s| s.id == id)?.region
-    };
+    // Active or not: the world's words say whether it is present.
+    let source = |id: Option<u16>| sim.world.sources.iter().find(|s| Some(s.id) == id);
     let mut out = Vec::new();
     for g in &sim.groups {
         by_scalar!(g, g => {
-            let regions = [region(g.inputs.goal), region(g.inputs.threat)];
-            layout::write_group(&mut out, &g.params, g.inputs, regions);
+            let sources = [source(g.inputs.goal), source(g.inputs.threat)];
+            layout::write_group(&mut out, &g.params, g.inputs, sources);
         });
     }
     out

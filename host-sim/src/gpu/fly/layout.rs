@@ -13,6 +13,7 @@ use crate::fly::Stimuli;
 use crate::gpu::status;
 use crate::gpu::words::Word;
 use crate::scalar::SimScalar;
+use crate::swarm3d::Source;
 
 /// Words of a state: position, velocity, escape θ, escaping (`FLY_STATE_WORDS`).
 pub const STATE_WORDS: usize = 8;
@@ -35,12 +36,17 @@ pub const GROUP_RANGE2: usize = 22;
 pub const GROUP_REP2: usize = 23;
 /// Group word: r_ali squared in `S` (the alignment zone's band of the selection, strict).
 pub const GROUP_ALI2: usize = 24;
-/// Group words: the goal's region, then the threat's ([`REGION_WORDS`] each): 1 if the source
-/// is a `region` (its nearest point is pursued, its walls ahead echo), then its lower and upper
-/// corners in `S` (all zero for a source with a centre only).
+/// Group words: the goal's region, then the threat's ([`REGION_WORDS`] each): [`REGION_BOX`] or
+/// [`REGION_CAVE`] (0 for a source with a centre only), then its lower and upper corners in `S`
+/// (all zero for a source with a centre only).
 pub const GROUP_REGIONS: usize = 26;
 /// Words of a source's region in a group ([`GROUP_REGIONS`]).
 pub const REGION_WORDS: usize = 7;
+/// A region's first word: a `region` (a goal's nearest point is pursued, a threat's walls
+/// ahead echo).
+pub const REGION_BOX: u32 = 1;
+/// A region's first word: a `cave` (a goal's echo ahead is pursued: `ahead_point`).
+pub const REGION_CAVE: u32 = 2;
 /// [`GROUP_GOAL`] or [`GROUP_THREAT`] of a group without one.
 pub const NO_SOURCE: u32 = u32::MAX;
 
@@ -62,6 +68,8 @@ pub const WGSL_CONSTANTS: &[(&str, u32)] = &[
     ("FLY_GROUP_ALI2", GROUP_ALI2 as u32),
     ("FLY_GROUP_REGIONS", GROUP_REGIONS as u32),
     ("FLY_REGION_WORDS", REGION_WORDS as u32),
+    ("FLY_REGION_BOX", REGION_BOX),
+    ("FLY_REGION_CAVE", REGION_CAVE),
     ("FLY_ZONE_QUOTA", crate::fly::ZONE_QUOTA as u32),
     ("FLY_NO_SOURCE", NO_SOURCE),
     ("FLY_FLAG_TRUNCATED", FLAG_TRUNCATED),
@@ -134,13 +142,12 @@ pub fn read_decision<S: Word>(w: &[u32]) -> FlyDecision<S> {
 }
 
 /// Appends the [`GROUP_WORDS`] words of a group with parameters `p` responding to `stimuli`,
-/// whose goal and threat have the regions `regions` (`[min, max]`, `None` for a source with a
-/// centre only: [`Source::region`](crate::swarm3d::Source::region)).
+/// whose goal and threat are the sources `sources` (`None`: none, or not in the world).
 pub fn write_group<S: Word + SimScalar>(
     out: &mut Vec<u32>,
     p: &FlyParams<S>,
     stimuli: Stimuli,
-    regions: [Option<[[f32; 3]; 2]>; 2],
+    sources: [Option<&Source>; 2],
 ) {
     let start = out.len();
     out.extend(
@@ -171,10 +178,10 @@ pub fn write_group<S: Word + SimScalar>(
         out.push(crate::nearest::squared::<S>(r.to_f32()).to_word());
     }
     out.push(0);
-    for region in regions {
-        match region {
-            Some([lo, hi]) => {
-                out.push(1);
+    for source in sources {
+        match source.and_then(|s| Some((s.region?, s.cave))) {
+            Some(([lo, hi], cave)) => {
+                out.push(if cave { REGION_CAVE } else { REGION_BOX });
                 out.extend(lo.iter().chain(&hi).map(|&c| S::from_f32(c).to_word()));
             }
             None => out.extend([0; REGION_WORDS]),

@@ -277,9 +277,10 @@ fn a_refusal_is_the_cpus() {
     assert!(a.contains("state.pos"), "{a}");
 }
 
-/// The `region` stimuli: a threat's echo where the heading meets its walls (the bats of Fig. 9,
-/// until an event removes the cave) and a goal's nearest point (the locusts' field of Fig. 4,
-/// moved at tick 60 by an action a scenario file cannot hold but `Engine::apply` takes).
+/// The `region` stimuli: a threat's echo where the heading meets its walls (until an event
+/// removes the region), a goal's nearest point (the locusts' field of Fig. 4, moved at tick 60
+/// by an action a scenario file cannot hold but `Engine::apply` takes) and a `cave` goal's
+/// echo ahead (the bats of Fig. 9).
 #[test]
 fn region_stimuli_are_the_cpus() {
     let text = r#"
@@ -303,9 +304,22 @@ count = 60
 goal = "field"
 spawn = { min = [2, 2, 2], max = [12, 4, 28] }
 fly = { preset = "locust", fallback = 1 }
+[[groups]]
+name = "millers"
+model = "fly"
+scalar = "fixed"
+count = 60
+goal = "roost"
+spawn = { min = [4, 2, 4], max = [26, 8, 26] }
+fly = { preset = "bats", fallback = 1 }
 [[objects]]
 name = "cave"
 kind = "region"
+min = [0, 0, 0]
+max = [30, 10, 30]
+[[objects]]
+name = "roost"
+kind = "cave"
 min = [0, 0, 0]
 max = [30, 10, 30]
 [[objects]]
@@ -434,19 +448,22 @@ fn the_shaders_constants_are_rusts() {
         goal: None,
         threat: Some(3),
     };
-    layout::write_group(
-        &mut w,
-        &p,
-        stimuli,
-        [None, Some([[1.0, 2.0, 3.0], [4.0, 5.0, 6.5]])],
-    );
+    let cave = crate::swarm3d::Source {
+        id: 3,
+        name: "cave".into(),
+        center: [2.5, 3.5, 4.75],
+        active: true,
+        region: Some([[1.0, 2.0, 3.0], [4.0, 5.0, 6.5]]),
+        cave: true,
+    };
+    layout::write_group(&mut w, &p, stimuli, [None, Some(&cave)]);
     assert_eq!(w.len(), layout::GROUP_WORDS);
     let (goal, threat) = (
         layout::GROUP_REGIONS,
         layout::GROUP_REGIONS + layout::REGION_WORDS,
     );
     assert_eq!(w[goal..threat], [0; layout::REGION_WORDS]);
-    assert_eq!(w[threat], 1);
+    assert_eq!(w[threat], layout::REGION_CAVE);
     assert_eq!(w[threat + 1], Fx::from_f32(1.0).to_bits() as u32);
     assert_eq!(w[threat + 6], Fx::from_f32(6.5).to_bits() as u32);
     assert_eq!(w[8], p.r_att.to_bits() as u32);

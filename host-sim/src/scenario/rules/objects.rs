@@ -98,7 +98,9 @@ pub(super) fn validate_geometry(world: &World, o: &Object, path: &str) -> Result
             }
             Ok(())
         }
-        ObjectKind::Box { min, max } | ObjectKind::Region { min, max } => {
+        ObjectKind::Box { min, max }
+        | ObjectKind::Region { min, max }
+        | ObjectKind::Cave { min, max } => {
             inside(world, min, &field("min"), "the corner")?;
             inside(world, max, &field("max"), "the corner")?;
             if min.iter().zip(max).any(|(lo, hi)| lo >= hi) {
