@@ -86,6 +86,11 @@ enum Command {
         /// Write the JSON report here (it is printed too).
         #[arg(long)]
         json: Option<PathBuf>,
+        /// Whose mean and standard deviation z-score each metric: each set its own (the
+        /// paper: only the distributions' shapes count), or the reference's for both (tracks in
+        /// the simulation's units: a model too fast or too spread out scores lower).
+        #[arg(long, value_enum, default_value_t)]
+        scaling: crate::eval::Scaling,
     },
     /// Measure agent-steps per second on a synthetic world and write JSON.
     Bench {
@@ -314,6 +319,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             candidates,
             dt,
             json,
+            scaling,
         } => {
             if let Some(dt) = dt
                 && !(dt.is_finite() && dt > 0.0)
@@ -324,7 +330,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             let reference_tracks = open(&reference)?;
             let tracks = candidates.iter().map(open).collect::<Result<Vec<_>, _>>()?;
             let refs: Vec<&crate::eval::Tracks> = tracks.iter().collect();
-            let e = crate::eval::evaluate(&reference_tracks, &refs);
+            let e = crate::eval::evaluate(&reference_tracks, &refs, scaling);
             let report = crate::eval::report(&reference, &candidates, &e);
             println!("{}", crate::eval::table(&candidates, &e));
             if let Some(path) = json {

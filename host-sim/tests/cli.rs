@@ -277,6 +277,27 @@ fn eval_scores_runs_and_track_files() {
         .map(|v| v.as_f64().unwrap())
         .sum();
     assert!((weights - 1.0).abs() < 1e-9);
+    assert_eq!(report["scaling"], "separate");
+    // With the reference's moments (`--scaling reference`) the energies change and the ranking
+    // holds.
+    let again = dir.path().join("eval-reference.json");
+    common::ok(
+        common::swarm()
+            .args(["eval", "--scaling", "reference", "--json"])
+            .arg(&again)
+            .arg(&runs[0])
+            .arg(&runs[1])
+            .arg(&tracks),
+    );
+    let scaled: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&again).unwrap()).unwrap();
+    assert_eq!(scaled["scaling"], "reference");
+    let rows2 = scaled["candidates"].as_array().unwrap();
+    assert!(
+        rows2[0]["score"].as_f64() > rows2[1]["score"].as_f64(),
+        "{scaled}"
+    );
+    assert_ne!(rows2[1]["energies"], rows[1]["energies"]);
     std::fs::write(&tracks, "id,time,x,y,z\n0,0,0,0,0\n0,0.1,0,oops,0\n").unwrap();
     let err = common::fails(common::swarm().arg("eval").arg(&tracks).arg(&runs[0]));
     assert!(

@@ -4,7 +4,7 @@
 //! (`id,time,x,y,z`, [`Tracks::read_csv`]), a run's from its trajectories.
 //!
 //! ```
-//! use swarm_sim::eval::{Tracks, evaluate};
+//! use swarm_sim::eval::{Scaling, Tracks, evaluate};
 //!
 //! // Two insects on straight lines, and a candidate that zigzags.
 //! let line = |id: u64, y: f64| (0..50).map(move |k| (id, k, [k as f64 * 0.1, y, 0.0]));
@@ -12,7 +12,7 @@
 //! let reference = Tracks::from_samples(0.1, line(0, 0.0).chain(line(1, 1.0)));
 //! let straight = Tracks::from_samples(0.1, line(0, 0.5).chain(line(1, 2.0)));
 //! let zigzag = Tracks::from_samples(0.1, zig(0, 0.0).chain(zig(1, 1.0)));
-//! let e = evaluate(&reference, &[&straight, &zigzag]);
+//! let e = evaluate(&reference, &[&straight, &zigzag], Scaling::Separate);
 //! assert!(e.weighting.scores[0] > e.weighting.scores[1]);
 //! ```
 
@@ -24,7 +24,7 @@ mod tracks;
 mod tests;
 
 pub use metrics::{METRICS, Samples, samples};
-pub use score::{Weighting, energy, entropy_weights};
+pub use score::{Scaling, Weighting, energy, entropy_weights};
 pub use tracks::{TRACKS_HEADER, Tracks};
 
 /// Candidates scored against a reference.
@@ -38,17 +38,19 @@ pub struct Evaluation {
     /// The mean polarisation ‖mean of the unit velocities‖ over the frames, of the reference
     /// and of each candidate.
     pub polarisation: (f64, Vec<f64>),
+    /// How each metric's sets were z-scored.
+    pub scaling: Scaling,
 }
 
 /// Scores `candidates` against `reference` (spec §2.6 steps 1-4 for fixed parameters; the
-/// parameter estimation of step 2 is the caller's).
-pub fn evaluate(reference: &Tracks, candidates: &[&Tracks]) -> Evaluation {
+/// parameter estimation of step 2 is the caller's), each metric's sets z-scored by `scaling`.
+pub fn evaluate(reference: &Tracks, candidates: &[&Tracks], scaling: Scaling) -> Evaluation {
     let real = samples(reference);
     let raw: Vec<[Option<f64>; 7]> = candidates
         .iter()
         .map(|c| {
             let sim = samples(c);
-            std::array::from_fn(|k| energy(&real.0[k], &sim.0[k]))
+            std::array::from_fn(|k| energy(&real.0[k], &sim.0[k], scaling))
         })
         .collect();
     let energies: Vec<[f64; 7]> = raw
@@ -63,6 +65,7 @@ pub fn evaluate(reference: &Tracks, candidates: &[&Tracks]) -> Evaluation {
     Evaluation {
         weighting: entropy_weights(&matrix),
         energies,
+        scaling,
         polarisation: (
             polarisation(reference),
             candidates.iter().map(|c| polarisation(c)).collect(),
@@ -182,6 +185,7 @@ pub fn report(
     serde_json::json!({
         "reference": reference.display().to_string(),
         "reference_polarisation": e.polarisation.0,
+        "scaling": e.scaling,
         "weights": by_metric(&e.weighting.weights),
         "entropy": by_metric(&e.weighting.entropy),
         "candidates": rows,

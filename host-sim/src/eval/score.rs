@@ -7,16 +7,41 @@ pub const BINS: usize = 50;
 /// The histogram interval [u1, u2] of the z-scores (ours; values outside go to the end bins).
 pub const RANGE: (f64, f64) = (-5.0, 5.0);
 
-/// `x` z-scored with its own mean and standard deviation (spec R18: real and simulated
-/// data are scored separately); a set with zero spread gives zeros.
-pub fn zscore(x: &[f64]) -> Vec<f64> {
+/// Whose mean and standard deviation z-score a metric's two sets (Eq. 7 step 2).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Scaling {
+    /// Each set its own (the paper, spec R18: "real-world data and the simulator's output have
+    /// different quantity scales"): only the shapes of the distributions are compared, so a
+    /// model that is faster or farther apart than the data everywhere by one factor scores
+    /// as well as a faithful one.
+    #[default]
+    Separate,
+    /// Both the reference's (ours): for data in the simulation's units, where a difference of
+    /// scale or offset is a difference of behaviour (a synthetic reference, or tracks scaled
+    /// to the scene).
+    Reference,
+}
+
+/// The mean and standard deviation of `x` (population).
+fn moments(x: &[f64]) -> (f64, f64) {
     let n = x.len() as f64;
     let mean = x.iter().sum::<f64>() / n;
     let var = x.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n;
-    let sd = var.sqrt();
+    (mean, var.sqrt())
+}
+
+/// `x` z-scored with the mean and standard deviation `(mean, sd)`; zero spread gives zeros.
+fn zscore_with(x: &[f64], (mean, sd): (f64, f64)) -> Vec<f64> {
     x.iter()
         .map(|v| if sd > 0.0 { (v - mean) / sd } else { 0.0 })
         .collect()
+}
+
+/// `x` z-scored with its own mean and standard deviation (spec R18: real and simulated
+/// data are scored separately); a set with zero spread gives zeros.
+pub fn zscore(x: &[f64]) -> Vec<f64> {
+    zscore_with(x, moments(x))
 }
 
 /// The discrete density of z-scores on [`RANGE`] in [`BINS`] bins (Eq. 7 step 3):
@@ -32,13 +57,21 @@ pub fn density(z: &[f64]) -> [f64; BINS] {
     counts.map(|c| c as f64 * norm)
 }
 
-/// E_φ of Eq. 7: Σ_i |Q_i^real − Q_i^sim| over the bins of the z-scored sets; `None` when
-/// either set is empty.
-pub fn energy(real: &[f64], sim: &[f64]) -> Option<f64> {
+/// E_φ of Eq. 7: Σ_i |Q_i^real − Q_i^sim| over the bins of the sets z-scored by `scaling`;
+/// `None` when either set is empty.
+pub fn energy(real: &[f64], sim: &[f64], scaling: Scaling) -> Option<f64> {
     if real.is_empty() || sim.is_empty() {
         return None;
     }
-    let (a, b) = (density(&zscore(real)), density(&zscore(sim)));
+    let of_real = moments(real);
+    let of_sim = match scaling {
+        Scaling::Separate => moments(sim),
+        Scaling::Reference => of_real,
+    };
+    let (a, b) = (
+        density(&zscore_with(real, of_real)),
+        density(&zscore_with(sim, of_sim)),
+    );
     Some(a.iter().zip(&b).map(|(x, y)| (x - y).abs()).sum())
 }
 
@@ -117,13 +150,17 @@ mod tests {
         let q = density(&zscore(&a));
         let width = (RANGE.1 - RANGE.0) / BINS as f64;
         assert!((q.iter().sum::<f64>() * width - 1.0).abs() < 1e-12);
-        assert_eq!(energy(&a, &a), Some(0.0));
-        assert_eq!(energy(&a, &b), energy(&b, &a));
-        assert!(energy(&a, &b).unwrap() > 0.0);
-        assert_eq!(energy(&a, &[]), None);
-        // Scale and offset do not matter (each set is z-scored on its own).
+        let sep = Scaling::Separate;
+        assert_eq!(energy(&a, &a, sep), Some(0.0));
+        assert_eq!(energy(&a, &b, sep), energy(&b, &a, sep));
+        assert!(energy(&a, &b, sep).unwrap() > 0.0);
+        assert_eq!(energy(&a, &[], sep), None);
+        // Scale and offset do not matter when each set is z-scored on its own; with the
+        // reference's moments they do.
         let c: Vec<f64> = a.iter().map(|v| 3.0 * v + 7.0).collect();
-        assert!(energy(&a, &c).unwrap() < 1e-9);
+        assert!(energy(&a, &c, sep).unwrap() < 1e-9);
+        assert_eq!(energy(&a, &a, Scaling::Reference), Some(0.0));
+        assert!(energy(&a, &c, Scaling::Reference).unwrap() > 1.0);
     }
 
     /// R-T12: the spec's test vector (4 models × 3 metrics).

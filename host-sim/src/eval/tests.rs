@@ -172,7 +172,7 @@ fn the_same_process_scores_higher() {
     let reference = walk(1, 0.4);
     let same = walk(2, 0.4);
     let twice = walk(3, 0.8);
-    let e = evaluate(&reference, &[&same, &twice]);
+    let e = evaluate(&reference, &[&same, &twice], Scaling::Separate);
     assert!(e.weighting.scores[0] > e.weighting.scores[1], "{e:?}");
     assert!(e.polarisation.1.iter().all(|p| (0.0..=1.0).contains(p)));
 }
