@@ -578,8 +578,8 @@ fn fig10_curl_noise_outranks_white_and_gaussian_noise() {
 }
 
 /// R-T14 (spec §2.6, ours): the objective prefers the truth. The midges of Fig. 1, three runs
-/// pooled (500 frames each after a burn-in of 200), are the reference; the same column with
-/// three other runs must score a higher E (Eq. 6) than each of the seven estimated parameters
+/// pooled (500 frames each after a burn-in of 200), are the reference; the same column in one
+/// run with another seed must score a higher E (Eq. 6) than each of the seven estimated parameters
 /// (γ, χ_rep, r_rep, χ_att, r_att*, scale, gain) halved and doubled in at least 12 of the 14
 /// cases, all fifteen scored together. A radius moves in Table 1's terms: r_rep carries the
 /// zones outside it along, r_att* = r_att − r_ali is the attraction zone's width.
