@@ -618,22 +618,11 @@ fn the_score_prefers_the_true_parameters() {
             "gamma",
             gamma,
         ));
-        // r_rep with the zones outside it; then r_att* alone. Widening sets the outer radii
-        // first so the zones nest at every step.
+        // r_rep with the zones outside it; then r_att* alone.
         let shift = p.r_rep * (k - 1.0);
-        let widened = [
-            ("r_att", p.r_att + shift),
-            ("r_ali", p.r_ali + shift),
-            ("r_rep", p.r_rep * k),
-        ];
-        let mut r = sc.clone();
-        for (name, v) in if k > 1.0 {
-            widened.to_vec()
-        } else {
-            widened.iter().rev().copied().collect()
-        } {
-            r = with_param(&r, name, v);
-        }
+        let mut r = with_param(&sc, "r_att", p.r_att + shift);
+        r = with_param(&r, "r_ali", p.r_ali + shift);
+        r = with_param(&r, "r_rep", p.r_rep * k);
         names.push(format!("r_rep x{k}"));
         runs.push(r);
         names.push(format!("r_att* x{k}"));

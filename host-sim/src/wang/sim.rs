@@ -23,7 +23,7 @@ use crate::error::{Result, SimError};
 use crate::grid::permuted;
 use crate::nearest::select;
 use crate::par::for_each_agent;
-use crate::scalar::{AgentGroup, ByScalar, SimScalar, a3, v3};
+use crate::scalar::{AgentGroup, ByScalar, SimScalar, a3, a3f, v3};
 use crate::space::confine;
 
 /// Insects whose field cells [`WangGroup::warm`] loads at once, ahead of their steps.
@@ -169,8 +169,7 @@ impl<S: SimScalar> WangGroup<S> {
         let end = (k + WARM_BLOCK).min(self.states.len());
         let mut acc = 0;
         for s in &self.states[k..end] {
-            let p = s.pos.to_f32();
-            acc ^= field.warm([p.x, p.y, p.z]);
+            acc ^= field.warm(a3f(s.pos));
         }
         std::hint::black_box(acc);
     }
