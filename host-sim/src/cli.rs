@@ -92,6 +92,74 @@ enum Command {
         #[arg(long, value_enum, default_value_t)]
         scaling: crate::eval::Scaling,
     },
+    /// Fit a scenario's parameters to trajectories: a genetic algorithm (chen §VI's budget of
+    /// 2,000 runs as 20 individuals × 100 generations, crossover 0.9, mutation 0.15 per
+    /// parameter) maximising the evaluation score E against the reference (ren2016 Eq. 6
+    /// with equal weights 1/7).
+    ///
+    /// Each individual is the scenario with its parameters set in every group, run with the
+    /// same seeds for `--burn-in` ticks and then recorded every `--every` ticks for `--frames`
+    /// frames at the reference's frame interval. Individuals the model's rules refuse (ordered
+    /// radii, a stable friction step) score worst and are counted. Example:
+    /// `swarm fit fly-fig1-midges tracks.csv --param gamma=1:20:log --param chi_att=0:40`.
+    Fit {
+        /// Built-in scenario name or path to a scenario file (the parameters not fitted keep
+        /// its values).
+        scenario: String,
+        /// The trajectories to match: a track file (`id,time,x,y,z`) or a run folder.
+        reference: PathBuf,
+        /// A parameter and its range: `NAME=LOW:HIGH`, or `NAME=LOW:HIGH:log` to search its
+        /// logarithm (a positive range over decades). Repeat for each parameter.
+        #[arg(long = "param", required = true, value_name = "NAME=LOW:HIGH[:log]")]
+        params: Vec<crate::fit::Param>,
+        /// Frame interval of a track file in seconds (default: the smallest time step within
+        /// a track).
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Ticks of the model per reference frame.
+        #[arg(long, default_value_t = 1)]
+        every: u32,
+        /// Ticks run before recording.
+        #[arg(long, default_value_t = 200)]
+        burn_in: u32,
+        /// Frames recorded per run.
+        #[arg(long, default_value_t = 500)]
+        frames: u32,
+        /// Runs per individual (seeds SEED, SEED+1, ...), pooled.
+        #[arg(long, default_value_t = 1)]
+        runs: u32,
+        /// The runs' first seed (default: the scenario's).
+        #[arg(long)]
+        seed: Option<u32>,
+        /// Individuals per generation (chen: 10).
+        #[arg(long, default_value_t = crate::fit::Ga::default().population)]
+        population: usize,
+        /// Generations (chen: 200).
+        #[arg(long, default_value_t = crate::fit::Ga::default().generations)]
+        generations: u32,
+        /// Crossover probability.
+        #[arg(long, default_value_t = crate::fit::Ga::default().crossover)]
+        crossover: f64,
+        /// Mutation probability per parameter (chen: 0.01).
+        #[arg(long, default_value_t = crate::fit::Ga::default().mutation)]
+        mutation: f64,
+        /// The genetic algorithm's seed.
+        #[arg(long, default_value_t = 1)]
+        ga_seed: u32,
+        /// Whose moments z-score each metric (default: the reference's, so that speeds and
+        /// distances count in the simulation's units; `separate` compares shapes only).
+        #[arg(long, value_enum, default_value_t = crate::eval::Scaling::Reference)]
+        scaling: crate::eval::Scaling,
+        /// Write the fitted scenario here (TOML).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Write the JSON report here (the best values, E per generation).
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Measure agent-steps per second on a synthetic world and write JSON.
     Bench {
         /// Which model (`ant`, `bee`; see `swarm models`).
@@ -376,6 +444,109 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 // What a killed earlier bench left beside the report.
                 crate::output::remove_stale_temps(&path);
                 crate::output::write_atomic_bytes(&path, (text + "\n").as_bytes())?;
+            }
+            Ok(())
+        }
+        Command::Fit {
+            scenario,
+            reference,
+            params,
+            dt,
+            every,
+            burn_in,
+            frames,
+            runs,
+            seed,
+            population,
+            generations,
+            crossover,
+            mutation,
+            ga_seed,
+            scaling,
+            out,
+            json,
+            quiet,
+        } => {
+            if let Some(dt) = dt {
+                positive("--dt", dt)?;
+            }
+            for (name, p) in [("--crossover", crossover), ("--mutation", mutation)] {
+                if !(0.0..=1.0).contains(&p) {
+                    return Err(format!("{name}: {p} is not a probability").into());
+                }
+            }
+            if population < 2 || generations == 0 || runs == 0 || every == 0 {
+                return Err(
+                    "--population needs at least 2; --generations, --runs, --every at least 1"
+                        .into(),
+                );
+            }
+            for (name, path) in [("--out", &out), ("--json", &json)] {
+                if let Some(dir) = path.as_ref().and_then(|p| p.parent())
+                    && !dir.as_os_str().is_empty()
+                    && !dir.is_dir()
+                {
+                    return Err(format!("{name}: no folder {}", dir.display()).into());
+                }
+            }
+            let sc = crate::scenario::resolve(&scenario)?;
+            let reference_tracks = crate::eval::Tracks::open(&reference, dt)?;
+            let first = seed.unwrap_or(sc.seed);
+            let cal = crate::fit::Calibration {
+                params,
+                sampling: crate::fit::Sampling {
+                    burn_in,
+                    frames,
+                    every,
+                    seeds: (0..runs).map(|k| first.wrapping_add(k)).collect(),
+                },
+                scaling,
+                ga: crate::fit::Ga {
+                    population,
+                    generations,
+                    crossover,
+                    mutation,
+                    seed: ga_seed,
+                },
+            };
+            let bar = crate::run::generations_bar(!quiet, u64::from(generations));
+            let fitted = crate::fit::calibrate(&sc, &reference_tracks, &cal, |_, best| {
+                bar.set_message(format!("best E {best:.4}"));
+                bar.inc(1);
+            })?;
+            bar.finish_and_clear();
+            println!(
+                "{}: E {:.4} after {} runs ({} refused)",
+                sc.name, fitted.score, fitted.evaluations, fitted.refused
+            );
+            for (name, v) in &fitted.values {
+                println!("  {name} = {v:.6}");
+            }
+            if let Some(path) = out {
+                crate::output::remove_stale_temps(&path);
+                let text = fitted.scenario.to_toml()?;
+                crate::output::write_atomic_bytes(&path, text.as_bytes())?;
+                println!("  wrote {}", path.display());
+            }
+            if let Some(path) = json {
+                let report = serde_json::json!({
+                    "scenario": sc.name,
+                    "reference": reference,
+                    "scaling": scaling,
+                    "score": fitted.score,
+                    "values": fitted
+                        .values
+                        .iter()
+                        .map(|(n, v)| (n.clone(), (*v).into()))
+                        .collect::<serde_json::Map<_, _>>(),
+                    "evaluations": fitted.evaluations,
+                    "refused": fitted.refused,
+                    "history": fitted.history,
+                });
+                crate::output::remove_stale_temps(&path);
+                let text = serde_json::to_string_pretty(&report)?;
+                crate::output::write_atomic_bytes(&path, (text + "\n").as_bytes())?;
+                println!("  wrote {}", path.display());
             }
             Ok(())
         }

@@ -745,6 +745,27 @@ pub enum SimError {
         /// The frame interval.
         dt: f64,
     },
+    /// A `--param` of `swarm fit` that does not read as `NAME=LOW:HIGH`.
+    #[error("--param {spec:?}: {problem}")]
+    FitParam {
+        /// What was given.
+        spec: String,
+        /// What is wrong with it.
+        problem: &'static str,
+    },
+    /// A calibration with nothing to fit: no parameter, no seed, or fewer than 3 frames (the
+    /// jerk needs 3 consecutive velocities).
+    #[error("fit: needs at least one parameter, one seed and 3 frames")]
+    FitNothing,
+    /// A calibration in which the model refused every individual (or every run failed).
+    #[error(
+        "fit: all {evaluations} individuals were refused by the model's rules or failed to run; \
+         narrow the parameter ranges"
+    )]
+    FitRefusedAll {
+        /// Individuals tried.
+        evaluations: usize,
+    },
     /// An empty CSV file.
     #[error("{}:1: empty file, expected the CSV header", path.display())]
     CsvEmpty {

@@ -41,6 +41,7 @@ pub mod engine;
 mod error;
 pub mod eval;
 pub mod fields;
+pub mod fit;
 pub mod fly;
 pub mod gpu;
 pub mod grid;

@@ -353,16 +353,32 @@ fn record(summary: &mut Summary, frame: &Frame, step: u32) {
 }
 
 fn progress_bar(show: bool, len: u64) -> ProgressBar {
-    if !show {
+    bar_of(
+        show,
+        len,
+        "{elapsed_precise} [{bar:40}] {pos}/{len} ticks ({per_sec}, eta {eta})",
+    )
+}
+
+/// The progress bar of a calibration (`swarm fit`): generations done and the best score (the
+/// message), on a terminal only.
+pub fn generations_bar(show: bool, len: u64) -> ProgressBar {
+    bar_of(
+        show,
+        len,
+        "{elapsed_precise} [{bar:40}] {pos}/{len} generations, {msg} (eta {eta})",
+    )
+}
+
+fn bar_of(show: bool, len: u64, template: &str) -> ProgressBar {
+    if !show || !std::io::IsTerminal::is_terminal(&std::io::stderr()) {
         return ProgressBar::hidden();
     }
     let bar = ProgressBar::new(len);
     bar.set_style(
-        ProgressStyle::with_template(
-            "{elapsed_precise} [{bar:40}] {pos}/{len} ticks ({per_sec}, eta {eta})",
-        )
-        .unwrap_or_else(|_| ProgressStyle::default_bar())
-        .progress_chars("=> "),
+        ProgressStyle::with_template(template)
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
     );
     bar
 }

@@ -305,3 +305,62 @@ fn eval_scores_runs_and_track_files() {
         "{err}"
     );
 }
+
+/// `swarm fit` fits a scenario's parameter to a run of it, writes the fitted scenario (which
+/// loads) and its JSON report, and refuses a bad `--param` or a parameter the model lacks
+/// before running anything.
+#[test]
+fn fit_writes_a_scenario_that_loads() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = dir.path().join("midges.toml");
+    std::fs::write(
+        &scenario,
+        "name = \"small-midges\"\nseed = 4\nsteps = 40\n\
+         world = { dim = 3, min = [0, 0, 0], max = [20, 20, 20] }\n\
+         [outputs]\nevery = 1\n\
+         [[groups]]\nname = \"midges\"\nmodel = \"fly\"\ncount = 10\n\
+         spawn = { min = [6, 6, 6], max = [14, 14, 14] }\nfly = { preset = \"midge\" }\n",
+    )
+    .unwrap();
+    let reference = dir.path().join("reference");
+    ok(&mut run_cmd(scenario.to_str().unwrap(), &reference, &[]));
+    let (fitted, json) = (dir.path().join("fitted.toml"), dir.path().join("fit.json"));
+    let out = ok(swarm()
+        .arg("fit")
+        .arg(&scenario)
+        .arg(&reference)
+        .args(["--dt", "0.01", "--burn-in", "0", "--frames", "30"])
+        .args(["--generations", "3", "--population", "4"])
+        .args(["--param", "gamma=2:20:log", "--param", "chi_att=5:20"])
+        .arg("--out")
+        .arg(&fitted)
+        .arg("--json")
+        .arg(&json));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("gamma = ") && text.contains("chi_att = "),
+        "{text}"
+    );
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(report["history"].as_array().unwrap().len(), 3);
+    assert_eq!(report["evaluations"], 4 + 2 * 3);
+    let gamma = report["values"]["gamma"].as_f64().unwrap();
+    assert!((2.0..=20.0).contains(&gamma), "{report}");
+    let sc = swarm_sim::scenario::Scenario::from_path(&fitted).unwrap();
+    let p = swarm_sim::fly::fly_params(&sc.groups[0]).unwrap();
+    assert!((f64::from(p.gamma) - gamma).abs() < 1e-4 * gamma, "{p:?}");
+    for (param, says) in [
+        ("gamma=2", "expected a range"),
+        ("gamma_typo=1:2", "gamma_typo"),
+    ] {
+        let err = fails(
+            swarm()
+                .arg("fit")
+                .arg(&scenario)
+                .arg(&reference)
+                .args(["--param", param, "--dt", "0.01"]),
+        );
+        assert!(err.contains(says), "{param}: {err}");
+    }
+}
