@@ -67,7 +67,8 @@ enum Command {
         dir: PathBuf,
     },
     /// Score trajectories against a reference (ren2016's evaluation: seven metrics, their
-    /// z-scored PDFs compared by L1, entropy weights, the score E; and the polarisation).
+    /// z-scored PDFs compared by L1, entropy weights, the score E; the polarisation; li2015's
+    /// distance to the centroid and accumulated-density total variation on 16³ cells).
     ///
     /// Each of REFERENCE and CANDIDATES is a track file (CSV with the header `id,time,x,y,z`,
     /// one row per insect and time) or a run folder written by `swarm run`. With two

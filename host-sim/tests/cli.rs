@@ -278,6 +278,15 @@ fn eval_scores_runs_and_track_files() {
         .sum();
     assert!((weights - 1.0).abs() < 1e-9);
     assert_eq!(report["scaling"], "separate");
+    // li2015's measures: the run of another seed spreads like the reference, the straight
+    // lines (0.05 units/s at x ≤ 2, far from the insects) share almost no cell with it.
+    let tv = |k: usize| rows[k]["density_tv"].as_f64().unwrap();
+    assert!(tv(0) < tv(1) && tv(1) > 0.9, "{report}");
+    let centroid = |k: usize| rows[k]["centroid_distance"].as_f64().unwrap();
+    assert!(report["reference_centroid_distance"].as_f64().unwrap() > 0.0);
+    // Every frame of the track file: y = 0, 1, 2 about y = 1.
+    assert!((centroid(1) - 2.0 / 3.0).abs() < 1e-9, "{report}");
+    assert!(table.contains("densTV"), "{table}");
     // With the reference's moments (`--scaling reference`) the energies change and the ranking
     // holds.
     let again = dir.path().join("eval-reference.json");

@@ -1,6 +1,7 @@
 //! Scoring trajectories against data (ren2016 "Evaluation", Eq. 6-9; spec §2.6), for any
 //! model: the seven metrics of [`metrics`], their z-scored PDFs compared by L1 and weighted
-//! by entropy ([`score`]), and the swarm's polarisation. Measured tracks come as CSV
+//! by entropy ([`score`]), the swarm's polarisation, and li2015's measures of where it is
+//! ([`spread`]: the distance to the centroid, the accumulated density). Measured tracks come as CSV
 //! (`id,time,x,y,z`, [`Tracks::read_csv`]), a run's from its trajectories.
 //!
 //! ```
@@ -18,6 +19,7 @@
 
 pub mod metrics;
 pub mod score;
+pub mod spread;
 mod tracks;
 
 #[cfg(test)]
@@ -25,6 +27,7 @@ mod tests;
 
 pub use metrics::{METRICS, Samples, samples};
 pub use score::{Scaling, Weighting, energy, entropy_weights};
+pub use spread::{DENSITY_CELLS, centroid_distance, density_tv};
 pub use tracks::{TRACKS_HEADER, Tracks};
 
 /// Candidates scored against a reference.
@@ -38,6 +41,13 @@ pub struct Evaluation {
     /// The mean polarisation ‖mean of the unit velocities‖ over the frames, of the reference
     /// and of each candidate.
     pub polarisation: (f64, Vec<f64>),
+    /// The mean distance to the centroid over the frames (li2015 Fig. 8), of the reference
+    /// and of each candidate.
+    pub centroid_distance: (f64, Vec<f64>),
+    /// The total variation between each candidate's accumulated density and the reference's
+    /// on a grid of [`DENSITY_CELLS`]³ cells over both (li2015 Figs. 4, 9); `None` for an
+    /// empty set.
+    pub density_tv: Vec<Option<f64>>,
     /// How each metric's sets were z-scored.
     pub scaling: Scaling,
 }
@@ -70,6 +80,14 @@ pub fn evaluate(reference: &Tracks, candidates: &[&Tracks], scaling: Scaling) ->
             polarisation(reference),
             candidates.iter().map(|c| polarisation(c)).collect(),
         ),
+        centroid_distance: (
+            centroid_distance(reference),
+            candidates.iter().map(|c| centroid_distance(c)).collect(),
+        ),
+        density_tv: candidates
+            .iter()
+            .map(|c| density_tv(reference, c, DENSITY_CELLS))
+            .collect(),
     }
 }
 
@@ -154,8 +172,9 @@ pub fn polarisation(tracks: &Tracks) -> f64 {
     }
 }
 
-/// The evaluation as JSON: per candidate its path, energies by metric, score and
-/// polarisation; the weights and entropies by metric; the reference's polarisation.
+/// The evaluation as JSON: per candidate its path, energies by metric, score, polarisation,
+/// distance to the centroid and density total variation; the weights and entropies by metric;
+/// the reference's polarisation and distance to the centroid.
 pub fn report(
     reference: &std::path::Path,
     candidates: &[std::path::PathBuf],
@@ -168,23 +187,23 @@ pub fn report(
             .map(|(m, x)| ((*m).to_string(), (*x).into()))
             .collect()
     };
-    let rows: Vec<serde_json::Value> = candidates
-        .iter()
-        .zip(&e.energies)
-        .zip(&e.weighting.scores)
-        .zip(&e.polarisation.1)
-        .map(|(((path, energies), score), pol)| {
+    let rows: Vec<serde_json::Value> = (0..candidates.len())
+        .map(|i| {
             serde_json::json!({
-                "path": path.display().to_string(),
-                "energies": by_metric(energies),
-                "score": score,
-                "polarisation": pol,
+                "path": candidates[i].display().to_string(),
+                "energies": by_metric(&e.energies[i]),
+                "score": e.weighting.scores[i],
+                "polarisation": e.polarisation.1[i],
+                "centroid_distance": e.centroid_distance.1[i],
+                "density_tv": e.density_tv[i],
             })
         })
         .collect();
     serde_json::json!({
         "reference": reference.display().to_string(),
         "reference_polarisation": e.polarisation.0,
+        "reference_centroid_distance": e.centroid_distance.0,
+        "density_cells": DENSITY_CELLS,
         "scaling": e.scaling,
         "weights": by_metric(&e.weighting.weights),
         "entropy": by_metric(&e.weighting.entropy),
@@ -192,31 +211,36 @@ pub fn report(
     })
 }
 
-/// The evaluation as a text table: one row per candidate (energies, score, polarisation),
-/// then the weights.
+/// The evaluation as a text table: one row per candidate (energies, score, polarisation,
+/// distance to the centroid, density total variation), then the weights.
 pub fn table(candidates: &[std::path::PathBuf], e: &Evaluation) -> String {
     use std::fmt::Write as _;
     let mut out = format!("{:<32}", "candidate");
     for m in METRICS {
         let _ = write!(out, " {m:>7}");
     }
-    out.push_str("   score  polar.\n");
-    for ((path, energies), (score, pol)) in candidates
-        .iter()
-        .zip(&e.energies)
-        .zip(e.weighting.scores.iter().zip(&e.polarisation.1))
-    {
+    out.push_str("   score  polar. centroid densTV\n");
+    for (i, path) in candidates.iter().enumerate() {
         let name = path.display().to_string();
         let _ = write!(out, "{name:<32}");
-        for x in energies {
+        for x in &e.energies[i] {
             let _ = write!(out, " {x:>7.3}");
         }
-        let _ = writeln!(out, " {score:>7.3} {pol:>7.3}");
+        let tv = e.density_tv[i].map_or("-".into(), |v| format!("{v:.3}"));
+        let _ = writeln!(
+            out,
+            " {:>7.3} {:>7.3} {:>8.3} {tv:>6}",
+            e.weighting.scores[i], e.polarisation.1[i], e.centroid_distance.1[i]
+        );
     }
     let _ = write!(out, "{:<32}", "weights");
     for w in &e.weighting.weights {
         let _ = write!(out, " {w:>7.3}");
     }
-    let _ = write!(out, "\nreference polarisation {:.3}", e.polarisation.0);
+    let _ = write!(
+        out,
+        "\nreference polarisation {:.3}, distance to the centroid {:.3}",
+        e.polarisation.0, e.centroid_distance.0
+    );
     out
 }

@@ -88,7 +88,7 @@ fn mutate(v: f64, (lo, hi): (f64, f64), side: f64, u: f64, t: f64) -> f64 {
 }
 
 impl Ga {
-    /// Maximises `score` over the box `ranges` (inclusive `(low, high)` per gene), scoring
+    /// Maximises `score` over the box `ranges` (inclusive, finite `(low, high)` per gene), scoring
     /// each generation's new individuals in parallel; `each` hears the generation and the best
     /// score so far after every generation. A score that is not a number counts as −∞ (an
     /// individual the objective refuses).
@@ -100,6 +100,8 @@ impl Ga {
     ) -> Outcome {
         let n = self.population.max(2);
         let seed = self.seed;
+        // A range given upside down is the same range.
+        let ranges: Vec<(f64, f64)> = ranges.iter().map(|&(a, b)| (a.min(b), a.max(b))).collect();
         let draw_in = |(lo, hi): (f64, f64), u: f64| lo + (hi - lo) * u;
         let judge = |genes: &[f64]| {
             let s = score(genes);
