@@ -19,6 +19,18 @@ use crate::output::{Frame, Summary};
 use crate::scalar::{AgentGroup, ByScalar};
 use crate::scenario::{Action, Event, Scenario};
 
+/// What the codes of a recorded sample mean ([`AgentSample`](crate::output::AgentSample)'s
+/// `label` and `motion`): the name of each code, by code. The summary counts the agents under
+/// these names (every name, 0 if unused; a code past the end as `label<N>` / `motion<N>`); a
+/// model whose samples carry no labels (or no motions) gives an empty list and none are counted.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StateNames {
+    /// The names of the `label` codes.
+    pub labels: &'static [&'static str],
+    /// The names of the `motion` codes.
+    pub motions: &'static [&'static str],
+}
+
 /// A model's whole simulation, as the generic code drives it.
 pub trait Engine: Send {
     /// The model's name (`ant`, `bee`).
@@ -137,6 +149,8 @@ pub trait Engine: Send {
     fn device(&self) -> Result<Device>;
     /// Every agent, in id order, as recorded.
     fn frame(&self) -> Frame;
+    /// What the codes of [`Engine::frame`]'s samples mean.
+    fn state_names(&self) -> StateNames;
     /// Agents closer than this count as a collision in the summary.
     fn collision_distance(&self) -> f32;
     /// Fills the model's fields of a new run's summary.
@@ -457,6 +471,9 @@ mod tests {
         }
         fn frame(&self) -> Frame {
             Frame::default()
+        }
+        fn state_names(&self) -> StateNames {
+            StateNames::default()
         }
         fn collision_distance(&self) -> f32 {
             0.0

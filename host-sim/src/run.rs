@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use crate::engine::Engine;
+use crate::engine::{Engine, StateNames};
 use crate::output::{
     self, Frame, RenderOptions, RunLog, Scene, Shape, ShapeKind, Summary,
     summary::{GroupSummary, pair_stats, state_counts_of},
@@ -168,7 +168,7 @@ fn run_loop(
     let every = sc.outputs.every.max(1);
     let mut rec = Recorder::new(sc, dir, engine.agents())?;
     let first = engine.frame();
-    record(&mut summary, &first, 0);
+    record(&mut summary, &first, 0, engine.state_names());
     rec.push(first)?;
     let bar = progress_bar(opts.progress, sc.steps as u64);
     let mut pending = std::collections::VecDeque::new();
@@ -230,7 +230,7 @@ fn take_frame(
     engine.take_snapshot()?;
     let f = engine.frame();
     debug_assert_eq!(f.step, at, "the snapshot of the recorded step");
-    record(summary, &f, at);
+    record(summary, &f, at, engine.state_names());
     engine.on_record(summary, at);
     rec.push(f)
 }
@@ -345,8 +345,8 @@ impl Recorder {
     }
 }
 
-fn record(summary: &mut Summary, frame: &Frame, step: u32) {
-    let mut counts = state_counts_of(frame);
+fn record(summary: &mut Summary, frame: &Frame, step: u32, names: StateNames) {
+    let mut counts = state_counts_of(frame, names);
     counts.step = step;
     summary.state_counts.push(counts);
     summary.add_pair_stats(pair_stats(frame, summary.collision_distance));

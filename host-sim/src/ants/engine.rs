@@ -13,7 +13,9 @@ use super::sense::{plan_frame, resolve_frame};
 use super::sim::{AntEvent, AntGroup, AntSim};
 use super::world::{AntObjectDef, AntObjectKind};
 use crate::by_scalar;
-use crate::engine::{Device, Engine, Exchange, ModelGroup, exchanges_by_slot, group_of, soft_name};
+use crate::engine::{
+    Device, Engine, Exchange, ModelGroup, StateNames, exchanges_by_slot, group_of, soft_name,
+};
 use crate::error::{Result, SimError};
 use crate::output::{AgentSample, Frame, Summary};
 use crate::scalar::SimScalar;
@@ -126,6 +128,14 @@ impl Engine for AntSim {
         Frame {
             step: self.step,
             agents,
+        }
+    }
+    /// The labels of `swarm_core::ant::Label`, the motion states of
+    /// `swarm_core::ant::MotionState`, in code order.
+    fn state_names(&self) -> StateNames {
+        StateNames {
+            labels: &["nothing", "food", "nest"],
+            motions: &["stop", "basic", "neighbors", "environment"],
         }
     }
     fn collision_distance(&self) -> f32 {

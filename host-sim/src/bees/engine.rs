@@ -10,7 +10,9 @@ use super::build::bee_frame_samples;
 use super::sense::bee_frame;
 use super::sim::{BeeGroup, BeeSim, bee_frame_time};
 use crate::by_scalar;
-use crate::engine::{Device, Engine, Exchange, ModelGroup, exchanges_by_slot, group_of, soft_name};
+use crate::engine::{
+    Device, Engine, Exchange, ModelGroup, StateNames, exchanges_by_slot, group_of, soft_name,
+};
 use crate::error::{Result, SimError};
 use crate::output::{Frame, Summary};
 use crate::scalar::SimScalar;
@@ -79,6 +81,13 @@ impl Engine for BeeSim {
     }
     fn frame(&self) -> Frame {
         bee_frame_samples(self)
+    }
+    /// No labels; the motion is whether the bee is rolling to avoid (§IV-B).
+    fn state_names(&self) -> StateNames {
+        StateNames {
+            labels: &[],
+            motions: &["cruising", "avoiding"],
+        }
     }
     fn collision_distance(&self) -> f32 {
         self.collision_distance

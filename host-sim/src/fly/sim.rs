@@ -11,7 +11,7 @@ use swarm_core::wire::Endpoint;
 use swarm_core::{Checked, StepCtx, Vec3};
 
 use super::sense::{FlySimFrame, N, Stimuli, fly_frame};
-use crate::engine::{Exchange, soft_name};
+use crate::engine::{Exchange, StateNames, soft_name};
 use crate::error::{Result, SimError};
 use crate::output::Summary;
 use crate::scalar::SimScalar;
@@ -118,6 +118,10 @@ impl<S: SimScalar> Step3d<S> for FlyParams<S> {
             bounds: u64::from(fix >> 1 & 1),
         }
     }
+    const STATE_NAMES: StateNames = StateNames {
+        labels: &["calm", "escaping"],
+        motions: &["feasible", "infeasible"],
+    };
     /// `label` 1 while it escapes a predator, `motion` 1 when its ORCA program was infeasible.
     fn marks(s: &FlyState<S>, d: &FlyDecision<S>) -> (u8, u8) {
         (u8::from(s.escaping), u8::from(d.infeasible))

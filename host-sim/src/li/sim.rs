@@ -13,7 +13,7 @@ use swarm_core::wire::Endpoint;
 use swarm_core::{Checked, Scalar, StepCtx, Vec3};
 
 use crate::by_scalar;
-use crate::engine::{Exchange, soft_name};
+use crate::engine::{Exchange, StateNames, soft_name};
 use crate::error::{Result, SimError};
 use crate::nearest::select;
 use crate::output::Summary;
@@ -140,6 +140,10 @@ impl<S: SimScalar> Step3d<S> for LiParams<S> {
             corrected: u64::from(fix != 0),
         }
     }
+    const STATE_NAMES: StateNames = StateNames {
+        labels: &["travelling", "proposing"],
+        motions: &["feasible", "infeasible"],
+    };
     /// `label` 1 on a step it arrived and proposed, `motion` 1 when its ORCA program was
     /// infeasible.
     fn marks(_: &LiState<S>, d: &LiDecision<S>) -> (u8, u8) {

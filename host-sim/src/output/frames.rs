@@ -7,9 +7,10 @@ use crate::{Result, SimError};
 /// One agent at one recorded step (40 bytes).
 ///
 /// Coordinates are world coordinates: 2D ants use `z = 0` (and `hz = 0`); bees are 3D with `y`
-/// up. `label` and `motion` are the model's small state codes: for ants the `swarm-core` label
-/// (0 nothing, 1 food, 2 nest) and motion state (0 stop, 1 basic movement, 2 neighbours,
-/// 3 environment), see [`label_name`] and [`motion_name`]. `roll` and `pitch` are the body
+/// up. `label` and `motion` are the model's small state codes, named by its engine
+/// ([`Engine::state_names`](crate::engine::Engine::state_names)): for ants the `swarm-core`
+/// label (0 nothing, 1 food, 2 nest, [`label_name`]) and motion state (0 stop, 1 basic
+/// movement, 2 neighbours, 3 environment). `roll` and `pitch` are the body
 /// attitude in degrees: for bees the set-points of the step's decision (chen eq. 3, and eq. 4
 /// or eq. 6 while avoiding; a positive roll lowers the right wing, the right being
 /// heading × up); ants are ground robots that stay level and record 0.
@@ -49,18 +50,6 @@ pub fn label_name(code: u8) -> std::borrow::Cow<'static, str> {
         1 => "food".into(),
         2 => "nest".into(),
         n => format!("label{n}").into(),
-    }
-}
-
-/// Name of an ant motion-state code (`swarm_core::ant::MotionState` order); `"motion<N>"` for
-/// other codes.
-pub fn motion_name(code: u8) -> std::borrow::Cow<'static, str> {
-    match code {
-        0 => "stop".into(),
-        1 => "basic".into(),
-        2 => "neighbors".into(),
-        3 => "environment".into(),
-        n => format!("motion{n}").into(),
     }
 }
 
@@ -118,8 +107,6 @@ mod tests {
     fn names() {
         assert_eq!(label_name(1), "food");
         assert_eq!(label_name(9), "label9");
-        assert_eq!(motion_name(2), "neighbors");
-        assert_eq!(motion_name(4), "motion4");
     }
 
     #[test]

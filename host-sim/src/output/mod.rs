@@ -36,7 +36,7 @@ use crate::{Result, SimError};
 
 pub use atomic::{AtomicFile, remove_stale_temps, write_atomic, write_atomic_bytes};
 pub use csv::{CSV_HEADER, CSV_HEADER_V1, CsvWriter, read_csv, write_csv};
-pub use frames::{AgentSample, Frame, check_frames, label_name, motion_name};
+pub use frames::{AgentSample, Frame, check_frames, label_name};
 pub use npy::{
     NpyField, NpyWriter, Positions, npy_header, npy_header_of, read_attitude_npy, read_npy,
     write_npy, write_npy_of,

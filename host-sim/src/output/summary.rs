@@ -9,8 +9,9 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-use super::frames::{Frame, label_name, motion_name};
+use super::frames::{AgentSample, Frame};
 use super::json::{read_json, write_json};
+use crate::engine::StateNames;
 use crate::{Result, SimError};
 
 /// One agent group of the scenario.
@@ -100,27 +101,32 @@ impl Summary {
     }
 }
 
-/// Counts agents per motion state and per label in `frame`. The ant names ("stop", "basic",
-/// "neighbors", "environment", "nothing", "food", "nest") are always present (zero if unused);
-/// other codes appear as `motion<N>` / `label<N>`.
-pub fn state_counts_of(frame: &Frame) -> StateCounts {
-    let mut motion = [0u32; 256];
-    let mut label = [0u32; 256];
-    for a in &frame.agents {
-        motion[a.motion as usize] += 1;
-        label[a.label as usize] += 1;
-    }
+/// Counts the agents of `frame` per motion state and per label under the model's `names`:
+/// every name is present (0 if unused); a code past the names appears as `motion<N>` /
+/// `label<N>`; a model without label (or motion) names has none counted.
+pub fn state_counts_of(frame: &Frame, names: StateNames) -> StateCounts {
     let mut counts = BTreeMap::new();
-    for (code, &n) in motion.iter().enumerate() {
-        if n > 0 || code < 4 {
-            counts.insert(motion_name(code as u8).into_owned(), n);
+    for (names, prefix, code_of) in [
+        (
+            names.motions,
+            "motion",
+            (|a: &AgentSample| a.motion) as fn(&AgentSample) -> u8,
+        ),
+        (names.labels, "label", |a: &AgentSample| a.label),
+    ] {
+        if names.is_empty() {
+            continue;
         }
-    }
-    for (code, &n) in label.iter().enumerate() {
-        if n > 0 || code < 3 {
-            *counts
-                .entry(label_name(code as u8).into_owned())
-                .or_insert(0) += n;
+        let mut n = [0u32; 256];
+        for a in &frame.agents {
+            n[code_of(a) as usize] += 1;
+        }
+        for (code, &k) in n.iter().enumerate() {
+            match names.get(code) {
+                Some(name) => *counts.entry((*name).to_string()).or_insert(0) += k,
+                None if k > 0 => *counts.entry(format!("{prefix}{code}")).or_insert(0) += k,
+                None => {}
+            }
         }
     }
     StateCounts {
@@ -486,7 +492,11 @@ mod tests {
         f.agents[1].label = 1;
         f.agents[2].label = 2;
         f.agents[3].motion = 7;
-        let c = state_counts_of(&f).counts;
+        let names = StateNames {
+            labels: &["nothing", "food", "nest"],
+            motions: &["stop", "basic", "neighbors", "environment"],
+        };
+        let c = state_counts_of(&f, names).counts;
         assert_eq!(c["stop"], 5 - 1);
         assert_eq!(c["motion7"], 1);
         assert_eq!(c["basic"], 0);
@@ -494,6 +504,23 @@ mod tests {
         assert_eq!(c["food"], 1);
         assert_eq!(c["nest"], 1);
         assert_eq!(c["environment"], 0);
+        assert_eq!(c.len(), 8);
+        // A model without labels counts none; an unnamed label code with agents is counted.
+        let motions_only = StateNames {
+            labels: &[],
+            motions: &["cruising", "avoiding"],
+        };
+        let c = state_counts_of(&f, motions_only).counts;
+        assert_eq!(
+            c.keys().collect::<Vec<_>>(),
+            ["avoiding", "cruising", "motion7"]
+        );
+        let one_label = StateNames {
+            labels: &["calm"],
+            motions: &[],
+        };
+        let c = state_counts_of(&f, one_label).counts;
+        assert_eq!((c["calm"], c["label1"], c["label2"]), (3, 1, 1));
     }
 
     #[test]

@@ -7,7 +7,9 @@ use swarm_core::wire::Endpoint;
 
 use super::swarm::{Group3d, Model3d, Step3d, Swarm3d};
 use crate::by_scalar;
-use crate::engine::{Device, Engine, Exchange, ModelGroup, exchanges_by_slot, group_of};
+use crate::engine::{
+    Device, Engine, Exchange, ModelGroup, StateNames, exchanges_by_slot, group_of,
+};
 use crate::error::Result;
 use crate::output::{Frame, Summary};
 use crate::scalar::SimScalar;
@@ -47,6 +49,9 @@ impl<M: Model3d> Engine for Swarm3d<M> {
     }
     fn frame(&self) -> Frame {
         self.samples()
+    }
+    fn state_names(&self) -> StateNames {
+        <M::Params<f32> as Step3d<f32>>::STATE_NAMES
     }
     fn collision_distance(&self) -> f32 {
         self.collision_distance

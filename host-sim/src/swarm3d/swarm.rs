@@ -19,7 +19,7 @@ use swarm_core::{Checked, Fx, StepCtx, Vec3};
 
 use super::world::{Kinematic, Sensed, World3d, clear_of};
 use crate::by_scalar;
-use crate::engine::Exchange;
+use crate::engine::{Exchange, StateNames};
 use crate::error::{Result, SimError};
 use crate::grid::permuted;
 use crate::output::{AgentSample, Frame, Summary};
@@ -43,6 +43,8 @@ pub trait Step3d<S: SimScalar>:
     type Counts;
     /// The step's name in controller errors (`fly step`).
     const STEP: &'static str;
+    /// What [`Step3d::marks`]' codes mean.
+    const STATE_NAMES: StateNames;
 
     /// The frame of the insect in world slot `slot`, and whether the world held more
     /// neighbours in range than the frame does.

@@ -11,7 +11,9 @@ use swarm_core::wang::{
 use super::build::wang_frame_samples;
 use super::sim::{WangGroup, WangSim};
 use crate::by_scalar;
-use crate::engine::{Device, Engine, Exchange, ModelGroup, exchanges_by_slot, group_of};
+use crate::engine::{
+    Device, Engine, Exchange, ModelGroup, StateNames, exchanges_by_slot, group_of,
+};
 use crate::error::Result;
 use crate::output::{Frame, Summary};
 use crate::scalar::{AgentGroup, SimScalar};
@@ -110,6 +112,14 @@ impl Engine for WangSim {
     }
     fn frame(&self) -> Frame {
         wang_frame_samples(self)
+    }
+    /// No labels; the motion is how many neighbours pushed the insect apart at the step
+    /// (minimum distance enforcement, §7).
+    fn state_names(&self) -> StateNames {
+        StateNames {
+            labels: &[],
+            motions: &["unpushed", "pushed by 1", "pushed by 2", "pushed by 3"],
+        }
     }
     fn collision_distance(&self) -> f32 {
         // Insects are points (§8); d_min is the only size the model knows.

@@ -3,7 +3,7 @@
 
 use swarm_core::model::{Model, Phase, Phases};
 use swarm_core::{Checked, StepCtx, Vec2};
-use swarm_sim::engine::{Device, Engine, Exchange};
+use swarm_sim::engine::{Device, Engine, Exchange, StateNames};
 use swarm_sim::output::{AgentSample, Frame, Summary};
 use swarm_sim::scalar::SimScalar;
 use swarm_sim::scenario::Action;
@@ -129,6 +129,10 @@ impl<S: SimScalar> Engine for WalkSim<S> {
                 })
                 .collect(),
         }
+    }
+    /// A walker's samples carry no states.
+    fn state_names(&self) -> StateNames {
+        StateNames::default()
     }
     fn collision_distance(&self) -> f32 {
         0.1

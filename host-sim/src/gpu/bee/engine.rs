@@ -634,6 +634,9 @@ impl Engine for GpuBeeSim {
     fn frame(&self) -> Frame {
         self.sim.frame()
     }
+    fn state_names(&self) -> crate::engine::StateNames {
+        self.sim.state_names()
+    }
     fn collision_distance(&self) -> f32 {
         self.sim.collision_distance()
     }

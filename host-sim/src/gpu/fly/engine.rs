@@ -557,6 +557,9 @@ impl Engine for GpuFlySim {
     fn frame(&self) -> Frame {
         self.sim.frame()
     }
+    fn state_names(&self) -> crate::engine::StateNames {
+        self.sim.state_names()
+    }
     fn collision_distance(&self) -> f32 {
         self.sim.collision_distance()
     }
