@@ -420,11 +420,8 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
         } => {
             crate::scenario::check_steps(steps, "--steps")?;
             // Refuse an output path that cannot be written before a long run, not after.
-            if let Some(dir) = json.as_ref().and_then(|p| p.parent())
-                && !dir.as_os_str().is_empty()
-                && !dir.is_dir()
-            {
-                return Err(format!("--json: no folder {}", dir.display()).into());
+            if let Some(path) = &json {
+                folder_exists("--json", path)?;
             }
             // The plural the option took before models were open (`ants`) still names one.
             let model = match model.strip_suffix('s') {
@@ -483,11 +480,8 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 );
             }
             for (name, path) in [("--out", &out), ("--json", &json)] {
-                if let Some(dir) = path.as_ref().and_then(|p| p.parent())
-                    && !dir.as_os_str().is_empty()
-                    && !dir.is_dir()
-                {
-                    return Err(format!("{name}: no folder {}", dir.display()).into());
+                if let Some(path) = path {
+                    folder_exists(name, path)?;
                 }
             }
             let sc = crate::scenario::resolve(&scenario)?;
@@ -555,6 +549,17 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
     }
 }
 
+/// Refuses output path `path` of option `name` when its folder does not exist (checked before
+/// a long computation, not after).
+fn folder_exists(name: &str, path: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
+    match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() && !dir.is_dir() => {
+            Err(format!("{name}: no folder {}", dir.display()).into())
+        }
+        _ => Ok(()),
+    }
+}
+
 /// A positive finite number given as option `name`.
 fn positive(name: &str, v: f64) -> Result<f64, Box<dyn std::error::Error>> {
     if v.is_finite() && v > 0.0 {
@@ -590,12 +595,7 @@ fn li(command: LiCommand) -> Result<(), Box<dyn std::error::Error>> {
                 }
             };
             // Refuse an output path that cannot be written before the fit, not after.
-            if let Some(dir) = out.parent()
-                && !dir.as_os_str().is_empty()
-                && !dir.is_dir()
-            {
-                return Err(format!("--out: no folder {}", dir.display()).into());
-            }
+            folder_exists("--out", &out)?;
             let data = crate::eval::Tracks::read_csv(&tracks, dt)?;
             let opts = crate::li::FitOptions {
                 segmentation,
