@@ -15,6 +15,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+use crate::fly::temperature::{self, Temperature};
 use crate::li::fixture::Fixture;
 use crate::li::model::Estimate;
 use crate::li::segment::{R2_MIN, Segmentation, TOLERANCE_C};
@@ -185,11 +186,71 @@ enum Command {
         #[arg(long)]
         json: Option<PathBuf>,
     },
+    /// ren2016's flying insects: resize a scenario's swarm to a temperature.
+    Fly {
+        #[command(subcommand)]
+        command: FlyCommand,
+    },
     /// li2015's data pipeline: learn a model file from tracked trajectories, or write the
     /// synthetic tracks that stand in for the paper's unpublished data.
     Li {
         #[command(subcommand)]
         command: LiCommand,
+    },
+}
+
+#[derive(Subcommand)]
+enum FlyCommand {
+    /// Resize a scenario's ren2016 insects until their swarm holds N(T) insects per m³, Eq.
+    /// 1's density at the temperature T.
+    ///
+    /// Each round runs the scenario (burn-in, then frames), measures the swarm's density (from
+    /// each insect's 5th nearest neighbour, the median over insects, averaged over frames and
+    /// runs) and resizes every length, speed and force of the insects, with their spawn region, by
+    /// (density / N(T))^(1/3) (a similarity of the model: the swarm's shape and dynamics are
+    /// kept), until within the tolerance (spec §2.8, docs/models.md). The world and its
+    /// objects stay. Example: `swarm fly temperature fly-fig1-midges --celsius 15
+    /// --metres-per-unit 2 --out midges-15C.toml` (the builtin's 4.55 cm unit is too small
+    /// a box for any N(T): it is refused).
+    Temperature {
+        /// Built-in scenario name or path to a scenario file.
+        scenario: String,
+        /// The temperature T (°C; Eq. 1 has swarms between 8.74 and 35.66).
+        #[arg(long, allow_hyphen_values = true)]
+        celsius: f64,
+        /// The scenario's length unit in metres (N(T) is insects per m³).
+        #[arg(long, default_value_t = 1.0)]
+        metres_per_unit: f64,
+        /// Ticks run before the first measured frame.
+        #[arg(long, default_value_t = 2000)]
+        burn_in: u32,
+        /// Frames measured per run.
+        #[arg(long, default_value_t = 20)]
+        frames: u32,
+        /// Ticks between measured frames.
+        #[arg(long, default_value_t = 50)]
+        every: u32,
+        /// Runs (seeds from the scenario's, or --seed, up) averaged per round.
+        #[arg(long, default_value_t = 2)]
+        runs: u32,
+        /// The first run's seed (default: the scenario's).
+        #[arg(long)]
+        seed: Option<u32>,
+        /// The relative error in the density accepted.
+        #[arg(long, default_value_t = 0.05)]
+        tolerance: f64,
+        /// The most rounds of resizing.
+        #[arg(long, default_value_t = 8)]
+        rounds: u32,
+        /// Write the resized scenario here (replaced whole, or left as it was on an error).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Write the JSON report here (target, resizing, density by round).
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
     },
 }
 
@@ -545,8 +606,91 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             }
             Ok(())
         }
+        Command::Fly { command } => fly(command),
         Command::Li { command } => li(command),
     }
+}
+
+fn fly(command: FlyCommand) -> Result<(), Box<dyn std::error::Error>> {
+    let FlyCommand::Temperature {
+        scenario,
+        celsius,
+        metres_per_unit,
+        burn_in,
+        frames,
+        every,
+        runs,
+        seed,
+        tolerance,
+        rounds,
+        out,
+        json,
+        quiet,
+    } = command;
+    positive("--metres-per-unit", metres_per_unit)?;
+    positive("--tolerance", tolerance)?;
+    if !celsius.is_finite() {
+        return Err(format!("--celsius: {celsius} is not a temperature").into());
+    }
+    if frames == 0 || every == 0 || runs == 0 {
+        return Err("--frames, --every and --runs need at least 1".into());
+    }
+    for (name, path) in [("--out", &out), ("--json", &json)] {
+        if let Some(path) = path {
+            folder_exists(name, path)?;
+        }
+    }
+    let sc = crate::scenario::resolve(&scenario)?;
+    let first = seed.unwrap_or(sc.seed);
+    let t = Temperature {
+        celsius,
+        metres_per_unit,
+        sampling: crate::fit::Sampling {
+            burn_in,
+            frames,
+            every,
+            seeds: (0..runs).map(|k| first.wrapping_add(k)).collect(),
+        },
+        tolerance,
+        rounds,
+    };
+    let bar = crate::run::rounds_bar(!quiet, u64::from(rounds) + 1);
+    let done = temperature::adjust(&sc, &t, |k, rho| {
+        bar.set_message(format!("k {k:.3}: {rho:.4} per unit³"));
+        bar.inc(1);
+    });
+    bar.finish_and_clear();
+    let done = done?;
+    println!(
+        "{} at {celsius} °C: N(T) = {:.4} per unit³; insects resized by {:.4}, density {:.4} ({} rounds)",
+        sc.name,
+        done.target,
+        done.scale,
+        done.density,
+        done.rounds.len()
+    );
+    if let Some(path) = out {
+        crate::output::remove_stale_temps(&path);
+        let text = done.scenario.to_toml()?;
+        crate::output::write_atomic_bytes(&path, text.as_bytes())?;
+        println!("  wrote {}", path.display());
+    }
+    if let Some(path) = json {
+        let report = serde_json::json!({
+            "scenario": sc.name,
+            "celsius": celsius,
+            "metres_per_unit": metres_per_unit,
+            "target": done.target,
+            "scale": done.scale,
+            "density": done.density,
+            "rounds": done.rounds,
+        });
+        crate::output::remove_stale_temps(&path);
+        let text = serde_json::to_string_pretty(&report)?;
+        crate::output::write_atomic_bytes(&path, (text + "\n").as_bytes())?;
+        println!("  wrote {}", path.display());
+    }
+    Ok(())
 }
 
 /// Refuses output path `path` of option `name` when its folder does not exist (checked before

@@ -766,6 +766,47 @@ pub enum SimError {
         /// Individuals tried.
         evaluations: usize,
     },
+    /// A temperature at which Eq. 1 of ren2016 gives no swarm (N(T) ≤ 0).
+    #[error("{celsius} °C: Eq. 1 gives no swarm there (N(T) > 0 only between 8.74 and 35.66 °C)")]
+    TemperatureNoSwarm {
+        /// The temperature asked for (°C).
+        celsius: f64,
+    },
+    /// A scenario without two ren2016 (`fly`) insects to resize to a temperature.
+    #[error("scenario `{scenario}`: no ren2016 (`fly`) swarm of two or more insects to resize")]
+    TemperatureNoInsects {
+        /// The scenario.
+        scenario: String,
+    },
+    /// A temperature whose density would need a swarm larger than the world.
+    #[error(
+        "{celsius} °C: N(T) = {target:.4} insects per unit³ needs {needed:.1} unit³ for the \
+         swarm, more than the world's {world:.1}; use a larger world, fewer insects or check \
+         --metres-per-unit"
+    )]
+    TemperatureTooSparse {
+        /// The temperature (°C).
+        celsius: f64,
+        /// N(T) per unit³ of the scenario.
+        target: f64,
+        /// The volume the insects need at that density (unit³).
+        needed: f64,
+        /// The world's volume (unit³).
+        world: f64,
+    },
+    /// Resizing that did not reach N(T) within the tolerance in the rounds allowed.
+    #[error(
+        "{celsius} °C: the density did not reach N(T) = {target:.4} per unit³ (resizing, \
+         density by round: {rounds:?}); the world or the spawn region may bound the swarm"
+    )]
+    TemperatureUnreached {
+        /// The temperature (°C).
+        celsius: f64,
+        /// N(T) per unit³ of the scenario.
+        target: f64,
+        /// Each round's resizing k and the density measured with it.
+        rounds: Vec<(f64, f64)>,
+    },
     /// An empty CSV file.
     #[error("{}:1: empty file, expected the CSV header", path.display())]
     CsvEmpty {

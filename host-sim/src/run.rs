@@ -370,6 +370,16 @@ pub fn generations_bar(show: bool, len: u64) -> ProgressBar {
     )
 }
 
+/// The progress bar of a resizing to a temperature (`swarm fly temperature`): rounds measured
+/// and the last one's resizing and density (the message), on a terminal only.
+pub fn rounds_bar(show: bool, len: u64) -> ProgressBar {
+    bar_of(
+        show,
+        len,
+        "{elapsed_precise} [{bar:40}] round {pos}/{len}, {msg}",
+    )
+}
+
 fn bar_of(show: bool, len: u64, template: &str) -> ProgressBar {
     if !show || !std::io::IsTerminal::is_terminal(&std::io::stderr()) {
         return ProgressBar::hidden();

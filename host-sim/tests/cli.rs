@@ -373,3 +373,57 @@ fn fit_writes_a_scenario_that_loads() {
         assert!(err.contains(says), "{param}: {err}");
     }
 }
+
+/// `swarm fly temperature` writes a resized scenario that loads, with the density it reports
+/// within the tolerance of N(T), and refuses a temperature without swarms and a world too small
+/// before it runs anything.
+#[test]
+fn fly_temperature_writes_a_resized_scenario() {
+    let dir = tempfile::tempdir().unwrap();
+    let (resized, json) = (dir.path().join("warm.toml"), dir.path().join("t.json"));
+    let base = [
+        "fly",
+        "temperature",
+        "fly-fig2-fruitfly",
+        "--burn-in",
+        "300",
+        "--frames",
+        "5",
+        "--runs",
+        "1",
+    ];
+    ok(swarm()
+        .args(base)
+        .args(["--celsius", "25", "--metres-per-unit", "0.5", "--quiet"])
+        .arg("--out")
+        .arg(&resized)
+        .arg("--json")
+        .arg(&json));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let (target, density) = (
+        report["target"].as_f64().unwrap(),
+        report["density"].as_f64().unwrap(),
+    );
+    assert!((density / target - 1.0).abs() <= 0.05, "{report}");
+    let k = report["scale"].as_f64().unwrap();
+    let sc = swarm_sim::scenario::Scenario::from_path(&resized).unwrap();
+    let p = swarm_sim::fly::fly_params(&sc.groups[0]).unwrap();
+    let r_rep = f64::from(swarm_core::fly::FlyParams::<f32>::fruitfly().r_rep);
+    assert!(
+        (f64::from(p.r_rep) / r_rep - k).abs() < 1e-4 * k,
+        "{p:?} k {k}"
+    );
+    for (celsius, metres, says) in [
+        ("40", "0.5", "no swarm"),
+        ("20", "0.01", "more than the world's"),
+    ] {
+        let err =
+            fails(
+                swarm()
+                    .args(base)
+                    .args(["--celsius", celsius, "--metres-per-unit", metres]),
+            );
+        assert!(err.contains(says), "{celsius} °C: {err}");
+    }
+}

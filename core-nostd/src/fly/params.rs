@@ -264,6 +264,43 @@ impl<S: Scalar> FlyParams<S> {
         }
     }
 
+    /// The same insect `k` times larger at the same Δt: every length (the radii of Eq. 5,
+    /// r_res, the noise's lattice `scale`, the ORCA radius) and speed (`max_speed`) × k,
+    /// every force weight (χ_rep, χ_ali, χ_att, χ_res: they weigh unit vectors) × k, γ / k
+    /// (F_fric = −γ‖v‖v is quadratic in v), and the noise gain × k (white, Gaussian and
+    /// Perlin noise are the force itself) or × k² (the curl noise, Eq. 4, differentiates
+    /// gain·Per(r/scale)). τ, the margin, Δt and the codes are unchanged.
+    ///
+    /// Every term of Algorithm 1 is then k times the original's at k times the positions
+    /// and velocities, and ORCA's velocity obstacles scale with them: a swarm started k
+    /// times larger stays k times larger, its density k⁻³ times the original's (the
+    /// temperature rule of spec §2.8, ours; docs/models.md).
+    pub fn scaled(&self, k: S) -> Self {
+        let gain = if self.noise == NOISE_CURL { k * k } else { k };
+        let (gamma, mut max_speed) = (self.gamma / k, self.max_speed * k);
+        // γ·max_speed·Δt is unchanged but for rounding: keep a limit that was within ½ there.
+        let half = S::from_f32(0.5);
+        if self.gamma * self.max_speed * self.dt <= half && gamma * max_speed * self.dt > half {
+            max_speed *= S::from_f32(0.999_99);
+        }
+        FlyParams {
+            gamma,
+            scale: self.scale * k,
+            gain: self.gain * gain,
+            chi_rep: self.chi_rep * k,
+            r_rep: self.r_rep * k,
+            chi_ali: self.chi_ali * k,
+            r_ali: self.r_ali * k,
+            chi_att: self.chi_att * k,
+            r_att: self.r_att * k,
+            chi_res: self.chi_res * k,
+            r_res: self.r_res * k,
+            radius: self.radius * k,
+            max_speed,
+            ..*self
+        }
+    }
+
     /// The radius ORCA plans with: radius·(1 + margin).
     pub fn orca_radius(&self) -> S {
         self.radius * (S::ONE + self.margin)

@@ -361,3 +361,59 @@ fn a_wall_holds() {
         assert!(s.pos.x <= 1.0 - p.radius + 1e-4, "step {k}: {:?}", s.pos);
     }
 }
+
+/// [`FlyParams::scaled`] is a similarity of Algorithm 1: with every position and velocity k
+/// times larger, a step (zone forces in all three zones, friction, pursuit or escape, each
+/// noise source, ORCA against a neighbour on a collision course and a wall) gives k times
+/// the position and velocity, to rounding.
+#[test]
+fn scaled_parameters_are_a_similarity() {
+    let v = |x: f32, y: f32, z: f32| Vec3::new(x, y, z);
+    let me = FlyState::new(v(0.3, 0.2, 0.1), v(0.4, -1.5, 0.2));
+    let others = [
+        (v(1.0, 0.9, 0.1), v(-0.5, -1.0, 0.0)), // repulsion, closing in (ORCA)
+        (v(5.0, 1.0, -1.0), v(1.0, 0.5, 0.0)),  // alignment
+        (v(-9.0, 4.0, 6.0), v(0.0, 0.0, 1.0)),  // attraction
+    ];
+    for (base, kind) in [
+        (FlyParams::<f32>::mating(), STIMULUS_TARGET),
+        (FlyParams::<f32>::escape(), STIMULUS_PREDATOR),
+    ] {
+        for noise in [NOISE_CURL, NOISE_PERLIN, NOISE_WHITE, NOISE_GAUSSIAN] {
+            let p = FlyParams { noise, ..base };
+            let run = |k: f32| {
+                let mut f: FlyFrame<f32, 16, 4> = FlyFrame::new();
+                for (i, (pos, vel)) in others.iter().enumerate() {
+                    f.neighbours
+                        .push(Neighbour {
+                            id: i as u32 + 1,
+                            pos: *pos * k,
+                            vel: *vel * k,
+                        })
+                        .unwrap();
+                }
+                f.stimulus = Some(Stimulus {
+                    pos: v(1.5, 1.0, 0.5) * k,
+                    kind,
+                });
+                f.surfaces
+                    .push(Surface {
+                        point: v(0.3, -0.3, 0.1) * k,
+                        normal: v(0.0, 1.0, 0.0),
+                    })
+                    .unwrap();
+                let s = FlyState::new(me.pos * k, me.vel * k);
+                step(&s, &f, &p.scaled(k), ctx(0, 5)).unwrap().0
+            };
+            let one = run(1.0);
+            for k in [0.25, 3.0] {
+                let big = run(k);
+                for (a, b) in [(one.pos, big.pos), (one.vel, big.vel)] {
+                    let err = (a * k - b).length() / (k * a.length());
+                    assert!(err < 1e-4, "noise {noise}, k {k}: {a:?} × k vs {b:?}");
+                }
+                assert_eq!(one.escaping, big.escaping);
+            }
+        }
+    }
+}

@@ -15,6 +15,7 @@ mod build;
 pub(crate) mod scenario;
 mod sense;
 mod sim;
+pub mod temperature;
 
 #[cfg(test)]
 mod tests;

@@ -121,11 +121,19 @@ impl<P: ModelParams<Scalar = f32>> ParamsOverride<P> {
     pub(crate) fn write_entries<M: SerializeMap>(&self, map: &mut M) -> Result<(), M::Error> {
         for (spec, value) in self.iter() {
             match value {
-                ParamValue::Real(v) => map.serialize_entry(spec.name, &v)?,
+                ParamValue::Real(v) => map.serialize_entry(spec.name, &decimal(v))?,
                 ParamValue::Int(v) => map.serialize_entry(spec.name, &v)?,
             }
         }
         Ok(())
+    }
+}
+
+/// `v` as the shortest decimal that reads back as `v` (`0.68`, not `0.6800000071525574`).
+fn decimal(v: f32) -> f64 {
+    match v.to_string().parse::<f64>() {
+        Ok(d) if d as f32 == v => d,
+        _ => f64::from(v),
     }
 }
 
