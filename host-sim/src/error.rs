@@ -807,6 +807,16 @@ pub enum SimError {
         /// Each round's resizing k and the density measured with it.
         rounds: Vec<(f64, f64)>,
     },
+    /// A device (mirror) asked for a li2015 group with a route of lights: the route changes
+    /// the density the device holds during the run.
+    #[error(
+        "group `{group}`: a route of lights changes the insects' density during the run, and a \
+         device holds one density; mirror a scenario without a route (or with one light)"
+    )]
+    LiRouteDevice {
+        /// The group.
+        group: String,
+    },
     /// An empty CSV file.
     #[error("{}:1: empty file, expected the CSV header", path.display())]
     CsvEmpty {

@@ -5,7 +5,8 @@
 //! These pins hold the behaviour still while the engine is refactored (issue 13): a refactor
 //! changes no bit. A change that is *meant* to change the behaviour of a model updates them:
 //! run `GOLDEN_PRINT=1 cargo test --release -p swarm-tests --test golden_runs -- --nocapture`
-//! and paste the printed table, saying in the commit why the runs changed.
+//! and paste the printed table, saying in the commit why the runs changed. A new scenario's
+//! pins alone: `GOLDEN_ONLY=name GOLDEN_PRINT=1 ...` (the rows to add).
 
 use std::path::Path;
 
@@ -392,6 +393,30 @@ const PINNED: &[(&str, &str, u64, u64)] = &[
         0x3b01d39bdb40d5c0,
     ),
     (
+        "li-fig5-butterflies",
+        "f32",
+        0x1240080bbac105d3,
+        0x66d39f9ab7c285b1,
+    ),
+    (
+        "li-fig5-butterflies",
+        "fixed",
+        0x70ce780a478d5474,
+        0xdff76a3fb6ba2bdf,
+    ),
+    (
+        "li-fig6-lights",
+        "f32",
+        0x82ec13bc1a04a7d8,
+        0x7b13f755ecce956e,
+    ),
+    (
+        "li-fig6-lights",
+        "fixed",
+        0x325796c0779694bd,
+        0x123c4cf8c194ffc5,
+    ),
+    (
         "li-fig8-9-cells",
         "f32",
         0x65f4e6499be3959a,
@@ -446,9 +471,15 @@ fn hashes(name: &str, scalar: ScalarType) -> (u64, u64) {
 #[test]
 fn every_built_in_scenario_produces_the_pinned_bytes_in_both_scalars() {
     let print = std::env::var_os("GOLDEN_PRINT").is_some();
+    // GOLDEN_ONLY=a,b: only those scenarios (to print the pins of new ones quickly).
+    let only = std::env::var("GOLDEN_ONLY").ok();
+    let chosen = |name: &str| {
+        only.as_deref()
+            .is_none_or(|o| o.split(',').any(|n| n == name))
+    };
     let mut table = String::new();
     let mut wrong = Vec::new();
-    for &name in scenario::builtin_names() {
+    for &name in scenario::builtin_names().iter().filter(|n| chosen(n)) {
         for (scalar, tag) in [(ScalarType::F32, "f32"), (ScalarType::Fixed, "fixed")] {
             let (npy, summary) = hashes(name, scalar);
             table.push_str(&format!(

@@ -5,13 +5,13 @@ use swarm_core::li::{LiParams, LiState};
 use swarm_core::{Fx, Vec3};
 
 use super::data::{GridShape, fixture_tables, gaussian_weights};
-use super::scenario::li_params;
-use super::sim::{AnyLiGroup, LiGroup, LiSim};
-use crate::Result;
+use super::scenario::{li_params, route_of};
+use super::sim::{AnyLiGroup, LiGroup, LiSim, RouteRun};
 use crate::scalar::SimScalar;
 use crate::scenario::{ScalarType, Scenario};
 use crate::spawn::draw;
 use crate::swarm3d::{World3d, reach};
+use crate::{Result, SimError};
 
 impl LiSim {
     /// The li2015 simulation of `scenario` (a 3D world, whose box is the container and the
@@ -26,8 +26,64 @@ impl LiSim {
     /// refuses, [`SimError::LiGrid`](crate::SimError::LiGrid) for a density grid a device
     /// cannot hold.
     pub fn from_scenario(scenario: &Scenario, seed: u32) -> Result<LiSim> {
-        LiSim::build(scenario, seed, |g| li_params(scenario, g), |_, _| Ok(()))
+        let mut sim = LiSim::build(scenario, seed, |g| li_params(scenario, g), |_, _| Ok(()))?;
+        for g in &scenario.groups {
+            let route = match route_of(scenario, g)? {
+                Some((route, weights)) => {
+                    // Every light's density must make valid parameters (checked once here,
+                    // so the switch during the run cannot fail).
+                    let p = li_params(scenario, g)?;
+                    let d = &p.density;
+                    let shape = GridShape {
+                        origin: [d.origin.x, d.origin.y, d.origin.z],
+                        cell: d.cell,
+                        dims: d.dims,
+                    };
+                    for w in &weights {
+                        let mut q = p.clone();
+                        q.density = shape.with(w)?;
+                        q.cast::<Fx>()
+                            .checked()
+                            .map_err(|e| SimError::GroupParams {
+                                group: g.name.clone(),
+                                source: e,
+                            })?;
+                    }
+                    let held = route
+                        .lights
+                        .iter()
+                        .zip(&weights)
+                        .map(|(l, w)| held_within(&shape, w, *l, route.reach))
+                        .collect();
+                    Some(RouteRun {
+                        route,
+                        weights,
+                        held,
+                        leg: 0,
+                        reached: Vec::new(),
+                    })
+                }
+                None => None,
+            };
+            sim.measures.routes.push(route);
+        }
+        Ok(sim)
     }
+}
+
+/// The share of the density `weights` on `shape` within `reach` of `light` (cells by their
+/// centres).
+fn held_within(shape: &GridShape, weights: &[u8], light: [f32; 3], reach: f32) -> f64 {
+    let (mut near, mut all) = (0.0, 0.0);
+    for (i, &w) in weights.iter().enumerate() {
+        let c = shape.centre(i);
+        let d2: f32 = (0..3).map(|k| (c[k] - light[k]).powi(2)).sum();
+        all += f64::from(w);
+        if d2 <= reach * reach {
+            near += f64::from(w);
+        }
+    }
+    if all > 0.0 { near / all } else { 0.0 }
 }
 
 /// A swarm of `n` insects at the density of Fig. 4 (100 in the 0.91 m cube): a cube of side

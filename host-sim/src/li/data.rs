@@ -11,7 +11,8 @@ use swarm_core::li::{BINS, LiTable};
 use super::fixture::{segment_lengths_mm, turning_angles};
 use super::stats::histogram;
 use crate::error::{Result, SimError};
-use crate::space::BeeObstacle;
+use crate::fields::{CellGrid, CostField, CostWeights};
+use crate::space::{BeeObstacle, Shape3};
 
 /// Draws of the synthetic process tabulated for its tables.
 pub const FIXTURE_DRAWS: usize = 100_000;
@@ -182,6 +183,11 @@ pub fn gaussian_weights(
                 .max(f64::MIN_POSITIVE)
         })
         .collect();
+    bytes(&raw)
+}
+
+/// Weights scaled so the largest is 255 and every positive one at least 1; 0 stays 0.
+fn bytes(raw: &[f64]) -> Vec<u8> {
     let max = raw.iter().copied().fold(0.0, f64::max);
     if max <= 0.0 {
         return vec![0; raw.len()];
@@ -192,6 +198,60 @@ pub fn gaussian_weights(
             w => ((w / max * 255.0).round() as u8).max(1),
         })
         .collect()
+}
+
+/// The weights of the density that draws a swarm to a light (spec §2.6, Fig. 6, ours):
+/// w_c = exp(−C(c)/λ), C the length of the shortest path from the cell's centre to the light
+/// around the active obstacles (wang2014's fast marching, `fields::CostField`, with cost 1 per
+/// unit length and obstacles impassable), scaled as [`gaussian_weights`] (largest 255, a free
+/// cell at least 1, a cell touching an obstacle 0). Metropolis-Hastings then drifts the
+/// waypoints down the path, round the obstacles.
+///
+/// # Errors
+///
+/// What the fast marching refuses (never for a grid [`GridShape::over`] made).
+pub fn light_weights(
+    shape: &GridShape,
+    light: [f32; 3],
+    lambda: f32,
+    obstacles: &[BeeObstacle],
+) -> Result<Vec<u8>> {
+    let grid = CellGrid {
+        min: shape.origin,
+        cell: shape.cell,
+        dims: shape.dims.map(u32::from),
+    };
+    let max = [0, 1, 2].map(|k| shape.origin[k] + f32::from(shape.dims[k]) * shape.cell);
+    let walls: Vec<Shape3> = obstacles
+        .iter()
+        .filter(|o| o.active)
+        .map(|o| o.shape.clone())
+        .collect();
+    let goal = Shape3::Sphere {
+        center: light,
+        radius: 0.5 * shape.cell,
+    };
+    let weights = CostWeights {
+        a: 1.0,
+        b: 0.0,
+        inside: 1000.0,
+    };
+    let (_, field) = CostField::build(&grid, &walls, &[goal], shape.origin, max, weights)?;
+    let inv = 1.0 / f64::from(lambda);
+    let raw: Vec<f64> = field
+        .cost
+        .iter()
+        .enumerate()
+        .map(|(i, &c)| {
+            if !cell_clear(obstacles, shape.centre(i), shape.cell) {
+                0.0
+            } else {
+                // Unreachable (C = ∞) or far: the floor keeps the cell open.
+                (-f64::from(c) * inv).exp().max(f64::MIN_POSITIVE)
+            }
+        })
+        .collect();
+    Ok(bytes(&raw))
 }
 
 /// A polyline sketch sampled every `step` along its length (its vertices included), as the
@@ -225,7 +285,6 @@ pub fn sketch_sigma(polyline: &[[f32; 3]]) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::space::Shape3;
 
     #[test]
     fn the_fixture_tables_keep_the_process_moments() {

@@ -35,9 +35,9 @@ pub mod stats;
 pub use build::bench_li_world;
 pub use model::LiModel;
 pub use pipeline::{FitOptions, fit, synthetic_csv};
-pub use scenario::{DensitySpec, LiTable, li_params, model_path};
+pub use scenario::{DensitySpec, LiTable, Route, li_params, model_path, route_of};
 pub use sim::{
-    AnyLiGroup, Counts, Li, LiGroup, LiMeasures, LiSim, LiSimFrame, N, O, li_frame,
+    AnyLiGroup, Counts, Li, LiGroup, LiMeasures, LiSim, LiSimFrame, N, O, RouteRun, li_frame,
     mean_centroid_distance, total_variation,
 };
 

@@ -25,7 +25,9 @@ use serde::{Deserialize, Serialize};
 use swarm_core::Fx;
 use swarm_core::li::LiParams;
 
-use super::data::{GridShape, fixture_tables, gaussian_weights, sketch_points, sketch_sigma};
+use super::data::{
+    GridShape, fixture_tables, gaussian_weights, light_weights, sketch_points, sketch_sigma,
+};
 use super::model::LiModel;
 #[cfg(doc)]
 use super::model::ModelGrid;
@@ -53,6 +55,44 @@ pub struct DensitySpec {
     /// points without a sketch.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sigma: Option<f32>,
+    /// Lights the swarm visits in turn (Fig. 6), in place of points and a sketch.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub route: Option<Route>,
+}
+
+/// `route = { lights = [[x, y, z], ...] }`: the swarm is drawn to each light in turn (li2015
+/// Fig. 6, spec §2.6, ours): the density is w_c = exp(−C_j(c)/λ) for the current light j
+/// ([`light_weights`]), and the group moves on to the next light once the share of its
+/// insects within `reach` of light j is `share` × the share of the density there (ours: the
+/// density, one byte a cell with every free cell at least 1, holds only 40-70 % of itself
+/// within 3 m of a light, so the spec's 80 % of the swarm could never be met).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Route {
+    /// The lights, in the order they are visited.
+    pub lights: Vec<[f32; 3]>,
+    /// λ: the length over which the density falls by e along the path (units; the spec's 2).
+    /// Beyond λ·ln 255 of the light (11 m at 2) the density is its floor of 1 and
+    /// Metropolis-Hastings no longer drifts toward the light.
+    #[serde(default = "default_lambda")]
+    pub lambda: f32,
+    /// The distance from a light within which an insect has reached it (units; 3).
+    #[serde(default = "default_reach")]
+    pub reach: f32,
+    /// The share of the density's own share within `reach` that the group must have there
+    /// before the next light is lit (0.8).
+    #[serde(default = "default_share")]
+    pub share: f32,
+}
+
+fn default_lambda() -> f32 {
+    2.0
+}
+fn default_reach() -> f32 {
+    3.0
+}
+fn default_share() -> f32 {
+    0.8
 }
 
 fn default_cells() -> u16 {
@@ -66,6 +106,7 @@ impl Default for DensitySpec {
             points: Vec::new(),
             sketch: Vec::new(),
             sigma: None,
+            route: None,
         }
     }
 }
@@ -90,6 +131,9 @@ pub struct LiTable {
     pub density_given: bool,
     /// The model file (`swarm li fit`) whose tables (and grid) the group uses.
     pub model: Option<String>,
+    /// The segment lengths of the tables × this (default 1): insects larger than the data's
+    /// (butterflies flying the midges' paths, Fig. 5) fly the same shapes at their own scale.
+    pub length_scale: Option<f32>,
 }
 
 impl Serialize for LiTable {
@@ -101,6 +145,9 @@ impl Serialize for LiTable {
         }
         if let Some(m) = &self.model {
             map.serialize_entry("model", m)?;
+        }
+        if let Some(k) = self.length_scale {
+            map.serialize_entry("length_scale", &k)?;
         }
         map.end()
     }
@@ -120,7 +167,16 @@ impl<'de> Deserialize<'de> for LiTable {
             ) -> std::result::Result<LiTable, A::Error> {
                 let mut density = None;
                 let mut model = None;
-                let overrides = read_table(map, &["density", "model"], |key, map: &mut A| {
+                let mut length_scale = None;
+                let extras = &["density", "model", "length_scale"];
+                let overrides = read_table(map, extras, |key, map: &mut A| {
+                    if key == "length_scale" {
+                        if length_scale.is_some() {
+                            return Err(de::Error::duplicate_field("length_scale"));
+                        }
+                        length_scale = Some(map.next_value()?);
+                        return Ok(());
+                    }
                     if key == "model" {
                         if model.is_some() {
                             return Err(de::Error::duplicate_field("model"));
@@ -139,6 +195,7 @@ impl<'de> Deserialize<'de> for LiTable {
                     density_given: density.is_some(),
                     density: density.unwrap_or_default(),
                     model,
+                    length_scale,
                 })
             }
         }
@@ -202,23 +259,63 @@ pub fn li_params(scenario: &Scenario, g: &Group) -> Result<LiParams<f32>> {
         _ => {
             let d = &table.density;
             let shape = GridShape::over(min, max, d.cells)?;
-            let sigma = d.sigma().unwrap_or(1.0);
-            let mut points = d.points.clone();
-            points.extend(sketch_points(&d.sketch, 0.5 * sigma));
-            let weights = gaussian_weights(&shape, &points, sigma, &obstacles(scenario));
+            let weights = match &d.route {
+                Some(route) => route_weights(scenario, &shape, route)?.swap_remove(0),
+                None => {
+                    let sigma = d.sigma().unwrap_or(1.0);
+                    let mut points = d.points.clone();
+                    points.extend(sketch_points(&d.sketch, 0.5 * sigma));
+                    gaussian_weights(&shape, &points, sigma, &obstacles(scenario))
+                }
+            };
             shape.with(&weights)?
         }
     };
-    let (lengths, turns) = match &model {
+    let (mut lengths, turns) = match &model {
         Some((m, _)) => (m.lengths.table()?, m.turns.table()?),
         None => fixture_tables(),
     };
+    if let Some(k) = table.length_scale {
+        lengths.lo *= k;
+        lengths.hi *= k;
+    }
     Ok(table.overrides.apply(LiParams {
         lengths,
         turns,
         density,
         ..LiParams::default()
     }))
+}
+
+/// The density weights of each light of `route` on `shape`, in order (at least one: a route
+/// without lights is refused by the rules).
+fn route_weights(scenario: &Scenario, shape: &GridShape, route: &Route) -> Result<Vec<Vec<u8>>> {
+    let walls = obstacles(scenario);
+    let mut out = route
+        .lights
+        .iter()
+        .map(|&l| light_weights(shape, l, route.lambda, &walls))
+        .collect::<Result<Vec<_>>>()?;
+    if out.is_empty() {
+        out.push(vec![0; shape.len()]);
+    }
+    Ok(out)
+}
+
+/// The lights of group `g`'s route and the density weights of each, when it has one.
+///
+/// # Errors
+///
+/// As [`li_params`].
+pub fn route_of(scenario: &Scenario, g: &Group) -> Result<Option<(Route, Vec<Vec<u8>>)>> {
+    let table = g.params_as::<LiTable>()?;
+    let Some(route) = table.density.route.filter(|_| table.density_given) else {
+        return Ok(None);
+    };
+    let (min, max) = scenario.bounds::<3>("li")?;
+    let shape = GridShape::over(min, max, table.density.cells)?;
+    let weights = route_weights(scenario, &shape, &route)?;
+    Ok(Some((route, weights)))
 }
 
 /// The rules of a li2015 group: no `nest`, `goal` or `threat`; a density grid a device holds,
@@ -252,6 +349,17 @@ pub(crate) fn check(c: &GroupCheck<'_>) -> std::result::Result<(), Problem> {
     if d.sketch.len() == 1 {
         return Err(c.problem(&at("sketch"), "a sketch needs at least two points"));
     }
+    if let Some(r) = &d.route {
+        route_rules(c, d, r)?;
+    }
+    if let Some(k) = table.length_scale
+        && !(k.is_finite() && k > 0.0)
+    {
+        return Err(c.problem(
+            "li.length_scale",
+            format!("{k} is not a positive factor of the segment lengths"),
+        ));
+    }
     if let Some(m) = &table.model {
         if m.trim().is_empty() {
             return Err(c.problem(
@@ -274,6 +382,53 @@ pub(crate) fn check(c: &GroupCheck<'_>) -> std::result::Result<(), Problem> {
         ));
     }
     c.check_params(&params, |p| p.cast::<Fx>().validate())
+}
+
+/// A route's rules: no points or sketch beside it, at least one light, each inside the world
+/// and outside the obstacles, positive λ and reach, a share in (0, 1].
+fn route_rules(c: &GroupCheck<'_>, d: &DensitySpec, r: &Route) -> std::result::Result<(), Problem> {
+    let at = |f: &str| format!("li.density.route.{f}");
+    if !d.points.is_empty() || !d.sketch.is_empty() {
+        return Err(c.problem(
+            "li.density.route",
+            "a route is the density: give it without `points` or a `sketch`",
+        ));
+    }
+    if r.lights.is_empty() {
+        return Err(c.problem(&at("lights"), "a route needs at least one light"));
+    }
+    let (min, max) = c
+        .scenario
+        .bounds::<3>("li")
+        .map_err(|e| c.problem(&at("lights"), e.to_string()))?;
+    let walls = obstacles(c.scenario);
+    for (i, l) in r.lights.iter().enumerate() {
+        let inside = (0..3).all(|k| l[k].is_finite() && l[k] >= min[k] && l[k] <= max[k]);
+        if !inside {
+            return Err(c.problem(
+                &format!("li.density.route.lights[{i}]"),
+                format!("{l:?} is outside the world {min:?}-{max:?}"),
+            ));
+        }
+        if let Some(o) = walls.iter().find(|o| o.active && o.shape.meets_box(*l, *l)) {
+            return Err(c.problem(
+                &format!("li.density.route.lights[{i}]"),
+                format!("{l:?} is inside the obstacle `{}`", o.name),
+            ));
+        }
+    }
+    for (field, v) in [("lambda", r.lambda), ("reach", r.reach)] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(c.problem(&at(field), format!("{v} is not a positive length")));
+        }
+    }
+    if !(r.share > 0.0 && r.share <= 1.0) {
+        return Err(c.problem(
+            &at("share"),
+            format!("{} is not a share in (0, 1]", r.share),
+        ));
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -311,6 +466,10 @@ mod tests {
             let again = toml::to_string(&t).unwrap();
             assert_eq!(toml::from_str::<LiTable>(&again).unwrap(), t);
         }
+        let t: LiTable = toml::from_str("length_scale = 40.0").unwrap();
+        assert_eq!(t.length_scale, Some(40.0));
+        let again: LiTable = toml::from_str(&toml::to_string(&t).unwrap()).unwrap();
+        assert_eq!(again.length_scale, Some(40.0));
         let err = toml::from_str::<LiTable>("model = 3").unwrap_err();
         assert!(err.message().contains("invalid type"), "{err}");
     }

@@ -12,6 +12,7 @@ use swarm_core::li::{WIRE_LI_SURFACES, density::Density};
 use swarm_core::wire::Endpoint;
 use swarm_core::{Checked, Scalar, StepCtx, Vec3};
 
+use super::scenario::Route;
 use crate::by_scalar;
 use crate::engine::{Exchange, StateNames, soft_name};
 use crate::error::{Result, SimError};
@@ -185,6 +186,25 @@ pub struct LiMeasures {
     /// Visits of each cell of each group's density grid (every insect, every measured step):
     /// the accumulated density of Fig. 4, by group.
     pub visits: Vec<Vec<u64>>,
+    /// Each group's progress along its route of lights (Fig. 6), for the groups with one.
+    pub routes: Vec<Option<RouteRun>>,
+}
+
+/// A group's progress along its route of lights (li2015 Fig. 6, spec §2.6).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RouteRun {
+    /// The route.
+    pub route: Route,
+    /// The density weights of each light (checked against the group's grid when built).
+    pub weights: Vec<Vec<u8>>,
+    /// The share of each light's density within `route.reach` of it (its cells' centres):
+    /// the most of the swarm the density gathers there.
+    pub held: Vec<f64>,
+    /// The light the group is drawn to now.
+    pub leg: usize,
+    /// The step at which each light was reached so far, in order: the share of the group
+    /// within `route.reach` of it at least `route.share` × [`RouteRun::held`].
+    pub reached: Vec<u32>,
 }
 
 impl LiMeasures {
@@ -196,6 +216,28 @@ impl LiMeasures {
 }
 
 impl<S: SimScalar> LiGroup<S> {
+    /// How many of the group's insects are within `reach` of `light`.
+    fn within(&self, light: [f64; 3], reach: f64) -> usize {
+        let near = |s: &&LiState<S>| {
+            let p = [s.pos.x, s.pos.y, s.pos.z].map(SimScalar::to_f64);
+            (0..3).map(|k| (p[k] - light[k]).powi(2)).sum::<f64>() <= reach * reach
+        };
+        self.states.iter().filter(near).count()
+    }
+
+    /// Draws the group to another density over the same grid. The weights of every light
+    /// were checked with the group's parameters when the run was built ([`LiSim`]'s
+    /// `from_scenario`), so this cannot fail.
+    fn set_density(&mut self, weights: &[u8]) {
+        let mut p: LiParams<S> = (*self.params).clone();
+        if let Ok(w) = heapless::Vec::from_slice(weights) {
+            p.density.weights = w;
+        }
+        if let Ok(checked) = p.checked() {
+            self.params = checked;
+        }
+    }
+
     /// Counts every insect's cell of the group's density grid into `visits`.
     fn visit(&self, visits: &mut Vec<u64>) {
         let d = &self.params.density;
@@ -251,6 +293,40 @@ impl Model3d for Li {
         m.centroid_distance += mean_centroid_distance(&sim.world.sensed.pos);
         m.steps += 1;
     }
+    /// A group whose share of insects has reached its current light moves on to the next one:
+    /// its density becomes that light's.
+    fn between_steps(sim: &mut LiSim) {
+        let step = sim.step;
+        for (g, run) in sim.groups.iter_mut().zip(&mut sim.measures.routes) {
+            let Some(run) = run else { continue };
+            if run.reached.len() > run.leg {
+                continue; // the last light, reached: the swarm stays there
+            }
+            let light = run.route.lights[run.leg].map(f64::from);
+            let reach = f64::from(run.route.reach);
+            let (near, n) = by_scalar!(g, g => (g.within(light, reach), g.states.len()));
+            let needed = f64::from(run.route.share) * run.held[run.leg];
+            if n == 0 || (near as f64) < needed * n as f64 {
+                continue;
+            }
+            run.reached.push(step);
+            if run.leg + 1 < run.route.lights.len() {
+                run.leg += 1;
+                by_scalar!(g, g => g.set_density(&run.weights[run.leg]));
+            }
+        }
+    }
+    /// A route changes the density a device holds in the middle of the run: refused.
+    fn device_ready(sim: &LiSim) -> Result<()> {
+        for (g, run) in sim.groups.iter().zip(&sim.measures.routes) {
+            if run.as_ref().is_some_and(|r| r.route.lights.len() > 1) {
+                return Err(SimError::LiRouteDevice {
+                    group: by_scalar!(g, g => g.name.clone()),
+                });
+            }
+        }
+        Ok(())
+    }
     /// The metrics of the paper (the accumulated density's total variation to the target,
     /// the distance to the swarm's centroid, the polarisation) and what the waypoint level
     /// and ORCA did.
@@ -274,6 +350,18 @@ impl Model3d for Li {
         }
         if let Some(tv) = tv {
             summary.extra.insert("density_tv".into(), tv.into());
+        }
+        let reached: Vec<Vec<u32>> = sim
+            .measures
+            .routes
+            .iter()
+            .flatten()
+            .map(|r| r.reached.clone())
+            .collect();
+        if !reached.is_empty() {
+            summary
+                .extra
+                .insert("lights_reached_at_step".into(), reached.clone().into());
         }
         summary
             .extra

@@ -247,3 +247,70 @@ fn recovery_table() {
         }
     }
 }
+
+/// The Fig. 6 route (`li-fig6-lights`): a light's density follows the path round the
+/// obstacles (a cell 3 m from the first light behind `wall-a` weighs less than one 3 m away
+/// in the open); the rules refuse a route beside a sketch, a light inside an obstacle and a
+/// share out of (0, 1]; a device cannot mirror a route (it holds one density).
+#[test]
+fn a_route_of_lights_follows_the_paths_and_is_checked() {
+    use super::data::{GridShape, light_weights};
+    use super::scenario::{LiTable, Route};
+    use crate::engine::Engine;
+    use crate::scenario::builtin;
+
+    let sc = builtin("li-fig6-lights").unwrap();
+    let (min, max) = sc.bounds::<3>("li").unwrap();
+    let shape = GridShape::over(min, max, 20).unwrap();
+    let walls: Vec<_> = sc
+        .objects
+        .iter()
+        .enumerate()
+        .filter_map(|(id, o)| {
+            crate::space::Shape3::of(&o.kind)
+                .map(|s| crate::space::BeeObstacle::new(id as u16, &o.name, s, o.active))
+        })
+        .collect();
+    let w = light_weights(&shape, [5.5, 2.0, 1.5], 2.0, &walls).unwrap();
+    let at = |p: [f32; 3]| {
+        let i = (0..shape.len())
+            .min_by(|&a, &b| {
+                let d = |i: usize| {
+                    let c = shape.centre(i);
+                    (0..3).map(|k| (c[k] - p[k]).powi(2)).sum::<f32>()
+                };
+                d(a).total_cmp(&d(b))
+            })
+            .unwrap();
+        w[i]
+    };
+    let (behind, open) = (at([2.5, 2.0, 1.5]), at([8.5, 2.0, 1.5]));
+    assert!(
+        behind < open / 2,
+        "behind the wall {behind}, in the open {open}"
+    );
+    assert_eq!(at([3.4, 2.0, 1.0]), 0, "inside wall-a");
+    assert_eq!(at([5.5, 2.0, 1.5]), 255, "at the light");
+
+    let edit = |f: &dyn Fn(&mut Route, &mut LiTable)| {
+        let mut bad = sc.clone();
+        let mut t: LiTable = bad.groups[0].params_as().unwrap();
+        let mut r = t.density.route.clone().unwrap();
+        f(&mut r, &mut t);
+        t.density.route = Some(r);
+        bad.groups[0].set_params(&t).unwrap();
+        bad.validate().unwrap_err().to_string()
+    };
+    let e = edit(&|_, t| t.density.sketch = vec![[1.0; 3], [2.0; 3]]);
+    assert!(e.contains("without `points` or a `sketch`"), "{e}");
+    let e = edit(&|r, _| r.lights[1] = [8.0, 2.0, 3.0]);
+    assert!(e.contains("lights[1]") && e.contains("block-b"), "{e}");
+    let e = edit(&|r, _| r.share = 1.5);
+    assert!(e.contains("route.share"), "{e}");
+    let e = edit(&|r, _| r.lights.clear());
+    assert!(e.contains("at least one light"), "{e}");
+
+    let sim = super::LiSim::from_scenario(&sc, 1).unwrap();
+    let err = sim.device().err().expect("refused");
+    assert!(err.to_string().contains("route of lights"), "{err}");
+}

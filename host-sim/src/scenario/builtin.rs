@@ -64,6 +64,8 @@ builtins! {
     "fly-fig9-bats" => "ren2016 Fig. 9: 500 bats echolocating in a cave mill round its axis",
     "li-fig4-confined" => "li2015 Fig. 4: 100 insects sample waypoints toward a measured density",
     "li-fig5-lantern" => "li2015 Fig. 5 left: 200 midges swarm on a sketched ring round a lantern",
+    "li-fig5-butterflies" => "li2015 Fig. 5 right: 50 butterflies follow a sketched S over a prairie",
+    "li-fig6-lights" => "li2015 Fig. 6: 100 moths travel to three lights in turn, round obstacles",
     "li-fig8-9-cells" => "li2015 Figs. 8-9: the Fig. 4 swarm with 2³ density cells spreads out",
 }
 

@@ -45,6 +45,7 @@ impl<M: Model3d> Engine for Swarm3d<M> {
         })
     }
     fn device(&self) -> Result<Device> {
+        M::device_ready(self)?;
         Device::of_groups(&self.groups)
     }
     fn frame(&self) -> Frame {

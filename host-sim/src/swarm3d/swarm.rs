@@ -110,6 +110,18 @@ pub trait Model3d: Clone + Debug + Send + Sync + Sized + 'static {
     fn measure(sim: &mut Swarm3d<Self>);
     /// Writes the run's figures into the summary; returns the run log's line.
     fn closing(sim: &Swarm3d<Self>, summary: &mut Summary) -> String;
+    /// What the model changes after every insect moved, before the next step (li2015: a
+    /// group moves on to the next light of its route); nothing by default.
+    fn between_steps(_sim: &mut Swarm3d<Self>) {}
+    /// Refuses a device (the mirror) that could not stay in step with the run (li2015: a
+    /// route changes the density the device holds); none by default.
+    ///
+    /// # Errors
+    ///
+    /// The model's reason.
+    fn device_ready(_sim: &Swarm3d<Self>) -> Result<()> {
+        Ok(())
+    }
 }
 
 /// The state of model `M`'s insects in scalar `S`.
@@ -487,6 +499,7 @@ impl<M: Model3d> Swarm3d<M> {
         self.last = c;
         self.total += c;
         self.step += 1;
+        M::between_steps(self);
         if self.reorder_every > 0 && self.step.is_multiple_of(self.reorder_every) {
             self.reorder();
         }
