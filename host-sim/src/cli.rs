@@ -210,8 +210,8 @@ enum FlyCommand {
     /// (density / N(T))^(1/3) (a similarity of the model: the swarm's shape and dynamics are
     /// kept), until within the tolerance (spec §2.8, docs/models.md). The world and its
     /// objects stay. Example: `swarm fly temperature fly-fig1-midges --celsius 15
-    /// --metres-per-unit 2 --out midges-15C.toml` (the builtin's 4.55 cm unit is too small
-    /// a box for any N(T): it is refused).
+    /// --metres-per-unit 2 --out midges-15C.toml` (with its own unit, `--metres-per-unit
+    /// 0.0455`, the builtin's 0.91 m box is too small for 100 midges at any N(T): refused).
     Temperature {
         /// Built-in scenario name or path to a scenario file.
         scenario: String,
@@ -464,9 +464,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             let report = crate::eval::report(&reference, &candidates, &e);
             println!("{}", crate::eval::table(&candidates, &e));
             if let Some(path) = json {
-                crate::output::remove_stale_temps(&path);
-                let text = serde_json::to_string_pretty(&report)?;
-                crate::output::write_atomic_bytes(&path, (text + "\n").as_bytes())?;
+                write_json(&path, &report)?;
             }
             Ok(())
         }
@@ -500,9 +498,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             let text = serde_json::to_string_pretty(&report)?;
             println!("{text}");
             if let Some(path) = json {
-                // What a killed earlier bench left beside the report.
-                crate::output::remove_stale_temps(&path);
-                crate::output::write_atomic_bytes(&path, (text + "\n").as_bytes())?;
+                write_text(&path, &(text + "\n"))?;
             }
             Ok(())
         }
@@ -579,9 +575,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 println!("  {name} = {v:.6}");
             }
             if let Some(path) = out {
-                crate::output::remove_stale_temps(&path);
-                let text = fitted.scenario.to_toml()?;
-                crate::output::write_atomic_bytes(&path, text.as_bytes())?;
+                write_text(&path, &fitted.scenario.to_toml()?)?;
                 println!("  wrote {}", path.display());
             }
             if let Some(path) = json {
@@ -599,9 +593,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                     "refused": fitted.refused,
                     "history": fitted.history,
                 });
-                crate::output::remove_stale_temps(&path);
-                let text = serde_json::to_string_pretty(&report)?;
-                crate::output::write_atomic_bytes(&path, (text + "\n").as_bytes())?;
+                write_json(&path, &report)?;
                 println!("  wrote {}", path.display());
             }
             Ok(())
@@ -670,9 +662,7 @@ fn fly(command: FlyCommand) -> Result<(), Box<dyn std::error::Error>> {
         done.rounds.len()
     );
     if let Some(path) = out {
-        crate::output::remove_stale_temps(&path);
-        let text = done.scenario.to_toml()?;
-        crate::output::write_atomic_bytes(&path, text.as_bytes())?;
+        write_text(&path, &done.scenario.to_toml()?)?;
         println!("  wrote {}", path.display());
     }
     if let Some(path) = json {
@@ -685,12 +675,26 @@ fn fly(command: FlyCommand) -> Result<(), Box<dyn std::error::Error>> {
             "density": done.density,
             "rounds": done.rounds,
         });
-        crate::output::remove_stale_temps(&path);
-        let text = serde_json::to_string_pretty(&report)?;
-        crate::output::write_atomic_bytes(&path, (text + "\n").as_bytes())?;
+        write_json(&path, &report)?;
         println!("  wrote {}", path.display());
     }
     Ok(())
+}
+
+/// Writes `text` to `path` whole (a failure leaves the file as it was), first removing what a
+/// killed earlier write left beside it.
+fn write_text(path: &std::path::Path, text: &str) -> Result<(), Box<dyn std::error::Error>> {
+    crate::output::remove_stale_temps(path);
+    crate::output::write_atomic_bytes(path, text.as_bytes())?;
+    Ok(())
+}
+
+/// Writes `report` to `path` as pretty JSON with a final newline ([`write_text`]).
+fn write_json(
+    path: &std::path::Path,
+    report: &impl serde::Serialize,
+) -> Result<(), Box<dyn std::error::Error>> {
+    write_text(path, &(serde_json::to_string_pretty(report)? + "\n"))
 }
 
 /// Refuses output path `path` of option `name` when its folder does not exist (checked before
@@ -822,8 +826,7 @@ fn li(command: LiCommand) -> Result<(), Box<dyn std::error::Error>> {
                 seed,
             };
             let text = crate::li::synthetic_csv(&f);
-            crate::output::remove_stale_temps(&out);
-            crate::output::write_atomic_bytes(&out, text.as_bytes())?;
+            write_text(&out, &text)?;
             println!(
                 "wrote {}: {tracks} synthetic tracks of {samples} samples (seed {seed})",
                 out.display()

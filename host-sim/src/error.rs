@@ -772,8 +772,12 @@ pub enum SimError {
         /// The temperature asked for (°C).
         celsius: f64,
     },
-    /// A scenario without two ren2016 (`fly`) insects to resize to a temperature.
-    #[error("scenario `{scenario}`: no ren2016 (`fly`) swarm of two or more insects to resize")]
+    /// A scenario without enough ren2016 (`fly`) insects to measure a density (more than 5:
+    /// each insect's 5th nearest neighbour).
+    #[error(
+        "scenario `{scenario}`: no ren2016 (`fly`) swarm of more than 5 insects to measure and \
+         resize"
+    )]
     TemperatureNoInsects {
         /// The scenario.
         scenario: String,

@@ -214,10 +214,10 @@ pub fn adjust(
         .filter(|g| is_fly(&g.model))
         .map(|g| g.count)
         .sum();
-    if target <= 0.0 {
+    if target.is_nan() || target <= 0.0 {
         return Err(SimError::TemperatureNoSwarm { celsius: t.celsius });
     }
-    if insects < 2 {
+    if insects as usize <= NEIGHBOURS {
         return Err(SimError::TemperatureNoInsects {
             scenario: sc.name.clone(),
         });
@@ -237,7 +237,7 @@ pub fn adjust(
     }
     let (mut k, mut rounds) = (1.0, Vec::new());
     let mut current = sc.clone();
-    for _ in 0..=t.rounds {
+    for round in 0..=t.rounds {
         let rho = measure(&current, &t.sampling)?;
         rounds.push((k, rho));
         progress(k, rho);
@@ -249,6 +249,9 @@ pub fn adjust(
                 density: rho,
                 rounds,
             });
+        }
+        if round == t.rounds {
+            break;
         }
         k *= (rho / target).cbrt();
         current = resized(sc, k)?;

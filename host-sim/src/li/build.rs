@@ -7,11 +7,11 @@ use swarm_core::{Fx, Vec3};
 use super::data::{GridShape, fixture_tables, gaussian_weights};
 use super::scenario::{li_params, route_of};
 use super::sim::{AnyLiGroup, LiGroup, LiSim, RouteRun};
+use crate::Result;
 use crate::scalar::SimScalar;
 use crate::scenario::{ScalarType, Scenario};
 use crate::spawn::draw;
 use crate::swarm3d::{World3d, reach};
-use crate::{Result, SimError};
 
 impl LiSim {
     /// The li2015 simulation of `scenario` (a 3D world, whose box is the container and the
@@ -28,43 +28,21 @@ impl LiSim {
     pub fn from_scenario(scenario: &Scenario, seed: u32) -> Result<LiSim> {
         let mut sim = LiSim::build(scenario, seed, |g| li_params(scenario, g), |_, _| Ok(()))?;
         for g in &scenario.groups {
-            let route = match route_of(scenario, g)? {
-                Some((route, weights)) => {
-                    // Every light's density must make valid parameters (checked once here,
-                    // so the switch during the run cannot fail).
-                    let p = li_params(scenario, g)?;
-                    let d = &p.density;
-                    let shape = GridShape {
-                        origin: [d.origin.x, d.origin.y, d.origin.z],
-                        cell: d.cell,
-                        dims: d.dims,
-                    };
-                    for w in &weights {
-                        let mut q = p.clone();
-                        q.density = shape.with(w)?;
-                        q.cast::<Fx>()
-                            .checked()
-                            .map_err(|e| SimError::GroupParams {
-                                group: g.name.clone(),
-                                source: e,
-                            })?;
-                    }
-                    let held = route
-                        .lights
-                        .iter()
-                        .zip(&weights)
-                        .map(|(l, w)| held_within(&shape, w, *l, route.reach))
-                        .collect();
-                    Some(RouteRun {
-                        route,
-                        weights,
-                        held,
-                        leg: 0,
-                        reached: Vec::new(),
-                    })
+            let route = route_of(scenario, g)?.map(|(route, shape, weights)| {
+                let held = route
+                    .lights
+                    .iter()
+                    .zip(&weights)
+                    .map(|(l, w)| held_within(&shape, w, *l, route.reach))
+                    .collect();
+                RouteRun {
+                    route,
+                    weights,
+                    held,
+                    leg: 0,
+                    reached: Vec::new(),
                 }
-                None => None,
-            };
+            });
             sim.measures.routes.push(route);
         }
         Ok(sim)

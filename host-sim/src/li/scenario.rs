@@ -36,8 +36,8 @@ use crate::space::{BeeObstacle, Shape3};
 use crate::{Result, SimError};
 
 /// The visiting-frequency grid of a group (§4.3): cells over the world's box, weighted by
-/// Gaussian bumps at `points` and along the `sketch` (spec §2.6), obstacle cells 0; neither
-/// given, every free cell alike.
+/// Gaussian bumps at `points` and along the `sketch` (spec §2.6), or drawn to the lights of a
+/// `route` in turn (Fig. 6), obstacle cells 0; none given, every free cell alike.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DensitySpec {
@@ -259,8 +259,10 @@ pub fn li_params(scenario: &Scenario, g: &Group) -> Result<LiParams<f32>> {
         _ => {
             let d = &table.density;
             let shape = GridShape::over(min, max, d.cells)?;
-            let weights = match &d.route {
-                Some(route) => route_weights(scenario, &shape, route)?.swap_remove(0),
+            let weights = match d.route.as_ref().and_then(|r| Some((r, r.lights.first()?))) {
+                Some((route, &first)) => {
+                    light_weights(&shape, first, route.lambda, &obstacles(scenario))?
+                }
                 None => {
                     let sigma = d.sigma().unwrap_or(1.0);
                     let mut points = d.points.clone();
@@ -287,35 +289,29 @@ pub fn li_params(scenario: &Scenario, g: &Group) -> Result<LiParams<f32>> {
     }))
 }
 
-/// The density weights of each light of `route` on `shape`, in order (at least one: a route
-/// without lights is refused by the rules).
-fn route_weights(scenario: &Scenario, shape: &GridShape, route: &Route) -> Result<Vec<Vec<u8>>> {
-    let walls = obstacles(scenario);
-    let mut out = route
-        .lights
-        .iter()
-        .map(|&l| light_weights(shape, l, route.lambda, &walls))
-        .collect::<Result<Vec<_>>>()?;
-    if out.is_empty() {
-        out.push(vec![0; shape.len()]);
-    }
-    Ok(out)
-}
-
-/// The lights of group `g`'s route and the density weights of each, when it has one.
+/// The route of group `g`, its density grid's cells and the weights of each light, in order,
+/// when it has one.
 ///
 /// # Errors
 ///
 /// As [`li_params`].
-pub fn route_of(scenario: &Scenario, g: &Group) -> Result<Option<(Route, Vec<Vec<u8>>)>> {
+pub fn route_of(
+    scenario: &Scenario,
+    g: &Group,
+) -> Result<Option<(Route, GridShape, Vec<Vec<u8>>)>> {
     let table = g.params_as::<LiTable>()?;
-    let Some(route) = table.density.route.filter(|_| table.density_given) else {
+    let Some(route) = table.density.route else {
         return Ok(None);
     };
     let (min, max) = scenario.bounds::<3>("li")?;
     let shape = GridShape::over(min, max, table.density.cells)?;
-    let weights = route_weights(scenario, &shape, &route)?;
-    Ok(Some((route, weights)))
+    let walls = obstacles(scenario);
+    let weights = route
+        .lights
+        .iter()
+        .map(|&l| light_weights(&shape, l, route.lambda, &walls))
+        .collect::<Result<Vec<_>>>()?;
+    Ok(Some((route, shape, weights)))
 }
 
 /// The rules of a li2015 group: no `nest`, `goal` or `threat`; a density grid a device holds,
@@ -388,10 +384,10 @@ pub(crate) fn check(c: &GroupCheck<'_>) -> std::result::Result<(), Problem> {
 /// and outside the obstacles, positive λ and reach, a share in (0, 1].
 fn route_rules(c: &GroupCheck<'_>, d: &DensitySpec, r: &Route) -> std::result::Result<(), Problem> {
     let at = |f: &str| format!("li.density.route.{f}");
-    if !d.points.is_empty() || !d.sketch.is_empty() {
+    if !d.points.is_empty() || !d.sketch.is_empty() || d.sigma.is_some() {
         return Err(c.problem(
             "li.density.route",
-            "a route is the density: give it without `points` or a `sketch`",
+            "a route is the density: give it without `points`, a `sketch` or `sigma`",
         ));
     }
     if r.lights.is_empty() {
@@ -420,6 +416,21 @@ fn route_rules(c: &GroupCheck<'_>, d: &DensitySpec, r: &Route) -> std::result::R
     for (field, v) in [("lambda", r.lambda), ("reach", r.reach)] {
         if !(v.is_finite() && v > 0.0) {
             return Err(c.problem(&at(field), format!("{v} is not a positive length")));
+        }
+    }
+    // A light's own cell must count as within reach (its centre is at most half a cell
+    // diagonal away), or no share of the density would be there to reach.
+    if let Ok(shape) = GridShape::over(min, max, d.cells) {
+        let half_diagonal = 0.5 * 3f32.sqrt() * shape.cell;
+        if r.reach < half_diagonal {
+            return Err(c.problem(
+                &at("reach"),
+                format!(
+                    "{} is less than half a density cell's diagonal ({half_diagonal}): \
+                     use fewer cells or a longer reach",
+                    r.reach
+                ),
+            ));
         }
     }
     if !(r.share > 0.0 && r.share <= 1.0) {

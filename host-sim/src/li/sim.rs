@@ -225,17 +225,16 @@ impl<S: SimScalar> LiGroup<S> {
         self.states.iter().filter(near).count()
     }
 
-    /// Draws the group to another density over the same grid. The weights of every light
-    /// were checked with the group's parameters when the run was built ([`LiSim`]'s
-    /// `from_scenario`), so this cannot fail.
+    /// Draws the group to another density over the same grid: a light's weights
+    /// ([`light_weights`](super::data::light_weights) on the group's own grid: one per cell,
+    /// its light's cell 255), which the parameters accept as they accepted the first light's.
     fn set_density(&mut self, weights: &[u8]) {
         let mut p: LiParams<S> = (*self.params).clone();
-        if let Ok(w) = heapless::Vec::from_slice(weights) {
-            p.density.weights = w;
-        }
-        if let Ok(checked) = p.checked() {
-            self.params = checked;
-        }
+        p.density.weights =
+            heapless::Vec::from_slice(weights).expect("a light's weights fill the group's grid");
+        self.params = p
+            .checked()
+            .expect("a light's density is valid as the first light's");
     }
 
     /// Counts every insect's cell of the group's density grid into `visits`.
@@ -351,17 +350,19 @@ impl Model3d for Li {
         if let Some(tv) = tv {
             summary.extra.insert("density_tv".into(), tv.into());
         }
-        let reached: Vec<Vec<u32>> = sim
-            .measures
-            .routes
+        let reached: serde_json::Map<String, serde_json::Value> = sim
+            .groups
             .iter()
-            .flatten()
-            .map(|r| r.reached.clone())
+            .zip(&sim.measures.routes)
+            .filter_map(|(g, r)| {
+                let name = by_scalar!(g, g => g.name.clone());
+                Some((name, r.as_ref()?.reached.clone().into()))
+            })
             .collect();
         if !reached.is_empty() {
             summary
                 .extra
-                .insert("lights_reached_at_step".into(), reached.clone().into());
+                .insert("lights_reached_at_step".into(), reached.into());
         }
         summary
             .extra

@@ -302,7 +302,11 @@ fn a_route_of_lights_follows_the_paths_and_is_checked() {
         bad.validate().unwrap_err().to_string()
     };
     let e = edit(&|_, t| t.density.sketch = vec![[1.0; 3], [2.0; 3]]);
-    assert!(e.contains("without `points` or a `sketch`"), "{e}");
+    assert!(e.contains("without `points`, a `sketch` or `sigma`"), "{e}");
+    let e = edit(&|_, t| t.density.sigma = Some(0.5));
+    assert!(e.contains("or `sigma`"), "{e}");
+    let e = edit(&|r, _| r.reach = 0.1);
+    assert!(e.contains("half a density cell"), "{e}");
     let e = edit(&|r, _| r.lights[1] = [8.0, 2.0, 3.0]);
     assert!(e.contains("lights[1]") && e.contains("block-b"), "{e}");
     let e = edit(&|r, _| r.share = 1.5);
