@@ -289,16 +289,16 @@ pub fn li_params(scenario: &Scenario, g: &Group) -> Result<LiParams<f32>> {
     }))
 }
 
+/// A route, its group's density grid and the weights of each light, in order.
+pub type RouteDensities = (Route, GridShape, Vec<Vec<u8>>);
+
 /// The route of group `g`, its density grid's cells and the weights of each light, in order,
 /// when it has one.
 ///
 /// # Errors
 ///
 /// As [`li_params`].
-pub fn route_of(
-    scenario: &Scenario,
-    g: &Group,
-) -> Result<Option<(Route, GridShape, Vec<Vec<u8>>)>> {
+pub fn route_of(scenario: &Scenario, g: &Group) -> Result<Option<RouteDensities>> {
     let table = g.params_as::<LiTable>()?;
     let Some(route) = table.density.route else {
         return Ok(None);
