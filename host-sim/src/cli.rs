@@ -574,12 +574,7 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             for (name, v) in &fitted.values {
                 println!("  {name} = {v:.6}");
             }
-            if let Some(path) = out {
-                write_text(&path, &fitted.scenario.to_toml()?)?;
-                println!("  wrote {}", path.display());
-            }
-            if let Some(path) = json {
-                let report = serde_json::json!({
+            let report = serde_json::json!({
                     "scenario": sc.name,
                     "reference": reference,
                     "scaling": scaling,
@@ -591,12 +586,9 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                         .collect::<serde_json::Map<_, _>>(),
                     "evaluations": fitted.evaluations,
                     "refused": fitted.refused,
-                    "history": fitted.history,
-                });
-                write_json(&path, &report)?;
-                println!("  wrote {}", path.display());
-            }
-            Ok(())
+                "history": fitted.history,
+            });
+            write_results(out, &fitted.scenario, json, &report)
         }
         Command::Fly { command } => fly(command),
         Command::Li { command } => li(command),
@@ -661,21 +653,32 @@ fn fly(command: FlyCommand) -> Result<(), Box<dyn std::error::Error>> {
         done.density,
         done.rounds.len()
     );
-    if let Some(path) = out {
-        write_text(&path, &done.scenario.to_toml()?)?;
-        println!("  wrote {}", path.display());
-    }
-    if let Some(path) = json {
-        let report = serde_json::json!({
+    let report = serde_json::json!({
             "scenario": sc.name,
             "celsius": celsius,
             "metres_per_unit": metres_per_unit,
             "target": done.target,
             "scale": done.scale,
             "density": done.density,
-            "rounds": done.rounds,
-        });
-        write_json(&path, &report)?;
+        "rounds": done.rounds,
+    });
+    write_results(out, &done.scenario, json, &report)
+}
+
+/// Writes a command's scenario to `out` and its report to `json`, each when asked for, saying
+/// so (`swarm fit`, `swarm fly temperature`).
+fn write_results(
+    out: Option<PathBuf>,
+    scenario: &crate::scenario::Scenario,
+    json: Option<PathBuf>,
+    report: &serde_json::Value,
+) -> Result<(), Box<dyn std::error::Error>> {
+    if let Some(path) = out {
+        write_text(&path, &scenario.to_toml()?)?;
+        println!("  wrote {}", path.display());
+    }
+    if let Some(path) = json {
+        write_json(&path, report)?;
         println!("  wrote {}", path.display());
     }
     Ok(())
