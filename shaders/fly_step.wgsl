@@ -664,6 +664,62 @@ fn fly_lp4(ps: ptr<function, FlyPlanes>, begin: u32, hard_in: u32, radius: S, st
     return result;
 }
 
+// ---- ORCA on a frame (orca3d::solve_frame, shared with li2015's li_step.wgsl) ----
+
+// ORCA's answer: the new velocity and whether the program was infeasible (the fallback acted).
+struct FlyOrca {
+    velocity: vec3<S>,
+    infeasible: bool,
+}
+
+// solve_frame (orca3d/mod.rs) past its checks (the state's, the frame's and `pref`'s, made by the
+// caller): the surfaces' planes, then those of the first min(orca_neighbours, 16 − surfaces)
+// neighbours but the insect itself (`agent`), every insect of radius `radius`; LP3 toward `pref`
+// within ‖v‖ ≤ max_speed, and when infeasible the fallback: LP4 (FLY_FALLBACK_LP4) or zero.
+fn fly_orca_frame(pos: vec3<S>, vel: vec3<S>, f: ptr<function, FlyFrame>, radius: S, tau: S,
+                  dt: S, max_speed: S, orca_neighbours: u32, fallback: u32, pref: vec3<S>,
+                  agent: u32) -> FlyOrca {
+    let inv_tau = s_div(S_ONE, tau);
+    let inv_dt = s_div(S_ONE, dt);
+    var ps: FlyPlanes;
+    for (var i = 0u; i < (*f).surfaces_len; i = i + 1u) {
+        var surface = (*f).surfaces[i];
+        // Normalised by `solve` (a checked unit normal always normalises).
+        surface.normal = geom_vec3_normalized(surface.normal).value;
+        ps.planes[ps.len] = fly_obstacle_plane(pos, radius, surface, inv_tau, inv_dt);
+        ps.len = ps.len + 1u;
+    }
+    let hard = ps.len;
+    // The others: the frame's neighbours but the insect itself, at most `room`, of which ORCA
+    // uses the first `orca_neighbours`.
+    let room = FLY_NEIGHBOURS - (*f).surfaces_len;
+    let used = min(room, orca_neighbours);
+    var taken = 0u;
+    for (var i = 0u; i < (*f).neighbours_len && taken < used; i = i + 1u) {
+        let n = (*f).neighbours[i];
+        if (n.id == agent) {
+            continue;
+        }
+        taken = taken + 1u;
+        let plane = fly_neighbour_plane(pos, vel, n.pos, n.vel, s_add(radius, radius),
+                                        inv_tau, inv_dt);
+        if (plane.is_some) {
+            ps.planes[ps.len] = plane.value;
+            ps.len = ps.len + 1u;
+        }
+    }
+    let lp = fly_lp3(&ps, max_speed, pref, false);
+    var out = FlyOrca(lp.result, false);
+    if (lp.fail < ps.len) {
+        out.infeasible = true;
+        out.velocity = vec3<S>();
+        if (fallback == FLY_FALLBACK_LP4) {
+            out.velocity = fly_lp4(&ps, lp.fail, hard, max_speed, lp.result);
+        }
+    }
+    return out;
+}
+
 // ---- the step (step.rs, Algorithm 1) ----
 
 // step_checked: the state and frame validated; F_int, F_fric, F_res, F_ξ into
@@ -693,45 +749,10 @@ fn fly_step_checked(s: FlyState, f: ptr<function, FlyFrame>, p: FlyParams, c: St
         return out;
     }
 
-    let radius = fly_orca_radius(p);
-    let inv_tau = s_div(S_ONE, p.tau);
-    let inv_dt = s_div(S_ONE, p.dt);
-    var ps: FlyPlanes;
-    for (var i = 0u; i < (*f).surfaces_len; i = i + 1u) {
-        var surface = (*f).surfaces[i];
-        // Normalised by `solve` (a checked unit normal always normalises).
-        surface.normal = geom_vec3_normalized(surface.normal).value;
-        ps.planes[ps.len] = fly_obstacle_plane(s.pos, radius, surface, inv_tau, inv_dt);
-        ps.len = ps.len + 1u;
-    }
-    let hard = ps.len;
-    // The others: the frame's neighbours but the insect itself, at most `room`, of which ORCA
-    // uses the first `orca_neighbours`.
-    let room = FLY_NEIGHBOURS - (*f).surfaces_len;
-    let used = min(room, p.orca_neighbours);
-    var taken = 0u;
-    for (var i = 0u; i < (*f).neighbours_len && taken < used; i = i + 1u) {
-        let n = (*f).neighbours[i];
-        if (n.id == c.agent) {
-            continue;
-        }
-        taken = taken + 1u;
-        let plane = fly_neighbour_plane(s.pos, s.vel, n.pos, n.vel, s_add(radius, radius),
-                                        inv_tau, inv_dt);
-        if (plane.is_some) {
-            ps.planes[ps.len] = plane.value;
-            ps.len = ps.len + 1u;
-        }
-    }
-    let lp = fly_lp3(&ps, p.max_speed, pref, false);
-    var vel = lp.result;
-    if (lp.fail < ps.len) {
-        out.infeasible = true;
-        vel = vec3<S>();
-        if (p.fallback == FLY_FALLBACK_LP4) {
-            vel = fly_lp4(&ps, lp.fail, hard, p.max_speed, lp.result);
-        }
-    }
+    let orca = fly_orca_frame(s.pos, s.vel, f, fly_orca_radius(p), p.tau, p.dt, p.max_speed,
+                              p.orca_neighbours, p.fallback, pref, c.agent);
+    out.infeasible = orca.infeasible;
+    let vel = orca.velocity;
     let next = FlyState(geom_vec3_add(s.pos, geom_vec3_mul(vel, p.dt)), vel, res.theta,
                         res.escaping);
     if (!geom_vec3_check(next.pos)) {

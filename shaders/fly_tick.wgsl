@@ -316,69 +316,6 @@ fn fly_tick_source(f: ptr<function, FlyFrame>, g: u32, kind: u32, me: vec3<S>, v
     return true;
 }
 
-// Nearest::offer (world.rs): keeps the FLY_SURFACES nearest surfaces offered, nearest first, the
-// earlier offer first on ties.
-fn fly_offer(f: ptr<function, FlyFrame>, keys: ptr<function, array<S, 4>>, d: S, s: FlySurface) {
-    let len = (*f).surfaces_len;
-    var at = len;
-    for (var k = 0u; k < len; k = k + 1u) {
-        if (d < (*keys)[k]) {
-            at = k;
-            break;
-        }
-    }
-    if (at >= FLY_SURFACES) {
-        return;
-    }
-    var last = len;
-    if (len == FLY_SURFACES) {
-        last = len - 1u;
-    }
-    for (var k = last; k > at; k = k - 1u) {
-        (*keys)[k] = (*keys)[k - 1u];
-        (*f).surfaces[k] = (*f).surfaces[k - 1u];
-    }
-    (*keys)[at] = d;
-    (*f).surfaces[at] = s;
-    (*f).surfaces_len = last + 1u;
-}
-
-// FlyWorld::surfaces: the closest point and outward normal of every active obstacle (distance 0
-// inside) and every container wall (inward normal; walls −x, +x, −y, +y, −z, +z) nearer than
-// `reach`, nearest first, at most FLY_SURFACES. (The CPU skips obstacles whose bounding box is
-// beyond the world's reach in f64: none of them could be nearer than `reach`.)
-fn fly_tick_surfaces(f: ptr<function, FlyFrame>, p: vec3<S>, reach: S) {
-    var keys: array<S, 4>;
-    for (var k = 0u; k < bee_world_obstacles(); k = k + 1u) {
-        let o = bee_world_obstacle(k);
-        if (!o.present) {
-            continue;
-        }
-        let s = bee_world_surface(o, p);
-        let d = select(s.distance, S_ZERO, s.inside);
-        if (d < reach) {
-            fly_offer(f, &keys, d, FlySurface(s.point, s.normal));
-        }
-    }
-    let lo = bee_world_min();
-    let hi = bee_world_max();
-    for (var k = 0u; k < 3u; k = k + 1u) {
-        for (var side = 0u; side < 2u; side = side + 1u) {
-            let w = select(lo[k], hi[k], side == 1u);
-            let sign = select(S_ONE, s_neg(S_ONE), side == 1u);
-            let d = s_max(s_mul(s_sub(p[k], w), sign), S_ZERO);
-            if (d < reach) {
-                var point = p;
-                point[k] = w;
-                // `with_axis(Vec3::zero(), k, sign)`, each component chosen (bee_world.wgsl).
-                let normal = vec3<S>(select(S_ZERO, sign, k == 0u), select(S_ZERO, sign, k == 1u),
-                                     select(S_ZERO, sign, k == 2u));
-                fly_offer(f, &keys, d, FlySurface(point, normal));
-            }
-        }
-    }
-}
-
 // fly_frame (sense.rs) of the insect in slot i of group g; returns whether it was truncated.
 fn fly_tick_frame(f: ptr<function, FlyFrame>, i: u32, g: u32, p: FlyParams, me: vec3<S>) -> bool {
     let near = fly_tick_near(i, me, p.r_att, g);

@@ -12,6 +12,7 @@ use crate::fly::{FlySim, bench_fly_world};
 use crate::gpu::Gpu;
 use crate::gpu::ant::engine::GpuAntSim;
 use crate::gpu::fly::engine::GpuFlySim;
+use crate::gpu::li::GpuLiSim;
 use crate::gpu::wang::engine::GpuWangSim;
 use crate::li::{LiSim, bench_li_world};
 use crate::scenario::{Backend, GroupCheck, Problem, ScalarType, Scenario};
@@ -152,7 +153,20 @@ pub const BUILTIN: &[ModelEntry] = &[
         check: crate::li::scenario::check,
         engine: |sc, seed| Ok(Box::new(LiSim::from_scenario(sc, seed)?)),
         bench_world: |n, seed, scalar| Box::new(bench_li_world(n, seed, scalar)),
-        gpu: None,
+        gpu: Some(GpuEntry {
+            engine: |sc, seed, gpu| {
+                Ok(Box::new(GpuLiSim::new(
+                    LiSim::from_scenario(sc, seed)?,
+                    gpu,
+                )?))
+            },
+            bench_world: |n, seed, scalar, gpu| {
+                Ok(Box::new(GpuLiSim::new(
+                    bench_li_world(n, seed, scalar),
+                    gpu,
+                )?))
+            },
+        }),
     },
 ];
 

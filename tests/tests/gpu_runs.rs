@@ -138,8 +138,24 @@ fn fly_scenarios_are_the_cpus_bytes() {
     }
 }
 
+/// Every built-in li scenario (`li-*`), found by its name, as the fly's: the lights of Fig. 6
+/// move each group's density on between steps (the host sees every step until the last).
+#[test]
+fn li_scenarios_are_the_cpus_bytes() {
+    let names: Vec<&str> = scenario::builtin_names()
+        .iter()
+        .copied()
+        .filter(|n| n.starts_with("li-"))
+        .collect();
+    assert!(names.contains(&"li-fig6-lights"), "{names:?}");
+    for name in names {
+        same_bytes_on_the_gpu(name);
+    }
+}
+
 /// Every built-in scenario is covered: a model's scenarios join the list above when its GPU
-/// engine lands (the fly model's by their prefix, `fly_scenarios_are_the_cpus_bytes`).
+/// engine lands (the fly and li models' by their prefix, `fly_scenarios_are_the_cpus_bytes`,
+/// `li_scenarios_are_the_cpus_bytes`).
 #[test]
 fn every_built_in_scenario_is_compared() {
     let here = include_str!("gpu_runs.rs");

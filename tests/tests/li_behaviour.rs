@@ -48,6 +48,8 @@ fn with_int(sc: &Scenario, name: &str, value: u32) -> Scenario {
 /// after the first 20 s.
 struct Measured {
     tv: f64,
+    /// The same of the accepted waypoints.
+    waypoint_tv: f64,
     centroid: f64,
     closest: f64,
     frames: Vec<Vec<[f64; 3]>>,
@@ -70,6 +72,7 @@ fn run(sc: &Scenario) -> Measured {
     }
     Measured {
         tv: sim.density_tv().expect("measured"),
+        waypoint_tv: sim.waypoint_tv().expect("measured"),
         centroid: sim.measures.means().1,
         closest,
         frames,
@@ -111,8 +114,17 @@ fn metropolis_hastings_matches_the_density_best() {
     let meso = run(&with_int(&sc, "sampling", 1));
     let random = run(&with_int(&sc, "sampling", 2));
     let report = format!(
-        "TV mh {:.3} meso {:.3} random {:.3}; centroid mh {:.3} meso {:.3} random {:.3}",
-        mh.tv, meso.tv, random.tv, mh.centroid, meso.centroid, random.centroid
+        "TV mh {:.3} meso {:.3} random {:.3}; waypoints' TV mh {:.3} meso {:.3} random {:.3}; \
+         centroid mh {:.3} meso {:.3} random {:.3}",
+        mh.tv,
+        meso.tv,
+        random.tv,
+        mh.waypoint_tv,
+        meso.waypoint_tv,
+        random.waypoint_tv,
+        mh.centroid,
+        meso.centroid,
+        random.centroid
     );
     eprintln!("{report}");
     assert!(mh.tv < meso.tv - 0.2, "{report}");

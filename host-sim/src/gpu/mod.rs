@@ -22,9 +22,11 @@ mod context;
 pub mod fly;
 pub mod grid;
 pub mod kernel;
+pub mod li;
 pub mod shaders;
 pub mod space;
 pub mod status;
+pub mod swarm3d;
 #[cfg(test)]
 mod tests;
 pub mod wang;

@@ -370,7 +370,39 @@ pub const FLY_STEP: Module = Module {
 pub const FLY_TICK: Module = Module {
     name: "fly_tick",
     source: include_str!("../../../shaders/fly_tick.wgsl"),
-    uses: &[&DISPATCH, &FLY_STEP, &BEE_SENSE, &SPACE],
+    uses: &[&DISPATCH, &FLY_STEP, &FLY_SURFACES, &SPACE],
+    over_scalar: true,
+};
+
+/// The obstacle surfaces of a 3D insect's frame (`World3d::surfaces`: every obstacle and wall
+/// within ORCA's reach, nearest first), into the fly's frame; the ren2016 and li2015 ticks
+/// sense them alike.
+pub const FLY_SURFACES: Module = Module {
+    name: "fly_surfaces",
+    source: include_str!("../../../shaders/fly_surfaces.wgsl"),
+    uses: &[&FLY_STEP, &BEE_SENSE],
+    over_scalar: true,
+};
+
+/// The li2015 insect: [`swarm_core::li`] (`core-nostd/src/li/`: the learned tables' draws,
+/// the density grid, Algorithm 1 with the Metropolis-Hastings screening, the step) over the
+/// scalar (`li_step_checked`), on the fly's 3D ORCA and frame validation; bit for bit over
+/// `Fx`.
+pub const LI_STEP: Module = Module {
+    name: "li_step",
+    source: include_str!("../../../shaders/li_step.wgsl"),
+    uses: &[&FLY_STEP],
+    over_scalar: true,
+};
+
+/// The li2015 tick of the GPU engine ([`GpuLiSim`](crate::gpu::li::GpuLiSim)): the kernels
+/// `li_tick_cells_main` (the grid's cells), `li_tick_step_main` (the frame of `li_frame` on the
+/// GPU grid and the world's words, then `li_step_checked`) and `li_tick_commit_main` (the
+/// world's corrections, counted; the first refusal kept).
+pub const LI_TICK: Module = Module {
+    name: "li_tick",
+    source: include_str!("../../../shaders/li_tick.wgsl"),
+    uses: &[&DISPATCH, &LI_STEP, &FLY_SURFACES, &SPACE],
     over_scalar: true,
 };
 
@@ -419,6 +451,9 @@ pub const ALL: &[&Module] = &[
     &WANG_TICK,
     &FLY_STEP,
     &FLY_TICK,
+    &FLY_SURFACES,
+    &LI_STEP,
+    &LI_TICK,
     &GRID,
 ];
 

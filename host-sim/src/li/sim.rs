@@ -186,6 +186,10 @@ pub struct LiMeasures {
     /// Visits of each cell of each group's density grid (every insect, every measured step):
     /// the accumulated density of Fig. 4, by group.
     pub visits: Vec<Vec<u64>>,
+    /// The cells of the waypoints accepted (every arrival that accepted one, every measured
+    /// step): the density the waypoint chain itself accumulates (the spec's prototype of
+    /// L-T7 measured this one), by group.
+    pub waypoints: Vec<Vec<u64>>,
     /// Each group's progress along its route of lights (Fig. 6), for the groups with one.
     pub routes: Vec<Option<RouteRun>>,
 }
@@ -237,29 +241,45 @@ impl<S: SimScalar> LiGroup<S> {
             .expect("a light's density is valid as the first light's");
     }
 
-    /// Counts every insect's cell of the group's density grid into `visits`.
-    fn visit(&self, visits: &mut Vec<u64>) {
+    /// Counts every insect's cell of the group's density grid into `visits`, and the cell of
+    /// every waypoint accepted at the last step into `waypoints`.
+    fn visit(&self, visits: &mut Vec<u64>, waypoints: &mut Vec<u64>) {
         let d = &self.params.density;
         visits.resize(d.weights.len(), 0);
+        waypoints.resize(d.weights.len(), 0);
         let Ok(grid) = Density::new(d.origin, d.cell, d.dims, &d.weights) else {
             return;
         };
-        for s in &self.states {
+        for (s, decision) in self.states.iter().zip(&self.decisions) {
             if let Some(i) = cell_index(&grid, d.dims, s.pos) {
                 visits[i] += 1;
+            }
+            if decision.accepted
+                && let Some(i) = cell_index(&grid, d.dims, s.waypoint)
+            {
+                waypoints[i] += 1;
             }
         }
     }
 }
 
 impl LiSim {
-    /// The accumulated-density total variation to the target (L-T7), the groups' weighted by
-    /// their insects; `None` before any measured step.
+    /// The accumulated-density total variation to the target (L-T7) of the insects'
+    /// positions, the groups' weighted by their insects; `None` before any measured step.
     pub fn density_tv(&self) -> Option<f64> {
+        self.tv_of(&self.measures.visits)
+    }
+
+    /// The same of the waypoints accepted ([`LiMeasures::waypoints`]); `None` before any.
+    pub fn waypoint_tv(&self) -> Option<f64> {
+        self.tv_of(&self.measures.waypoints)
+    }
+
+    fn tv_of(&self, counts: &[Vec<u64>]) -> Option<f64> {
         let mut sum = 0.0;
         let mut n = 0usize;
         for (k, g) in self.groups.iter().enumerate() {
-            let visits = self.measures.visits.get(k)?;
+            let visits = counts.get(k)?;
             let (tv, len) = by_scalar!(g, g => (
                 total_variation(visits, &g.params.density.weights),
                 g.states.len(),
@@ -283,13 +303,17 @@ impl Model3d for Li {
     /// Adds this step to the accumulated density, the polarisation and the distance to the
     /// centroid.
     fn measure(sim: &mut LiSim) {
+        // In id order: the same sums whatever the slots (a GPU engine never reorders them).
+        let polarisation = crate::eval::frame_polarisation(&sim.velocities_by_id());
+        let centroid = mean_centroid_distance(&sim.positions_by_id());
         let m = &mut sim.measures;
         m.visits.resize(sim.groups.len(), Vec::new());
-        for (g, visits) in sim.groups.iter().zip(&mut m.visits) {
-            by_scalar!(g, g => g.visit(visits));
+        m.waypoints.resize(sim.groups.len(), Vec::new());
+        for ((g, visits), waypoints) in sim.groups.iter().zip(&mut m.visits).zip(&mut m.waypoints) {
+            by_scalar!(g, g => g.visit(visits, waypoints));
         }
-        m.polarisation += crate::eval::frame_polarisation(&sim.world.sensed.vel);
-        m.centroid_distance += mean_centroid_distance(&sim.world.sensed.pos);
+        m.polarisation += polarisation;
+        m.centroid_distance += centroid;
         m.steps += 1;
     }
     /// A group whose share of insects has reached its current light moves on to the next one:
@@ -349,6 +373,11 @@ impl Model3d for Li {
         }
         if let Some(tv) = tv {
             summary.extra.insert("density_tv".into(), tv.into());
+        }
+        if let Some(tv) = sim.waypoint_tv() {
+            summary
+                .extra
+                .insert("waypoint_density_tv".into(), tv.into());
         }
         let reached: serde_json::Map<String, serde_json::Value> = sim
             .groups

@@ -50,9 +50,7 @@ pub const REGION_CAVE: u32 = 2;
 /// [`GROUP_GOAL`] or [`GROUP_THREAT`] of a group without one.
 pub const NO_SOURCE: u32 = u32::MAX;
 
-/// A slot's flag word: bit 0 the world put the insect out of an obstacle, bit 1 back into the
-/// container (`FlyGroup::corrected`), and this bit: its frame was truncated.
-pub const FLAG_TRUNCATED: u32 = 4;
+pub use crate::gpu::swarm3d::FLAG_TRUNCATED;
 
 /// The WGSL constants of the layout and their values (checked against `fly_tick.wgsl` by a
 /// test).

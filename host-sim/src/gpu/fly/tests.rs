@@ -13,7 +13,7 @@ use swarm_core::orca3d::RVO_EPSILON;
 use swarm_core::rand::stream;
 use swarm_core::{Fx, Scalar, Vec3};
 
-use super::engine::{GpuFlySim, WGSL_SHARED, modules};
+use super::engine::{GpuFlySim, modules, wgsl_shared};
 use super::layout::{self, FIELDS, WGSL_CONSTANTS, status_error, status_of};
 use crate::engine::{Engine, apply_due_events};
 use crate::fly::{FlyGroup, FlySim, bench_fly_world};
@@ -407,7 +407,9 @@ fn the_kernels_are_valid_wgsl() {
 fn the_shaders_constants_are_rusts() {
     let wgsl = format!("{}{}", FLY_TICK.source, FLY_STEP.source);
     assert_constants(&wgsl, WGSL_CONSTANTS, true);
-    assert_constants(&wgsl, WGSL_SHARED, true);
+    let shared = wgsl_shared();
+    let shared: Vec<(&str, u32)> = shared.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+    assert_constants(&wgsl, &shared, true);
     let step: &[(&str, u32)] = &[
         ("FLY_NEIGHBOURS", WIRE_FLY_NEIGHBOURS as u32),
         ("FLY_SURFACES", WIRE_FLY_SURFACES as u32),

@@ -311,7 +311,7 @@ pub(crate) struct StatusWords {
     pub(crate) file: &'static str,
     /// The prefix of the fields' constants (`ANT`: `ANT_FIELD_STATE_POS`).
     pub(crate) prefix: &'static str,
-    /// The fields by code (0 is no field).
+    /// The fields by code (0 is no field, nor is an empty name).
     pub(crate) fields: &'static [&'static str],
     /// The kinds of error the kernels write (the first of `NonFinite`, `OutOfRange`,
     /// `Inconsistent`).
@@ -331,6 +331,9 @@ impl StatusWords {
         use swarm_core::Error;
         let (status_of, status_error) = (self.status_of, self.status_error);
         for (code, &field) in self.fields.iter().enumerate().skip(1) {
+            if field.is_empty() {
+                continue; // a code the model does not use
+            }
             let name = field.replace('.', "_").to_uppercase();
             let decl = format!(
                 "const {}_FIELD_{name}: u32 = {code}u; // \"{field}\"",
