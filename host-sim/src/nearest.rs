@@ -34,7 +34,7 @@ pub(crate) struct Selected<const K: usize> {
 
 impl<const K: usize> Selected<K> {
     pub(crate) fn new() -> Self {
-        const { assert!(K + SCAN <= KEYED) };
+        const { assert!(K >= 1 && K + SCAN <= KEYED) };
         Selected {
             items: [(0, 0); K],
             len: 0,
@@ -50,24 +50,37 @@ impl<const K: usize> Selected<K> {
     /// Merges buffered `(squared distance order bits, slot)` candidates: keeps the `K`
     /// smallest `(distance, tie(slot))`.
     fn merge(&mut self, cands: &[(u32, u32)], tie: &impl Fn(u32) -> u32) {
-        if cands.is_empty() {
-            return;
-        }
         let mut keyed = [(0u64, 0u32); KEYED];
         keyed[..self.len].copy_from_slice(&self.items[..self.len]);
+        // Once K are kept, a candidate not nearer than the K-th cannot be kept.
+        let worst = if self.len == K {
+            self.items[K - 1].0
+        } else {
+            u64::MAX
+        };
         let mut n = self.len;
         for &(d, j) in cands {
-            keyed[n] = (key(d, tie(j)), j);
-            n += 1;
+            let k = key(d, tie(j));
+            if k < worst {
+                keyed[n] = (k, j);
+                n += 1;
+            }
         }
-        self.take(&mut keyed[..n]);
+        if n > self.len {
+            self.take(&mut keyed[..n]);
+        }
     }
 
-    /// Keeps the `K` smallest of `keyed` (keys are unique: the tie keys are).
+    /// Keeps the `K` smallest of `keyed`, sorted (keys are unique: the tie keys are): the
+    /// K-th found first, then only those before it sorted.
     fn take(&mut self, keyed: &mut [(u64, u32)]) {
-        keyed.sort_unstable_by_key(|e| e.0);
+        if keyed.len() > K {
+            keyed.select_nth_unstable_by_key(K - 1, |e| e.0);
+        }
         self.len = keyed.len().min(K);
-        self.items[..self.len].copy_from_slice(&keyed[..self.len]);
+        let kept = &mut keyed[..self.len];
+        kept.sort_unstable_by_key(|e| e.0);
+        self.items[..self.len].copy_from_slice(kept);
     }
 }
 

@@ -1,5 +1,5 @@
 //! The ren2016 simulation on the GPU: [`GpuFlySim`], the generic 3D engine
-//! ([`GpuSwarm3d`](crate::gpu::swarm3d::GpuSwarm3d)) over `shaders/fly_tick.wgsl`: the cells
+//! ([`GpuSwarm3d`]) over `shaders/fly_tick.wgsl`: the cells
 //! kernel, the GPU grid's sort, the step kernel (the frame of `fly/sense.rs`, then
 //! `swarm_core::fly::step_checked` with its 3D ORCA) and the commit kernel (the world's
 //! corrections, counted with atomics). In fixed point every word is the CPU engine's.
