@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Runs every test of the project: formatting, clippy, docs, the workspace's unit, property and
 # integration tests (the GPU backend's on whatever Vulkan adapter there is, lavapipe without a
-# GPU), and the no_std firmware images built for real Cortex-M targets and run in QEMU.
+# GPU), the Python package's tests (scripts/python-test.sh: pip installs maturin, numpy and
+# pytest into target/python-venv), and the no_std firmware images built for real Cortex-M
+# targets and run in QEMU.
 # Installs the system packages it needs with apt-get when they are missing.
 #
 #   scripts/test.sh            everything
@@ -59,8 +61,16 @@ have_vulkan() {
         compgen -G '/usr/share/vulkan/icd.d/*.json' >/dev/null
 }
 have_vulkan || need_pkgs+=(mesa-vulkan-drivers libvulkan1)
-# docs/protocol.md's reference appendices are Python.
+# docs/protocol.md's reference appendices are Python; the Python package builds into a venv.
 command -v python3 >/dev/null 2>&1 || need_pkgs+=(python3)
+have_venv() {
+    local d ok
+    d=$(mktemp -d) && python3 -m venv "$d/v" >/dev/null 2>&1
+    ok=$?
+    rm -rf "$d"
+    return $ok
+}
+have_venv || need_pkgs+=(python3-venv)
 
 firmware_ok=1
 if ((${#need_pkgs[@]} > 0)); then
@@ -90,6 +100,7 @@ stage "swarm-core with feature small (the ant node's size options) passes its un
 stage "cargo doc (warnings are errors)" env RUSTDOCFLAGS="-D warnings" cargo doc -q --workspace --no-deps
 stage "docs/protocol.md: the Python reference appendices run and every assertion holds" python3 scripts/protocol-reference.py
 stage "cargo test --workspace (unit, property, integration, doc tests)" cargo test --workspace --profile ci
+stage "python: the swarm package (maturin wheel into a venv, pytest)" scripts/python-test.sh
 
 if ((QUICK == 1)); then
     warn "--quick: SKIPPING the firmware build and QEMU tests"

@@ -34,7 +34,7 @@ fn fly_offer(f: ptr<function, FlyFrame>, keys: ptr<function, array<S, 4>>, d: S,
 // inside) and every container wall (inward normal; walls −x, +x, −y, +y, −z, +z) nearer than
 // `reach`, nearest first, at most FLY_SURFACES. (The CPU skips obstacles whose bounding box is
 // beyond the world's reach in f64: none of them could be nearer than `reach`.)
-fn fly_tick_surfaces(f: ptr<function, FlyFrame>, p: vec3<S>, reach: S) {
+fn fly_surfaces_sense(f: ptr<function, FlyFrame>, p: vec3<S>, reach: S) {
     var keys: array<S, 4>;
     for (var k = 0u; k < bee_world_obstacles(); k = k + 1u) {
         let o = bee_world_obstacle(k);

@@ -329,7 +329,7 @@ fn fly_tick_frame(f: ptr<function, FlyFrame>, i: u32, g: u32, p: FlyParams, me: 
     if (!fly_tick_source(f, g, FLY_STIMULUS_PREDATOR, me, vel, p.r_res, r2)) {
         fly_tick_source(f, g, FLY_STIMULUS_TARGET, me, vel, p.r_res, r2);
     }
-    fly_tick_surfaces(f, me, fly_reach(p));
+    fly_surfaces_sense(f, me, fly_reach(p));
     return near.within > FLY_NEIGHBOURS;
 }
 

@@ -17,6 +17,10 @@
 const LI_SAMPLING_MH: u32 = 0u;
 const LI_SAMPLING_RANDOM: u32 = 2u;
 
+// BINS (params.rs): the most bins of a learned table; 7 halvings find a bin among 64.
+const LI_BINS: u32 = 64u;
+const LI_SEARCH_STEPS: u32 = 7u;
+
 // The random streams of the model (core-nostd/src/rand.rs, stream::LI_*).
 const RAND_LI_LENGTH: u32 = 0x50u;
 const RAND_LI_TURN: u32 = 0x51u;
@@ -147,7 +151,7 @@ fn li_sample(g: u32, t: u32, u: S) -> S {
     let cdf = t + 3u;
     var a = 0u;
     var b = m;
-    for (var step = 0u; step < 8u && a < b; step = step + 1u) {
+    for (var step = 0u; step < LI_SEARCH_STEPS && a < b; step = step + 1u) {
         let mid = (a + b) / 2u;
         if (li_group_s(g, cdf + mid) <= u) {
             a = mid + 1u;
@@ -170,8 +174,9 @@ fn li_sample(g: u32, t: u32, u: S) -> S {
 
 // ---- the density (density.rs) ----
 
-// Density::cell_of and Density::at for group g: w_c of the cell holding p, 0 outside the grid.
-fn li_density_at(g: u32, p: vec3<S>) -> u32 {
+// Density::cell_of for group g: the flat index (x fastest) of the cell holding p, −1 outside
+// the grid.
+fn li_density_cell(g: u32, p: vec3<S>) -> i32 {
     let d = LI_GROUP_DENSITY;
     let origin = li_group_vec3(g, d);
     let cell = li_group_s(g, d + 3u);
@@ -181,35 +186,27 @@ fn li_density_at(g: u32, p: vec3<S>) -> u32 {
         let dim = li_group_u(g, d + 4u + k);
         let q = s_div(s_sub(p[k], origin[k]), cell);
         if (!s_is_finite(q) || q < S_ZERO) {
-            return 0u;
+            return -1;
         }
         let i = s_floor_i32(q);
         if (i < 0 || i >= i32(dim)) {
-            return 0u;
+            return -1;
         }
         index = index + u32(i) * stride;
         stride = stride * dim;
     }
-    let w = li_group_u(g, LI_GROUP_WEIGHTS + index / 4u);
-    return (w >> ((index % 4u) * 8u)) & 0xffu;
+    return i32(index);
 }
 
-// Whether p is inside group g's grid (`cell_of(p).is_some()`).
-fn li_density_inside(g: u32, p: vec3<S>) -> bool {
-    let d = LI_GROUP_DENSITY;
-    let origin = li_group_vec3(g, d);
-    let cell = li_group_s(g, d + 3u);
-    for (var k = 0u; k < 3u; k = k + 1u) {
-        let q = s_div(s_sub(p[k], origin[k]), cell);
-        if (!s_is_finite(q) || q < S_ZERO) {
-            return false;
-        }
-        let i = s_floor_i32(q);
-        if (i < 0 || i >= i32(li_group_u(g, d + 4u + k))) {
-            return false;
-        }
+// Density::at for group g: w_c of the cell holding p, 0 outside the grid.
+fn li_density_at(g: u32, p: vec3<S>) -> u32 {
+    let c = li_density_cell(g, p);
+    if (c < 0) {
+        return 0u;
     }
-    return true;
+    let index = u32(c);
+    let w = li_group_u(g, LI_GROUP_WEIGHTS + index / 4u);
+    return (w >> ((index % 4u) * 8u)) & 0xffu;
 }
 
 // ---- Algorithm 1 and its screening (waypoint.rs) ----
@@ -304,7 +301,7 @@ fn li_next_waypoint(g: u32, pos: vec3<S>, waypoint: vec3<S>, seg_start: vec3<S>,
             let u = rand_unit(c.seed, c.agent, c.step, RAND_LI_ACCEPT + shift);
             accepted = li_accept(w_x, li_density_at(g, q), u);
         } else {
-            accepted = li_density_inside(g, q);
+            accepted = li_density_cell(g, q) >= 0;
         }
         if (accepted) {
             return LiNext(q, pos, a + 1u, true);

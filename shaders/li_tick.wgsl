@@ -150,7 +150,7 @@ fn li_tick_frame(f: ptr<function, FlyFrame>, i: u32, g: u32, p: LiParams, me: ve
         (*f).neighbours[k] = FlyNeighbour(near.ties[k], li_tick_pos(j), li_tick_vel(j));
     }
     // reach (swarm3d/world.rs): ORCA's radius + τ·v0.
-    fly_tick_surfaces(f, me, s_add(li_orca_radius(p), s_mul(p.tau, p.speed)));
+    fly_surfaces_sense(f, me, s_add(li_orca_radius(p), s_mul(p.tau, p.speed)));
     return within > FLY_NEIGHBOURS;
 }
 

@@ -64,15 +64,7 @@ pub fn run_with(
     opts: &RunOptions,
     engine: impl FnOnce(&Scenario, u32) -> Result<Box<dyn Engine>> + Send,
 ) -> Result<RunReport> {
-    let mut sc = scenario.clone();
-    if let Some(steps) = opts.steps {
-        sc.set_steps(steps);
-    }
-    if let Some(backend) = opts.backend {
-        sc.backend = backend;
-    }
-    // The overrides go through the scenario's own rules (`--steps 0` like `steps = 0`).
-    sc.validate()?;
+    let sc = overridden(scenario, opts.steps, opts.backend)?;
     let seed = opts.seed.unwrap_or(sc.seed);
     let (pool, threads) = crate::par::pool(opts.threads)?;
     let stage = output::Staging::begin(&opts.out)?;
@@ -100,8 +92,23 @@ pub fn run_with(
                 if let Some(a) = engine.adapter() {
                     log.line(format_args!("backend gpu: {a}"))?;
                 }
-                let summary = summary_for(&sc, seed, threads, &*engine);
-                run_loop(&sc, engine, summary, opts, dir, &mut log)
+                let mut summary = summary_for(&sc, seed, threads, &*engine);
+                let mut rec = Recorder::new(&sc, dir, engine.agents())?;
+                drive(
+                    &sc,
+                    &mut *engine,
+                    &mut summary,
+                    opts.progress,
+                    &mut rec,
+                    &mut log,
+                )?;
+                let names = rec.finish(&sc, dir, &summary)?;
+                // The paths the files will have once the staging folder is swapped in.
+                let files: Vec<PathBuf> = names.iter().map(|n| opts.out.join(n)).collect();
+                for f in &files {
+                    log.line(format_args!("wrote {}", f.display()))?;
+                }
+                Ok(RunReport { summary, files })
             })
         });
     let (stage, error) = match result {
@@ -123,6 +130,99 @@ fn failed(opts: &RunOptions, log: Option<PathBuf>, error: SimError) -> SimError 
         target: opts.out.clone(),
         log,
         error: Box::new(error),
+    }
+}
+
+/// `scenario` with the overrides of a run (`steps`, `backend`), checked by the scenario's own
+/// rules (`--steps 0` like `steps = 0`).
+fn overridden(
+    scenario: &Scenario,
+    steps: Option<u32>,
+    backend: Option<Backend>,
+) -> Result<Scenario> {
+    let mut sc = scenario.clone();
+    if let Some(steps) = steps {
+        sc.set_steps(steps);
+    }
+    if let Some(backend) = backend {
+        sc.backend = backend;
+    }
+    sc.validate()?;
+    Ok(sc)
+}
+
+/// A run kept in memory ([`run_in_memory`]): its summary, every recorded frame (the first, every
+/// `outputs.every` ticks, and the last) and its log's lines.
+#[derive(Clone, Debug)]
+pub struct MemoryRun {
+    /// The summary `swarm run` writes to `summary.json`.
+    pub summary: Summary,
+    /// The recorded frames, in step order.
+    pub frames: Vec<Frame>,
+    /// The lines `swarm run` writes to `run.log` (without their times).
+    pub log: Vec<String>,
+}
+
+/// Runs `scenario` as [`run`] does (`opts.steps`, `seed`, `threads`, `backend`, `progress`),
+/// writing nothing: the frames stay in memory (the Python package's `swarm.run`). The same
+/// seed gives the same bits as [`run`]'s outputs.
+///
+/// # Errors
+///
+/// What [`run`] refuses before it starts, and what the run fails with.
+pub fn run_in_memory(scenario: &Scenario, opts: &RunOptions) -> Result<MemoryRun> {
+    let sc = overridden(scenario, opts.steps, opts.backend)?;
+    let seed = opts.seed.unwrap_or(sc.seed);
+    let (pool, threads) = crate::par::pool(opts.threads)?;
+    pool.install(|| {
+        let mut engine = crate::models::engine(&sc, seed)?;
+        let mut log = engine.notes();
+        log.extend(engine.adapter().map(|a| format!("backend gpu: {a}")));
+        let mut summary = summary_for(&sc, seed, threads, &*engine);
+        let mut frames = Vec::new();
+        drive(
+            &sc,
+            &mut *engine,
+            &mut summary,
+            opts.progress,
+            &mut frames,
+            &mut log,
+        )?;
+        Ok(MemoryRun {
+            summary,
+            frames,
+            log,
+        })
+    })
+}
+
+/// Where a run's recorded frames go: the output files ([`Recorder`]) or memory.
+trait Sink {
+    fn push(&mut self, frame: Frame) -> Result<()>;
+}
+
+impl Sink for Vec<Frame> {
+    fn push(&mut self, frame: Frame) -> Result<()> {
+        Vec::push(self, frame);
+        Ok(())
+    }
+}
+
+/// Where a run's log lines go: `run.log` ([`RunLog`]) or memory.
+trait Lines {
+    fn line(&mut self, msg: impl std::fmt::Display) -> Result<()>;
+}
+
+impl Lines for RunLog {
+    fn line(&mut self, msg: impl std::fmt::Display) -> Result<()> {
+        RunLog::line(self, msg)
+    }
+}
+
+impl Lines for Vec<String> {
+    fn line(&mut self, msg: impl std::fmt::Display) -> Result<()> {
+        self.push(msg.to_string());
+        Ok(())
     }
 }
 
@@ -154,27 +254,26 @@ fn summary_for(sc: &Scenario, seed: u32, threads: usize, engine: &dyn Engine) ->
 }
 
 /// The run loop every model shares: events before each tick, the tick, recording every
-/// `outputs.every` ticks (and the last), a progress bar, then the outputs. Trajectories stream
-/// to their files (in `dir`, the staging folder) as they are recorded; only the frames the
-/// pictures need stay in memory.
-fn run_loop(
+/// `outputs.every` ticks (and the last) into `rec`, a progress bar; the summary's timing and the
+/// model's closing figures. Trajectories stream to their files as they are recorded (a
+/// [`Recorder`] keeps only the frames the pictures need).
+fn drive(
     sc: &Scenario,
-    mut engine: Box<dyn Engine>,
-    mut summary: Summary,
-    opts: &RunOptions,
-    dir: &Path,
-    log: &mut RunLog,
-) -> Result<RunReport> {
+    engine: &mut dyn Engine,
+    summary: &mut Summary,
+    progress: bool,
+    rec: &mut impl Sink,
+    log: &mut impl Lines,
+) -> Result<()> {
     let every = sc.outputs.every.max(1);
-    let mut rec = Recorder::new(sc, dir, engine.agents())?;
     let first = engine.frame();
-    record(&mut summary, &first, 0, engine.state_names());
+    record(summary, &first, 0, engine.state_names());
     rec.push(first)?;
-    let bar = progress_bar(opts.progress, sc.steps as u64);
+    let bar = progress_bar(progress, sc.steps as u64);
     let mut pending = std::collections::VecDeque::new();
     let t0 = Instant::now();
     for step in 0..sc.steps {
-        for e in crate::engine::apply_due_events(&mut *engine, sc) {
+        for e in crate::engine::apply_due_events(engine, sc) {
             let (verb, object) = (e.action.verb(), e.action.object());
             log.line(format_args!("step {step}: {verb} {object}"))?;
         }
@@ -182,7 +281,7 @@ fn run_loop(
         for note in engine.notes() {
             log.line(format_args!("step {step}: {note}"))?;
         }
-        engine.after_tick(&mut summary);
+        engine.after_tick(summary);
         let done = step + 1;
         if done % every == 0 || done == sc.steps {
             // A GPU engine reads the step back while it goes on; the frame is written when
@@ -193,38 +292,31 @@ fn run_loop(
                 let Some(at) = pending.pop_front() else {
                     break;
                 };
-                take_frame(&mut *engine, &mut summary, &mut rec, at)?;
+                take_frame(engine, summary, rec, at)?;
             }
         }
         bar.inc(1);
     }
     while let Some(at) = pending.pop_front() {
-        take_frame(&mut *engine, &mut summary, &mut rec, at)?;
+        take_frame(engine, summary, rec, at)?;
     }
     engine.sync()?;
     bar.finish_and_clear();
     summary.wall_seconds = t0.elapsed().as_secs_f64();
     summary.agent_steps_per_s =
         engine.agents() as f64 * sc.steps as f64 / summary.wall_seconds.max(1e-9);
-    let closing = engine.closing(&mut summary);
+    let closing = engine.closing(summary);
     log.line(format_args!(
         "done: {} ticks in {:.2} s ({:.3e} agent-steps/s), {closing}",
         sc.steps, summary.wall_seconds, summary.agent_steps_per_s
-    ))?;
-    let names = rec.finish(sc, dir, &summary)?;
-    // The paths the files will have once the staging folder is swapped in.
-    let files: Vec<PathBuf> = names.iter().map(|n| opts.out.join(n)).collect();
-    for f in &files {
-        log.line(format_args!("wrote {}", f.display()))?;
-    }
-    Ok(RunReport { summary, files })
+    ))
 }
 
 /// Takes the engine's oldest snapshot, of step `at`, and records its frame.
 fn take_frame(
     engine: &mut dyn Engine,
     summary: &mut Summary,
-    rec: &mut Recorder,
+    rec: &mut impl Sink,
     at: u32,
 ) -> Result<()> {
     engine.take_snapshot()?;
@@ -288,28 +380,6 @@ impl Recorder {
         })
     }
 
-    fn push(&mut self, frame: Frame) -> Result<()> {
-        if let Some(w) = &mut self.csv {
-            w.push(&frame)?;
-        }
-        if let Some(w) = &mut self.npy {
-            w.push(&frame)?;
-        }
-        if let Some(w) = &mut self.attitude {
-            w.push(&frame)?;
-        }
-        if self.stride > 0 {
-            if self.count.is_multiple_of(self.stride) {
-                self.kept.push(frame);
-                self.last = None;
-            } else {
-                self.last = Some(frame);
-            }
-        }
-        self.count += 1;
-        Ok(())
-    }
-
     /// Writes the scene, commits the trajectory files, writes the summary and the pictures
     /// into `out`; returns the names of the files written, in that order.
     fn finish(mut self, sc: &Scenario, out: &Path, summary: &Summary) -> Result<Vec<&'static str>> {
@@ -342,6 +412,30 @@ impl Recorder {
             files.push(output::RUN_GIF);
         }
         Ok(files)
+    }
+}
+
+impl Sink for Recorder {
+    fn push(&mut self, frame: Frame) -> Result<()> {
+        if let Some(w) = &mut self.csv {
+            w.push(&frame)?;
+        }
+        if let Some(w) = &mut self.npy {
+            w.push(&frame)?;
+        }
+        if let Some(w) = &mut self.attitude {
+            w.push(&frame)?;
+        }
+        if self.stride > 0 {
+            if self.count.is_multiple_of(self.stride) {
+                self.kept.push(frame);
+                self.last = None;
+            } else {
+                self.last = Some(frame);
+            }
+        }
+        self.count += 1;
+        Ok(())
     }
 }
 
@@ -486,5 +580,54 @@ mod tests {
         assert!(rec.kept.len() >= MAX_PICTURE_FRAMES as usize / 2);
         assert_eq!(rec.kept.last().map(|f| f.step), Some(10_000));
         assert!(rec.kept.windows(2).all(|w| w[0].step < w[1].step));
+    }
+
+    /// A run kept in memory records what `run` writes: the same frames (positions.npy's
+    /// bytes) and summary, for any thread count; its log has the closing line.
+    #[test]
+    fn a_run_in_memory_is_the_written_run() {
+        let sc = crate::scenario::builtin("fly-fig8-escape").unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let opts = RunOptions {
+            out: dir.path().join("run"),
+            steps: Some(30),
+            seed: Some(4),
+            threads: Some(1),
+            backend: None,
+            progress: false,
+            warnings: Vec::new(),
+        };
+        let written = run(&sc, &opts).unwrap();
+        let kept = run_in_memory(
+            &sc,
+            &RunOptions {
+                threads: Some(2),
+                ..opts.clone()
+            },
+        )
+        .unwrap();
+        let steps: Vec<u32> = kept.frames.iter().map(|f| f.step).collect();
+        assert_eq!(steps, [0, 10, 20, 30]);
+        let agents = kept.frames[0].agents.len();
+        let mut npy = output::NpyWriter::create(dir.path().join("again.npy"), agents).unwrap();
+        for f in &kept.frames {
+            npy.push(f).unwrap();
+        }
+        npy.finish().unwrap();
+        let a = std::fs::read(opts.out.join(output::POSITIONS_NPY)).unwrap();
+        let b = std::fs::read(dir.path().join("again.npy")).unwrap();
+        assert!(a == b, "the frames differ from positions.npy");
+        let (mut x, mut y) = (written.summary, kept.summary);
+        for s in [&mut x, &mut y] {
+            (s.wall_seconds, s.agent_steps_per_s, s.threads) = (0.0, 0.0, 0);
+        }
+        assert_eq!(x, y);
+        assert!(kept.log.iter().any(|l| l.starts_with("done: 30 ticks")));
+        // Refused before it starts, as `run` is.
+        let zero = RunOptions {
+            steps: Some(0),
+            ..opts
+        };
+        assert!(run_in_memory(&sc, &zero).is_err());
     }
 }

@@ -1,7 +1,7 @@
 //! The li2015 behaviours (issue 17, spec §4 L-T7 to L-T9, L-T12) on the built-in Fig. 4
 //! scenario with its fixed seed (or `SWARM_TEST_SEED`), through the whole simulator (scenario
 //! → density grid → frames → the swarm-core step with ORCA), and the soft device mirroring
-//! the model. The numbers quoted were measured with seeds 1-3.
+//! the model. The numbers quoted were measured with the seeds each test names.
 //!
 //! The accumulated density is measured on the insects' positions over time (what the paper's
 //! Fig. 4 maps) and on their accepted waypoints (what the spec's waypoint-chain prototype

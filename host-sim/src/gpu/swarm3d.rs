@@ -17,7 +17,8 @@
 //! exchanges of the mirror (whose requests the host's sensing recomputes from the GPU's states,
 //! the replies being the GPU's), and a check for refusals every [`CHECK_EVERY`] ticks.
 //!
-//! The tick's atomics (`FLY_SHARED_*` in `fly_tick.wgsl`, [`SharedLayout`]): word 0 the
+//! The tick's atomics (`{MODEL}_SHARED_*` in the model's tick module, e.g. `FLY_SHARED_*`;
+//! [`SharedLayout`]): word 0 the
 //! tick's lowest refused slot, then the model's [`GpuModel3d::COUNTS`] counts of this tick
 //! (cleared by the host every tick), the first refusal kept (a flag, its step, slot and status
 //! word), and the counts since the start, each a `u64` as two words from an even word on.
@@ -44,16 +45,17 @@ use crate::space::SURFACE_OFFSET;
 use crate::swarm3d::{DecisionOf, Group3d, Model3d, StateOf, Step3d, Swarm3d, World3d};
 
 /// A slot's flag word: bit 0 the world put the insect out of an obstacle, bit 1 back into the
-/// container, and this bit: its frame was truncated (`FLY_FLAG_TRUNCATED`).
+/// container, and this bit: its frame was truncated (`{MODEL}_FLAG_TRUNCATED` in each tick
+/// module).
 pub const FLAG_TRUNCATED: u32 = 4;
 
 /// A 3D model whose tick runs on the GPU: its tick module and the word layout of its values.
 pub trait GpuModel3d: Model3d {
     /// The (name, entry point) of the cells, step and commit kernels.
     const KERNELS: [(&'static str, &'static str); 3];
-    /// Words of a state (`FLY_STATE_WORDS` in `fly_tick.wgsl`).
+    /// Words of a state (`{MODEL}_STATE_WORDS` in the tick module).
     const STATE_WORDS: usize;
-    /// Words of a decision (`FLY_DECISION_WORDS`).
+    /// Words of a decision (`{MODEL}_DECISION_WORDS`).
     const DECISION_WORDS: usize;
     /// The counts of the tick's atomics ([`SharedLayout`]), in the order of
     /// [`GpuModel3d::count_words`].
@@ -81,7 +83,9 @@ pub trait GpuModel3d: Model3d {
     /// The counts of words in the order of [`GpuModel3d::COUNTS`].
     fn counts_of(w: &[u64]) -> Self::Counts;
     /// Whether [`Model3d::between_steps`] needs the host to see every step (li2015: a group
-    /// on a route of lights); never by default.
+    /// on a route of lights); never by default. The engine runs `between_steps` only when this
+    /// says so: a model whose `between_steps` can change anything must say so whenever it can
+    /// (the tick-by-tick tests against the CPU engine catch one that does not).
     fn steps_on_host(_sim: &Swarm3d<Self>) -> bool {
         false
     }
@@ -267,6 +271,10 @@ pub struct GpuSwarm3d<M: GpuModel3d> {
     grid: GpuGrid,
     /// Ticks since the last check for refusals.
     unchecked: u32,
+    /// Whether the host view holds the GPU's words of the last tick (read back since).
+    fresh: bool,
+    /// The groups' words on the GPU.
+    group_words: Vec<u32>,
     /// A failure to report at the next fallible call (from [`Engine::after_tick`], which
     /// cannot).
     failed: Option<SimError>,
@@ -317,6 +325,7 @@ impl<M: GpuModel3d> GpuSwarm3d<M> {
         let tick = [n as u32, sim.step, sim.seed, offset];
         let shared = SharedLayout::new(M::COUNTS.len());
         let states = vec![0u32; n * M::STATE_WORDS];
+        let group_words = M::group_words(&sim);
         let buffer = |what: &'static str, words: &[u32]| storage(&gpu, what, words);
         let b = Buffers {
             tick: gpu
@@ -333,7 +342,7 @@ impl<M: GpuModel3d> GpuSwarm3d<M> {
             states: buffer("3d states", &states),
             next: buffer("3d next states", &states),
             decisions: buffer("3d decisions", &vec![0u32; n * M::DECISION_WORDS]),
-            groups: buffer("3d groups", &M::group_words(&sim)),
+            groups: buffer("3d groups", &group_words),
             slots: buffer("3d slots", &slots),
             shared: buffer("3d tick atomics", &vec![0u32; shared.words()]),
             flags: buffer("3d flags", &vec![0u32; n]),
@@ -354,6 +363,8 @@ impl<M: GpuModel3d> GpuSwarm3d<M> {
             bound,
             grid,
             unchecked: 0,
+            fresh: true,
+            group_words,
             failed: None,
         };
         out.push_states();
@@ -393,11 +404,14 @@ impl<M: GpuModel3d> GpuSwarm3d<M> {
         q.write_buffer(&self.b.shared, 0, bytemuck::cast_slice(&shared));
     }
 
-    /// Uploads the groups' words.
+    /// Uploads the groups' words if they changed.
     fn push_groups(&mut self) {
         let words = M::group_words(&self.sim);
-        let q = &self.gpu.queue;
-        q.write_buffer(&self.b.groups, 0, bytemuck::cast_slice(&words));
+        if words != self.group_words {
+            let q = &self.gpu.queue;
+            q.write_buffer(&self.b.groups, 0, bytemuck::cast_slice(&words));
+            self.group_words = words;
+        }
     }
 
     /// Uploads the host's world (obstacles and stimulus sources added, removed, moved) and the
@@ -434,11 +448,15 @@ impl<M: GpuModel3d> GpuSwarm3d<M> {
         )
     }
 
-    /// Reads the states, decisions, corrections and counts back into the host view.
+    /// Reads the states, decisions, corrections and counts back into the host view (once a
+    /// tick).
     fn pull(&mut self) -> Result<()> {
-        self.check()?;
-        self.seen()?.fill(&mut self.sim);
+        if self.fresh {
+            return self.failed.take().map_or(Ok(()), Err);
+        }
         let w = self.atomics()?;
+        self.check_words(&w)?;
+        self.seen()?.fill(&mut self.sim);
         let l = self.shared;
         let counts = 0..M::COUNTS.len();
         let last: Vec<u64> = counts.clone().map(|k| u64::from(w[l.count(k)])).collect();
@@ -447,16 +465,22 @@ impl<M: GpuModel3d> GpuSwarm3d<M> {
             .collect();
         self.sim.last = M::counts_of(&last);
         self.sim.total = M::counts_of(&total);
+        self.fresh = true;
         Ok(())
     }
 
     /// The first refusal of a controller since the start, as the CPU engine reports it.
     fn check(&mut self) -> Result<()> {
+        let w = self.atomics()?;
+        self.check_words(&w)
+    }
+
+    /// [`GpuSwarm3d::check`] on the atomics `w`, read back.
+    fn check_words(&mut self, w: &[u32]) -> Result<()> {
         if let Some(e) = self.failed.take() {
             return Err(e);
         }
         self.unchecked = 0;
-        let w = self.atomics()?;
         let kept = self.shared.kept();
         if w[kept] == 0 {
             return Ok(());
@@ -502,6 +526,7 @@ impl<M: GpuModel3d> GpuSwarm3d<M> {
                 .dispatch(&mut pass, &self.bound.commit, n.max(1));
         }
         self.gpu.queue.submit([enc.finish()]);
+        self.fresh = false;
         Ok(())
     }
 }

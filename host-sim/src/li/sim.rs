@@ -265,12 +265,14 @@ impl<S: SimScalar> LiGroup<S> {
 
 impl LiSim {
     /// The accumulated-density total variation to the target (L-T7) of the insects'
-    /// positions, the groups' weighted by their insects; `None` before any measured step.
+    /// positions, the groups' weighted by their insects; `None` before any measured step (or
+    /// for a group without insects).
     pub fn density_tv(&self) -> Option<f64> {
         self.tv_of(&self.measures.visits)
     }
 
-    /// The same of the waypoints accepted ([`LiMeasures::waypoints`]); `None` before any.
+    /// The same of the waypoints accepted ([`LiMeasures::waypoints`]); `None` until every
+    /// group has accepted one.
     pub fn waypoint_tv(&self) -> Option<f64> {
         self.tv_of(&self.measures.waypoints)
     }

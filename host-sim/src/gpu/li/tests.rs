@@ -282,6 +282,7 @@ fn the_shaders_constants_are_rusts() {
             u32::from(swarm_core::li::waypoint::SAMPLING_MH),
         ),
         ("LI_SAMPLING_RANDOM", u32::from(SAMPLING_RANDOM)),
+        ("LI_BINS", BINS as u32),
         ("RAND_LI_LENGTH", stream::LI_LENGTH),
         ("RAND_LI_TURN", stream::LI_TURN),
         ("RAND_LI_AZIMUTH", stream::LI_AZIMUTH),
@@ -289,6 +290,13 @@ fn the_shaders_constants_are_rusts() {
         ("RAND_LI_ACCEPT", stream::LI_ACCEPT),
     ];
     assert_constants(LI_STEP.source, step, true);
+    // The table's binary search halves the bins this many times.
+    let halvings = usize::BITS - BINS.leading_zeros();
+    assert!(
+        LI_STEP
+            .source
+            .contains(&format!("const LI_SEARCH_STEPS: u32 = {halvings}u;"))
+    );
     // The frame is the fly's, its capacity the li wire's; its field codes the fly's.
     assert_eq!(WIRE_LI_NEIGHBOURS, swarm_core::fly::WIRE_FLY_NEIGHBOURS);
     for (code, field) in FIELDS.iter().enumerate() {
