@@ -5,7 +5,7 @@
 #   scripts/python-test.sh [pytest arguments]
 #
 # Needs python3 with venv (scripts/test.sh installs python3-venv when missing) and the Python
-# package index, or a pip mirror, for maturin, numpy and pytest. The wheel builds in
+# package index, or a pip mirror, for maturin, numpy, pytest and ray. The wheel builds in
 # target/python; the tests compare with the `swarm` command built here (target/ci/swarm).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,7 +14,7 @@ if [[ ! -x $venv/bin/python ]]; then
     python3 -m venv "$venv"
 fi
 py="$venv/bin/python"
-"$py" -m pip install -q --disable-pip-version-check "maturin>=1.5,<2" "numpy>=1.21" "pytest>=7"
+"$py" -m pip install -q --disable-pip-version-check "maturin>=1.5,<2" "numpy>=1.21" "pytest>=7" "ray>=2.9"
 # The native crate is outside the workspace (maturin builds it): its own formatting and lints.
 cargo fmt --manifest-path python/Cargo.toml -- --check
 CARGO_TARGET_DIR="$PWD/target/python" cargo clippy -q --manifest-path python/Cargo.toml \

@@ -28,11 +28,14 @@ from . import _swarm
 from ._swarm import SwarmError
 
 __all__ = [
+    "Member",
     "Run",
     "Scenario",
     "SwarmError",
     "builtin_names",
+    "ensemble",
     "eval",
+    "members",
     "models",
     "run",
 ]
@@ -213,3 +216,6 @@ def eval(
         norm(reference), [norm(c) for c in candidates], dt=dt, scaling=scaling
     )
     return json.loads(text)
+
+
+from .ensemble import Member, ensemble, members  # noqa: E402  (it uses the names above)
