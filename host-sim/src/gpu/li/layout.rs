@@ -139,8 +139,8 @@ fn write_table<S: Word>(out: &mut Vec<u32>, t: &LiTable<S>) {
 pub fn write_group<S: Word + SimScalar>(out: &mut Vec<u32>, p: &LiParams<S>) {
     let start = out.len();
     out.extend([p.dt, p.speed, p.eps, p.radius, p.margin, p.tau, p.range].map(Word::to_word));
+    out.push(u32::from(p.patience));
     out.extend([p.orca_neighbours, p.proposals, p.sampling, p.fallback].map(u32::from));
-    out.insert(start + GROUP_PATIENCE, u32::from(p.patience));
     out.push(crate::nearest::squared::<S>(p.range.to_f32()).to_word());
     out.resize(start + GROUP_LENGTHS, 0);
     write_table(out, &p.lengths);
