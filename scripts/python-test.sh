@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
-# The `swarm` Python package (python/): builds it with maturin into a virtual environment
-# (target/python-venv, created when missing), then runs its pytest suite against it.
+# The `swarm` Python package (python/): installs it with pip (`pip install ./python`, which
+# builds it with maturin) into a virtual environment (target/python-venv, created when
+# missing), then runs its pytest suite against it.
 #
 #   scripts/python-test.sh [pytest arguments]
 #
 # Needs python3 with venv (scripts/test.sh installs python3-venv when missing) and the Python
-# package index, or a pip mirror, for maturin, numpy, pytest and ray. The wheel builds in
-# target/python; the tests compare with the `swarm` command built here (target/ci/swarm).
+# package index, or a pip mirror, for numpy, pytest, ray, cma and maturin (pip's build of
+# ./python). The wheel builds in target/python; the tests compare with the `swarm` command
+# built here (target/ci/swarm).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 venv=target/python-venv
@@ -14,15 +16,13 @@ if [[ ! -x $venv/bin/python ]]; then
     python3 -m venv "$venv"
 fi
 py="$venv/bin/python"
-"$py" -m pip install -q --disable-pip-version-check "maturin>=1.5,<2" "numpy>=1.21" "pytest>=7" "ray>=2.9"
+"$py" -m pip install -q --disable-pip-version-check "numpy>=1.21" "pytest>=7" "ray>=2.9" "cma>=3.2"
 # The native crate is outside the workspace (maturin builds it): its own formatting and lints.
 cargo fmt --manifest-path python/Cargo.toml -- --check
 CARGO_TARGET_DIR="$PWD/target/python" cargo clippy -q --manifest-path python/Cargo.toml \
     --all-targets -- -D warnings
-wheels=target/python/wheels
-rm -rf "$wheels"
-CARGO_TARGET_DIR="$PWD/target/python" "$venv/bin/maturin" build --quiet --release \
-    -m python/Cargo.toml --interpreter "$py" --out "$wheels"
-"$py" -m pip install -q --disable-pip-version-check --force-reinstall --no-deps "$wheels"/*.whl
+# The README's install command; maturin builds the wheel (release) in target/python.
+CARGO_TARGET_DIR="$PWD/target/python" "$py" -m pip install -q --disable-pip-version-check \
+    --force-reinstall --no-deps ./python
 cargo build -q --profile ci -p swarm-sim --bin swarm
 SWARM_EXE="$PWD/target/ci/swarm" "$py" -m pytest -q python/tests "$@"

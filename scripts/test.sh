@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Runs every test of the project: formatting, clippy, docs, the workspace's unit, property and
 # integration tests (the GPU backend's on whatever Vulkan adapter there is, lavapipe without a
-# GPU), the Python package's tests (scripts/python-test.sh: pip installs maturin, numpy and
-# pytest into target/python-venv), and the no_std firmware images built for real Cortex-M
+# GPU), the Python package's tests (scripts/python-test.sh: pip installs the package, numpy,
+# pytest, ray and cma into target/python-venv; a local Ray cluster runs ensembles and
+# calibrations), and the no_std firmware images built for real Cortex-M
 # targets and run in QEMU.
 # Installs the system packages it needs with apt-get when they are missing.
 #
@@ -100,7 +101,7 @@ stage "swarm-core with feature small (the ant node's size options) passes its un
 stage "cargo doc (warnings are errors)" env RUSTDOCFLAGS="-D warnings" cargo doc -q --workspace --no-deps
 stage "docs/protocol.md: the Python reference appendices run and every assertion holds" python3 scripts/protocol-reference.py
 stage "cargo test --workspace (unit, property, integration, doc tests)" cargo test --workspace --profile ci
-stage "python: the swarm package (maturin wheel into a venv, pytest)" scripts/python-test.sh
+stage "python: the swarm package (pip install ./python into a venv, pytest on a 2-worker Ray cluster)" scripts/python-test.sh
 
 if ((QUICK == 1)); then
     warn "--quick: SKIPPING the firmware build and QEMU tests"

@@ -35,8 +35,13 @@ struct Cli {
 enum Command {
     /// List the built-in scenarios.
     List,
-    /// List the models scenarios can use (built in and registered).
-    Models,
+    /// List the models scenarios can use (built in and registered), or one model's parameters:
+    /// the names a group's parameter table may set, the values each takes and its unit (what
+    /// `swarm fit` and the Python `swarm.calibrate` search within).
+    Models {
+        /// A model's name: list its parameters.
+        model: Option<String>,
+    },
     /// Run a scenario (a built-in name or a TOML file) and write its outputs.
     Run {
         /// Built-in scenario name (see `swarm list`) or path to a scenario file.
@@ -374,9 +379,17 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             }
             Ok(())
         }
-        Command::Models => {
+        Command::Models { model: None } => {
             for m in models::all() {
                 println!("{:<8} {}D  {}", m.name, m.dim, m.about);
+            }
+            Ok(())
+        }
+        Command::Models { model: Some(name) } => {
+            let m = models::get(&name)?;
+            println!("{} ({}D): {}", m.name, m.dim, m.about);
+            for spec in m.params {
+                println!("  {:<16} {spec}", spec.name);
             }
             Ok(())
         }

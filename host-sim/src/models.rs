@@ -4,6 +4,8 @@
 
 use std::sync::{PoisonError, RwLock};
 
+use swarm_core::model::{ModelParams, ParamSpec};
+
 use crate::ants::{AntSim, bench_ant_world};
 use crate::bees::{BeeSim, bench_bee_world};
 use crate::engine::Engine;
@@ -29,6 +31,11 @@ pub struct ModelEntry {
     pub about: &'static str,
     /// The dimension of its world: 2 (`dim = 2`, `[x, y]`) or 3.
     pub dim: usize,
+    /// Its parameter table ([`ModelParams::SPECS`]): every name a group's parameter table
+    /// may set and the values each may take (what calibration searches within).
+    ///
+    /// [`ModelParams::SPECS`]: swarm_core::model::ModelParams::SPECS
+    pub params: &'static [ParamSpec],
     /// The rules of one of its groups, after those every group follows: the objects it
     /// names, its parameter table ([`GroupCheck::params`]), the parameters' ranges
     /// ([`GroupCheck::check_params`]).
@@ -60,6 +67,7 @@ pub const BUILTIN: &[ModelEntry] = &[
         name: "ant",
         about: "ant foraging colonies (xiang2018), 2D",
         dim: 2,
+        params: <swarm_core::ant::AntParams<f32> as ModelParams>::SPECS,
         check: crate::ants::scenario::check,
         engine: |sc, seed| Ok(Box::new(AntSim::from_scenario(sc, seed)?)),
         bench_world: |n, seed, scalar| Box::new(bench_ant_world(n, seed, scalar)),
@@ -82,6 +90,7 @@ pub const BUILTIN: &[ModelEntry] = &[
         name: "bee",
         about: "bee swarms with visual roll-to-avoid (chen), 3D",
         dim: 3,
+        params: <swarm_core::bee::BeeParams<f32> as ModelParams>::SPECS,
         check: crate::bees::scenario::check,
         engine: |sc, seed| Ok(Box::new(BeeSim::from_scenario(sc, seed)?)),
         bench_world: |n, seed, scalar| Box::new(bench_bee_world(n, seed, scalar)),
@@ -105,6 +114,7 @@ pub const BUILTIN: &[ModelEntry] = &[
         about: "noise-aware insect swarms: curl noise, fast-marching navigation and minimum \
                 distance enforcement (wang2014), 3D",
         dim: 3,
+        params: <swarm_core::wang::WangParams<f32> as ModelParams>::SPECS,
         check: crate::wang::scenario::check,
         engine: |sc, seed| Ok(Box::new(WangSim::from_scenario(sc, seed)?)),
         bench_world: |n, seed, scalar| Box::new(bench_wang_world(n, seed, scalar)),
@@ -127,6 +137,7 @@ pub const BUILTIN: &[ModelEntry] = &[
         name: "fly",
         about: "force-based flying insects with 3D ORCA (ren2016), 3D",
         dim: 3,
+        params: <swarm_core::fly::FlyParams<f32> as ModelParams>::SPECS,
         check: crate::fly::scenario::check,
         engine: |sc, seed| Ok(Box::new(FlySim::from_scenario(sc, seed)?)),
         bench_world: |n, seed, scalar| Box::new(bench_fly_world(n, seed, scalar)),
@@ -150,6 +161,7 @@ pub const BUILTIN: &[ModelEntry] = &[
         about: "data-driven insects: waypoints from measured statistics, Metropolis-Hastings \
                 density control and 3D ORCA (li2015), 3D",
         dim: 3,
+        params: <swarm_core::li::LiParams<f32> as ModelParams>::SPECS,
         check: crate::li::scenario::check,
         engine: |sc, seed| Ok(Box::new(LiSim::from_scenario(sc, seed)?)),
         bench_world: |n, seed, scalar| Box::new(bench_li_world(n, seed, scalar)),

@@ -427,3 +427,19 @@ fn fly_temperature_writes_a_resized_scenario() {
         assert!(err.contains(says), "{celsius} °C: {err}");
     }
 }
+
+/// `swarm models NAME` prints the model's parameter table; an unknown name lists the known.
+#[test]
+fn models_lists_a_models_parameters() {
+    let out = ok(swarm().args(["models", "fly"]));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.starts_with("fly (3D)"), "{text}");
+    let gamma = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("gamma"))
+        .unwrap();
+    assert!(gamma.contains("a number in [0, 100] (1/unit)"), "{gamma}");
+    assert!(text.contains("orca_neighbours") && text.contains("an integer from 0 to 64"));
+    let err = fails(swarm().args(["models", "wasp"]));
+    assert!(err.contains("wasp") && err.contains("fly"), "{err}");
+}

@@ -10,12 +10,14 @@
 use std::path::{Path, PathBuf};
 
 use numpy::ndarray::{Array1, Array2, Array3};
-use numpy::{IntoPyArray, PyReadonlyArray3};
+use numpy::{IntoPyArray, PyArray3, PyReadonlyArray3};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyException, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use swarm_sim::eval::{Scaling, Tracks, evaluate, report};
+use swarm_core::model::Range;
+use swarm_sim::eval::{Scaling, Tracks, evaluate, report, samples};
+use swarm_sim::fit;
 use swarm_sim::output::Frame;
 use swarm_sim::run::{RunOptions, run_in_memory};
 use swarm_sim::scenario::{Backend, Scenario, check_steps};
@@ -106,6 +108,99 @@ fn per_agent<T: Copy, const K: usize>(
         .collect()
 }
 
+/// The options of a run into `out` with the overrides given.
+fn run_options(
+    out: PathBuf,
+    backend: Option<&str>,
+    seed: Option<u32>,
+    steps: Option<u32>,
+    threads: Option<usize>,
+) -> PyResult<RunOptions> {
+    if let Some(s) = steps {
+        check_steps(s, "steps").map_err(err)?;
+    }
+    Ok(RunOptions {
+        out,
+        steps,
+        seed,
+        threads,
+        backend: backend_of(backend)?,
+        progress: false,
+        warnings: Vec::new(),
+    })
+}
+
+/// Runs the scenario of JSON text `scenario` as `swarm run --out OUT` does (every output
+/// written whole into folder `out`, or nothing), the GIL released; returns the summary as
+/// JSON text.
+#[pyfunction]
+#[pyo3(signature = (scenario, source, out, *, backend=None, seed=None, steps=None, threads=None))]
+#[allow(clippy::too_many_arguments)]
+fn run_to(
+    py: Python<'_>,
+    scenario: &str,
+    source: Option<&str>,
+    out: PathBuf,
+    backend: Option<&str>,
+    seed: Option<u32>,
+    steps: Option<u32>,
+    threads: Option<usize>,
+) -> PyResult<String> {
+    let sc = from_json(scenario, source)?;
+    let opts = run_options(out, backend, seed, steps, threads)?;
+    let done = py.detach(|| swarm_sim::run::run(&sc, &opts)).map_err(err)?;
+    serde_json::to_string(&done.summary).map_err(err)
+}
+
+/// A tracks CSV file as `(positions, dt)`: a `frames × columns × 3` array, NaN where a
+/// column holds no insect, and the frame interval (`dt`, else the file's). Tracks share a
+/// column when they never meet and at least one frame lies between them (what tracking
+/// software gives when it loses an insect and numbers it anew): the array is as wide as the
+/// most insects seen at once, and every metric reads the same tracks from it.
+#[pyfunction]
+#[pyo3(signature = (path, dt=None))]
+fn read_tracks<'py>(
+    py: Python<'py>,
+    path: &str,
+    dt: Option<f64>,
+) -> PyResult<(Bound<'py, PyArray3<f64>>, f64)> {
+    let tracks = tracks_at(path, dt)?;
+    let mut runs: Vec<&Vec<(i64, [f64; 3])>> =
+        tracks.by_id.values().filter(|t| !t.is_empty()).collect();
+    runs.sort_by_key(|t| t[0].0);
+    let first = runs.first().map_or(0, |t| t[0].0);
+    // Each column's last frame; a track goes into the first column free before it.
+    let mut ends: Vec<i64> = Vec::new();
+    let mut placed = Vec::with_capacity(runs.len());
+    for t in &runs {
+        let (start, end) = (t[0].0, t[t.len() - 1].0);
+        let column = match ends.iter().position(|&e| e + 1 < start) {
+            Some(c) => c,
+            None => {
+                ends.push(end);
+                ends.len() - 1
+            }
+        };
+        ends[column] = end;
+        placed.push(column);
+    }
+    let last = runs
+        .iter()
+        .map(|t| t[t.len() - 1].0)
+        .max()
+        .unwrap_or(first - 1);
+    let frames = usize::try_from(last + 1 - first).unwrap_or(0);
+    let mut a = Array3::from_elem((frames, ends.len(), 3), f64::NAN);
+    for (t, column) in runs.iter().zip(placed) {
+        for &(k, p) in t.iter() {
+            for (d, v) in p.into_iter().enumerate() {
+                a[[(k - first) as usize, column, d]] = v;
+            }
+        }
+    }
+    Ok((a.into_pyarray(py), tracks.dt))
+}
+
 /// Runs the scenario of JSON text `scenario` (see [`from_json`]) with the overrides given,
 /// the GIL released; returns the recorded frames as arrays (`steps`, `positions`, `headings`,
 /// `labels`, `motions`, `roll`, `pitch`, `groups`), the summary as JSON text and the log's
@@ -124,17 +219,9 @@ fn run<'py>(
     progress: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let sc = from_json(scenario, source)?;
-    if let Some(s) = steps {
-        check_steps(s, "steps").map_err(err)?;
-    }
     let opts = RunOptions {
-        out: PathBuf::new(),
-        steps,
-        seed,
-        threads,
-        backend: backend_of(backend)?,
         progress,
-        warnings: Vec::new(),
+        ..run_options(PathBuf::new(), backend, seed, steps, threads)?
     };
     let done = py.detach(|| run_in_memory(&sc, &opts)).map_err(err)?;
     let frames = &done.frames;
@@ -210,6 +297,32 @@ fn tracks_at(path: &str, dt: Option<f64>) -> PyResult<Tracks> {
     Tracks::open(Path::new(path), dt).map_err(err)
 }
 
+/// `separate` or `reference`.
+fn scaling_of(name: &str) -> PyResult<Scaling> {
+    match name {
+        "separate" => Ok(Scaling::Separate),
+        "reference" => Ok(Scaling::Reference),
+        other => Err(PyValueError::new_err(format!(
+            "scaling {other:?}: `separate` or `reference`"
+        ))),
+    }
+}
+
+/// The tracks of argument `x` called `name`: a CSV path (frame interval `dt`, else the
+/// file's) or a `(positions, dt)` pair; with the name a report gives them.
+fn tracks_arg(x: &Bound<'_, PyAny>, name: String, dt: Option<f64>) -> PyResult<(Tracks, PathBuf)> {
+    if let Ok(path) = x.extract::<String>() {
+        return Ok((tracks_at(&path, dt)?, PathBuf::from(path)));
+    }
+    let (positions, step): (PyReadonlyArray3<'_, f64>, f64) = x.extract().map_err(|_| {
+        PyValueError::new_err(format!(
+            "{name}: a CSV path or a (positions, dt) pair of a frames × insects × 3 array of \
+             floats and the frame interval"
+        ))
+    })?;
+    Ok((tracks_of(&positions, step)?, PathBuf::from(name)))
+}
+
 /// The evaluation command's report (JSON text) of `candidates` against `reference`: each is
 /// a CSV path or a `(positions, dt)` pair; `scaling` is `separate` or `reference`.
 #[pyfunction]
@@ -220,32 +333,12 @@ fn evaluate_tracks(
     dt: Option<f64>,
     scaling: &str,
 ) -> PyResult<String> {
-    let scaling = match scaling {
-        "separate" => Scaling::Separate,
-        "reference" => Scaling::Reference,
-        other => {
-            return Err(PyValueError::new_err(format!(
-                "scaling {other:?}: `separate` or `reference`"
-            )));
-        }
-    };
-    let read = |x: &Bound<'_, PyAny>, name: String| -> PyResult<(Tracks, PathBuf)> {
-        if let Ok(path) = x.extract::<String>() {
-            return Ok((tracks_at(&path, dt)?, PathBuf::from(path)));
-        }
-        let (positions, step): (PyReadonlyArray3<'_, f64>, f64) = x.extract().map_err(|_| {
-            PyValueError::new_err(format!(
-                "{name}: a CSV path or a (positions, dt) pair of a frames × insects × 3 \
-                 array of floats and the frame interval"
-            ))
-        })?;
-        Ok((tracks_of(&positions, step)?, PathBuf::from(name)))
-    };
-    let (real, real_name) = read(reference, "reference".into())?;
+    let scaling = scaling_of(scaling)?;
+    let (real, real_name) = tracks_arg(reference, "reference".into(), dt)?;
     let mut sims = Vec::new();
     let mut names = Vec::new();
     for (i, c) in candidates.iter().enumerate() {
-        let (t, name) = read(c, format!("candidate {i}"))?;
+        let (t, name) = tracks_arg(c, format!("candidate {i}"), dt)?;
         sims.push(t);
         names.push(name);
     }
@@ -255,6 +348,187 @@ fn evaluate_tracks(
     let refs: Vec<&Tracks> = sims.iter().collect();
     let e = evaluate(&real, &refs, scaling);
     serde_json::to_string(&report(&real_name, &names, &e)).map_err(err)
+}
+
+/// Calibration's score E of `candidate` against `reference` (each a CSV path or a
+/// `(positions, dt)` pair): 1 − (1/7) Σ_φ E_φ, ren2016 Eq. 6 with Step 1's weights
+/// (`swarm_sim::fit::score`), each metric z-scored by `scaling`.
+#[pyfunction]
+#[pyo3(signature = (reference, candidate, *, dt=None, scaling="reference"))]
+fn score(
+    py: Python<'_>,
+    reference: &Bound<'_, PyAny>,
+    candidate: &Bound<'_, PyAny>,
+    dt: Option<f64>,
+    scaling: &str,
+) -> PyResult<f64> {
+    let scaling = scaling_of(scaling)?;
+    let (real, _) = tracks_arg(reference, "reference".into(), dt)?;
+    let (sim, _) = tracks_arg(candidate, "candidate".into(), dt)?;
+    Ok(py.detach(|| fit::score(&samples(&real), &sim, scaling)))
+}
+
+/// The positions of the scenario of JSON text `scenario` run with each seed of `seeds`
+/// (`swarm_sim::fit::record`): after `burn_in` ticks, every `every` ticks for `frames` frames,
+/// as a `frames × insects × 3` array (the runs' insects side by side, NaN where one was not
+/// there), the GIL released.
+#[pyfunction]
+#[pyo3(signature = (scenario, source=None, *, seeds, burn_in, frames, every=1, backend=None))]
+#[allow(clippy::too_many_arguments)]
+fn simulate<'py>(
+    py: Python<'py>,
+    scenario: &str,
+    source: Option<&str>,
+    seeds: Vec<u32>,
+    burn_in: u32,
+    frames: u32,
+    every: u32,
+    backend: Option<&str>,
+) -> PyResult<Bound<'py, PyArray3<f64>>> {
+    let mut sc = from_json(scenario, source)?;
+    if let Some(b) = backend_of(backend)? {
+        sc.backend = b;
+    }
+    check_steps(frames, "frames").map_err(err)?;
+    if every == 0 || seeds.is_empty() {
+        return Err(PyValueError::new_err(
+            "every needs at least 1 tick a frame and seeds at least one seed",
+        ));
+    }
+    let sampling = fit::Sampling {
+        burn_in,
+        frames,
+        every,
+        seeds,
+    };
+    let points = py.detach(|| fit::record(&sc, &sampling)).map_err(err)?;
+    let insects = points.iter().map(|p| p.0 + 1).max().unwrap_or(0) as usize;
+    let mut a = Array3::from_elem((frames as usize, insects, 3), f64::NAN);
+    for (id, k, p) in points {
+        for (d, v) in p.into_iter().enumerate() {
+            a[[k as usize, id as usize, d]] = v;
+        }
+    }
+    Ok(a.into_pyarray(py))
+}
+
+/// One row of a model's parameter table: name, `"real"` or `"int"`, low, high, whether low
+/// itself is excluded, unit.
+type ParamRow = (&'static str, &'static str, f64, f64, bool, &'static str);
+
+/// A model's parameter table: a [`ParamRow`] for each parameter a group's table may set.
+#[pyfunction]
+fn parameters(model: &str) -> PyResult<Vec<ParamRow>> {
+    let entry = swarm_sim::models::get(model).map_err(err)?;
+    Ok(entry
+        .params
+        .iter()
+        .map(|spec| match spec.range {
+            Range::Real { min, max, min_open } => (
+                spec.name,
+                "real",
+                f64::from(min.f32()),
+                f64::from(max.f32()),
+                min_open,
+                spec.unit,
+            ),
+            Range::Int { min, max } => (
+                spec.name,
+                "int",
+                f64::from(min),
+                f64::from(max),
+                false,
+                spec.unit,
+            ),
+        })
+        .collect())
+}
+
+/// The genetic algorithm of `swarm fit` (chen §VI's, `swarm_sim::fit::Ga`), asked and told
+/// one generation at a time so that a pool or a cluster scores the individuals.
+#[pyclass(module = "swarm._swarm")]
+struct GeneticAlgorithm(fit::Search);
+
+#[pymethods]
+impl GeneticAlgorithm {
+    #[new]
+    #[pyo3(signature = (ranges, *, population=None, generations=None, crossover=None, mutation=None, seed=1))]
+    fn new(
+        ranges: Vec<(f64, f64)>,
+        population: Option<usize>,
+        generations: Option<u32>,
+        crossover: Option<f64>,
+        mutation: Option<f64>,
+        seed: u32,
+    ) -> PyResult<Self> {
+        let d = fit::Ga::default();
+        let ga = fit::Ga {
+            population: population.unwrap_or(d.population),
+            generations: generations.unwrap_or(d.generations),
+            crossover: crossover.unwrap_or(d.crossover),
+            mutation: mutation.unwrap_or(d.mutation),
+            seed,
+        };
+        if ga.population < 2 || ga.generations == 0 {
+            return Err(PyValueError::new_err(format!(
+                "population {} and generations {}: at least 2 individuals and 1 generation",
+                ga.population, ga.generations
+            )));
+        }
+        for (name, p) in [("crossover", ga.crossover), ("mutation", ga.mutation)] {
+            if !(0.0..=1.0).contains(&p) {
+                return Err(PyValueError::new_err(format!(
+                    "{name} {p}: not a probability"
+                )));
+            }
+        }
+        if let Some((i, r)) = ranges
+            .iter()
+            .enumerate()
+            .find(|(_, r)| !(r.0.is_finite() && r.1.is_finite()))
+        {
+            return Err(PyValueError::new_err(format!(
+                "range {i} {r:?}: both ends must be finite"
+            )));
+        }
+        Ok(Self(fit::Search::new(ga, &ranges)))
+    }
+
+    /// The individuals to score next (genes in the ranges' order).
+    fn ask(&self) -> Vec<Vec<f64>> {
+        self.0.ask().to_vec()
+    }
+
+    /// The scores of the individuals `ask` gave, in their order (NaN: refused).
+    fn tell(&mut self, scores: Vec<f64>) -> PyResult<()> {
+        let asked = self.0.ask().len();
+        if scores.len() != asked {
+            return Err(PyValueError::new_err(format!(
+                "{} scores for {asked} individuals asked",
+                scores.len()
+            )));
+        }
+        self.0.tell(&scores);
+        Ok(())
+    }
+
+    /// Whether the last generation is scored.
+    #[getter]
+    fn done(&self) -> bool {
+        self.0.done()
+    }
+
+    /// The best score after each generation so far.
+    #[getter]
+    fn history(&self) -> Vec<f64> {
+        self.0.history().to_vec()
+    }
+
+    /// The best genes so far, their score and the individuals scored.
+    fn best(&self) -> (Vec<f64>, f64, usize) {
+        let o = self.0.outcome();
+        (o.best, o.score, o.evaluations)
+    }
 }
 
 /// The native module.
@@ -267,5 +541,11 @@ fn _swarm(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(check, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate_tracks, m)?)?;
+    m.add_function(wrap_pyfunction!(score, m)?)?;
+    m.add_function(wrap_pyfunction!(run_to, m)?)?;
+    m.add_function(wrap_pyfunction!(read_tracks, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(parameters, m)?)?;
+    m.add_class::<GeneticAlgorithm>()?;
     Ok(())
 }

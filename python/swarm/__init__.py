@@ -28,16 +28,27 @@ from . import _swarm
 from ._swarm import SwarmError
 
 __all__ = [
+    "Bound",
+    "Fit",
     "Member",
+    "Parameter",
+    "Pool",
     "Run",
     "Scenario",
     "SwarmError",
     "builtin_names",
+    "calibrate",
     "ensemble",
     "eval",
     "members",
     "models",
+    "parameters",
+    "read_tracks",
     "run",
+    "run_to",
+    "score",
+    "search_space",
+    "simulate",
 ]
 
 
@@ -189,6 +200,24 @@ def run(
     return Run(**out)
 
 
+def run_to(
+    scenario: ScenarioLike,
+    out: str,
+    *,
+    backend: Optional[str] = None,
+    seed: Optional[int] = None,
+    steps: Optional[int] = None,
+    threads: Optional[int] = None,
+) -> Dict[str, Any]:
+    """Runs ``scenario`` as ``swarm run --out OUT`` does: every output (``positions.npy``,
+    ``summary.json``, ``run.log``, ...) written whole into folder ``out`` (created, or replaced
+    when it holds a run) or nothing at all; returns the summary."""
+    sc = _scenario(scenario)
+    text = _swarm.run_to(json.dumps(sc.data), sc.source, str(out), backend=backend, seed=seed,
+                         steps=steps, threads=threads)
+    return json.loads(text)
+
+
 Tracks = Union[str, Tuple[Any, float]]
 
 
@@ -218,4 +247,16 @@ def eval(
     return json.loads(text)
 
 
-from .ensemble import Member, ensemble, members  # noqa: E402  (it uses the names above)
+# These use the names above.
+from .ensemble import Member, Pool, ensemble, members  # noqa: E402
+from .calibrate import (  # noqa: E402
+    Bound,
+    Fit,
+    Parameter,
+    calibrate,
+    parameters,
+    read_tracks,
+    score,
+    search_space,
+    simulate,
+)

@@ -10,10 +10,11 @@ Ray is the scheduler: ``ray.init()`` starts a local pool, ``ray.init(address="au
 from __future__ import annotations
 
 import itertools
+import os
 from dataclasses import dataclass
-from typing import Any, Dict, List, Mapping, Optional, Sequence
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
-from . import Run, Scenario, ScenarioLike, _scenario, run
+from . import Run, Scenario, ScenarioLike, _scenario, run, run_to
 
 
 @dataclass(frozen=True)
@@ -32,15 +33,60 @@ def members(
     return [Member(p, int(s)) for p, s in itertools.product(sets, seeds)]
 
 
-def _run_member(
-    scenario: Scenario,
-    member: Member,
-    steps: Optional[int],
-    backend: Optional[str],
-    threads: Optional[int],
-) -> Run:
-    sc = scenario.with_params(**member.params) if member.params else scenario
-    return run(sc, seed=member.seed, steps=steps, backend=backend, threads=threads)
+class Pool:
+    """Runs one function over many items, ``fn(shared, item)`` each: as Ray tasks of
+    ``num_cpus`` CPUs (each a worker process) in the Ray of this process (the one already
+    initialised, else ``ray.init(address=address)``: ``None`` a local pool of this machine's
+    cores, ``"auto"`` or a head's address a cluster), ``shared`` put once in the object store;
+    or, without ``use_ray``, one after the other here. Results come back in item order."""
+
+    def __init__(
+        self,
+        fn: Callable[[Any, Any], Any],
+        shared: Any,
+        *,
+        use_ray: bool = True,
+        address: Optional[str] = None,
+        num_cpus: float = 1,
+    ) -> None:
+        self.fn, self.shared, self.use_ray = fn, shared, use_ray
+        if use_ray:
+            import ray
+
+            if not ray.is_initialized():
+                ray.init(address=address, ignore_reinit_error=True, log_to_driver=False)
+            self._task = ray.remote(num_cpus=num_cpus)(fn)
+            self._shared = ray.put(shared)
+
+    def map(self, items: Sequence[Any]) -> List[Any]:
+        if not self.use_ray:
+            return [self.fn(self.shared, x) for x in items]
+        import ray
+
+        return list(ray.get([self._task.remote(self._shared, x) for x in items]))
+
+
+@dataclass(frozen=True)
+class _Sweep:
+    """What every member of an ensemble shares."""
+
+    scenario: Scenario
+    steps: Optional[int]
+    backend: Optional[str]
+    threads: Optional[int]
+    out: Optional[str]
+
+
+def _run_member(sweep: _Sweep, indexed: Tuple[int, Member]) -> Union[Run, str]:
+    index, member = indexed
+    sc = sweep.scenario.with_params(**member.params) if member.params else sweep.scenario
+    args = dict(seed=member.seed, steps=sweep.steps, backend=sweep.backend,
+                threads=sweep.threads)
+    if sweep.out is None:
+        return run(sc, **args)
+    folder = os.path.join(sweep.out, f"member-{index:04}")
+    run_to(sc, folder, **args)
+    return folder
 
 
 def ensemble(
@@ -51,27 +97,27 @@ def ensemble(
     steps: Optional[int] = None,
     backend: Optional[str] = None,
     threads: Optional[int] = 1,
+    out: Optional[str] = None,
     use_ray: bool = True,
     address: Optional[str] = None,
     num_cpus: float = 1,
-) -> List[Run]:
+) -> List[Any]:
     """Runs every member (every parameter set of ``params``, each with every seed of
     ``seeds``) of ``scenario``; returns the runs in member order (:func:`members`).
 
-    With ``use_ray`` (the default) each member is a Ray task of ``num_cpus`` CPUs, in the Ray
-    of this process: the one already initialised, else ``ray.init(address=address)`` (``None``:
-    a local pool of this machine's cores; ``"auto"`` or a head's address: a cluster). The
-    arrays come back through Ray's object store. ``use_ray=False`` runs them one after the
-    other here, with the same bits. ``threads``: each run's threads (1: one core per task)."""
-    sc = _scenario(scenario)
-    todo = members(seeds, params)
-    if not use_ray:
-        return [_run_member(sc, m, steps, backend, threads) for m in todo]
-    import ray
+    With ``use_ray`` (the default) each member is a Ray task of ``num_cpus`` CPUs (a
+    :class:`Pool`): ``address`` ``None`` starts a local pool of this machine's cores,
+    ``"auto"`` or a head's address joins a cluster. ``use_ray=False`` runs them one after the
+    other here, with the same bits. ``threads``: each run's threads (1: one core per task).
 
-    if not ray.is_initialized():
-        ray.init(address=address, ignore_reinit_error=True, log_to_driver=False)
-    task = ray.remote(num_cpus=num_cpus)(_run_member)
-    scenario_ref = ray.put(sc)
-    refs = [task.remote(scenario_ref, m, steps, backend, threads) for m in todo]
-    return list(ray.get(refs))
+    Without ``out`` the runs come back as :class:`Run` objects (their arrays through Ray's
+    object store). With ``out``, a folder every worker can write (a shared file system on a
+    cluster), member ``i`` writes its run there as ``swarm run --out OUT/member-000i`` does
+    (``positions.npy``, ``summary.json``, ...) and the folders' paths come back."""
+    sc = _scenario(scenario)
+    if out is not None:
+        out = os.path.abspath(out)
+        os.makedirs(out, exist_ok=True)
+    pool = Pool(_run_member, _Sweep(sc, steps, backend, threads, out), use_ray=use_ray,
+                address=address, num_cpus=num_cpus)
+    return pool.map(list(enumerate(members(seeds, params))))

@@ -128,16 +128,6 @@ def test_eval_scores_candidates_against_a_reference():
         swarm.eval(ref.tracks(dt), [same.tracks(dt)], scaling="log")
 
 
-@pytest.fixture(scope="module")
-def ray_pool():
-    """A local Ray cluster of 2 worker processes."""
-    import ray
-
-    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False)
-    yield ray
-    ray.shutdown()
-
-
 def test_an_ensemble_on_ray_gives_the_serial_bits(ray_pool):
     """8 members (2 parameter sets × 4 seeds) as Ray tasks: the same bits as one after the
     other, in member order."""

@@ -202,6 +202,12 @@ fn registered(bin: &str, args: &[&str]) -> String {
 fn swarm_run_serves_a_registered_model_from_its_scenario_file() {
     let swarm = env!("CARGO_BIN_EXE_walker-swarm");
     assert!(registered(swarm, &["models"]).contains("walker"));
+    // Its parameter table, as the model declares it.
+    let table = registered(swarm, &["models", "walker"]);
+    assert!(
+        table.contains("speed") && table.contains("a number in"),
+        "{table}"
+    );
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("run");
     let out_str = out.to_str().unwrap();

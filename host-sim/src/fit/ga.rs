@@ -98,76 +98,177 @@ impl Ga {
         score: impl Fn(&[f64]) -> f64 + Sync,
         mut each: impl FnMut(u32, f64),
     ) -> Outcome {
-        let n = self.population.max(2);
-        let seed = self.seed;
-        // A range given upside down is the same range.
-        let ranges: Vec<(f64, f64)> = ranges.iter().map(|&(a, b)| (a.min(b), a.max(b))).collect();
-        let draw_in = |(lo, hi): (f64, f64), u: f64| lo + (hi - lo) * u;
-        let judge = |genes: &[f64]| {
-            let s = score(genes);
-            if s.is_nan() { f64::NEG_INFINITY } else { s }
+        let mut search = Search::new(*self, ranges);
+        while !search.done() {
+            let scores: Vec<f64> = search.ask().par_iter().map(|p| score(p)).collect();
+            search.tell(&scores);
+            let history = &search.history;
+            each(history.len() as u32, history[history.len() - 1]);
+        }
+        search.outcome()
+    }
+}
+
+/// The genetic algorithm one generation at a time, for a caller that scores the individuals
+/// itself (a pool of processes, a cluster): [`ask`](Search::ask) for the individuals to score,
+/// [`tell`](Search::tell) their scores, until [`done`](Search::done). The same settings and
+/// scores give the same individuals as [`Ga::maximise`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Search {
+    ga: Ga,
+    ranges: Vec<(f64, f64)>,
+    /// The scored individuals (empty before the first [`tell`](Search::tell)).
+    people: Vec<Vec<f64>>,
+    scores: Vec<f64>,
+    /// The individuals waiting for their scores.
+    pending: Vec<Vec<f64>>,
+    history: Vec<f64>,
+    evaluations: usize,
+}
+
+impl Search {
+    /// A search over the box `ranges` (inclusive, finite `(low, high)` per gene; a range
+    /// given upside down is the same range), its first generation drawn uniformly.
+    pub fn new(ga: Ga, ranges: &[(f64, f64)]) -> Search {
+        let ga = Ga {
+            population: ga.population.max(2),
+            generations: ga.generations.max(1),
+            ..ga
         };
-        let mut people: Vec<Vec<f64>> = (0..n)
+        let ranges: Vec<(f64, f64)> = ranges.iter().map(|&(a, b)| (a.min(b), a.max(b))).collect();
+        let pending = (0..ga.population)
             .map(|i| {
                 (0..ranges.len())
-                    .map(|g| draw_in(ranges[g], uniform(seed, i, 0, g as u32)))
+                    .map(|g| draw_in(ranges[g], uniform(ga.seed, i, 0, g as u32)))
                     .collect()
             })
             .collect();
-        let mut scores: Vec<f64> = people.par_iter().map(|p| judge(p)).collect();
-        let mut evaluations = n;
-        let mut history = Vec::with_capacity(self.generations as usize);
-        let best_of = |s: &[f64]| (0..s.len()).fold(0, |b, i| if s[i] > s[b] { i } else { b });
-        for generation in 1..=self.generations.max(1) {
-            let b = best_of(&scores);
-            history.push(scores[b]);
-            each(generation, scores[b]);
-            if generation == self.generations.max(1) {
-                break;
-            }
-            let progress = f64::from(generation) / f64::from(self.generations.max(1));
-            let tournament = |i: usize, k: u32| {
-                let pick = |k| ((uniform(seed, i, generation, k) * n as f64) as usize).min(n - 1);
-                let (a, c) = (pick(k), pick(k + 1));
-                if scores[c] > scores[a] { c } else { a }
-            };
-            let children: Vec<Vec<f64>> = (1..n)
-                .map(|i| {
-                    let (a, c) = (&people[tournament(i, 0)], &people[tournament(i, 2)]);
-                    let cross = uniform(seed, i, generation, 4) < self.crossover;
-                    (0..ranges.len())
-                        .map(|g| {
-                            let k = 8 + 4 * g as u32;
-                            let (lo, hi) = ranges[g];
-                            let mut v = a[g];
-                            if cross {
-                                let (x, y) = (a[g].min(c[g]), a[g].max(c[g]));
-                                let w = 0.5 * (y - x);
-                                v = draw_in((x - w, y + w), uniform(seed, i, generation, k));
-                            }
-                            if uniform(seed, i, generation, k + 1) < self.mutation {
-                                let u = |d| uniform(seed, i, generation, d);
-                                v = mutate(v, ranges[g], u(k + 2), u(k + 3), progress);
-                            }
-                            v.clamp(lo, hi)
-                        })
-                        .collect()
-                })
-                .collect();
-            let child_scores: Vec<f64> = children.par_iter().map(|p| judge(p)).collect();
-            evaluations += children.len();
-            let elite = (people.swap_remove(b), scores.swap_remove(b));
-            people = std::iter::once(elite.0).chain(children).collect();
-            scores = std::iter::once(elite.1).chain(child_scores).collect();
-        }
-        let b = best_of(&scores);
-        Outcome {
-            best: people[b].clone(),
-            score: scores[b],
-            history,
-            evaluations,
+        Search {
+            ga,
+            ranges,
+            people: Vec::new(),
+            scores: Vec::new(),
+            pending,
+            history: Vec::new(),
+            evaluations: 0,
         }
     }
+
+    /// The individuals to score next: the whole first generation, then each generation's
+    /// children (every individual but the best, which goes on with its score). Empty once
+    /// [`done`](Search::done).
+    pub fn ask(&self) -> &[Vec<f64>] {
+        &self.pending
+    }
+
+    /// Whether the last generation is scored.
+    pub fn done(&self) -> bool {
+        self.history.len() == self.ga.generations as usize
+    }
+
+    /// The best score after each generation scored so far (non-decreasing).
+    pub fn history(&self) -> &[f64] {
+        &self.history
+    }
+
+    /// Takes the scores of the individuals [`ask`](Search::ask) gave, in their order (a score
+    /// that is not a number counts as −∞: an individual the objective refuses), and breeds
+    /// the next generation unless this was the last.
+    ///
+    /// # Panics
+    ///
+    /// When `scores` has not one score per individual asked (a caller's bug).
+    pub fn tell(&mut self, scores: &[f64]) {
+        assert_eq!(scores.len(), self.pending.len(), "one score per individual");
+        let judged = scores
+            .iter()
+            .map(|&s| if s.is_nan() { f64::NEG_INFINITY } else { s });
+        let children = std::mem::take(&mut self.pending);
+        self.evaluations += children.len();
+        if self.people.is_empty() {
+            self.people = children;
+            self.scores = judged.collect();
+        } else {
+            let b = best_of(&self.scores);
+            let elite = (self.people.swap_remove(b), self.scores.swap_remove(b));
+            self.people = std::iter::once(elite.0).chain(children).collect();
+            self.scores = std::iter::once(elite.1).chain(judged).collect();
+        }
+        self.history.push(self.scores[best_of(&self.scores)]);
+        if !self.done() {
+            self.pending = self.breed();
+        }
+    }
+
+    /// The next generation's children of the scored individuals.
+    fn breed(&self) -> Vec<Vec<f64>> {
+        let (ga, n) = (self.ga, self.people.len());
+        let generation = self.history.len() as u32;
+        let progress = f64::from(generation) / f64::from(ga.generations);
+        let u = |i: usize, k: u32| uniform(ga.seed, i, generation, k);
+        let tournament = |i: usize, k: u32| {
+            let pick = |k| ((u(i, k) * n as f64) as usize).min(n - 1);
+            let (a, c) = (pick(k), pick(k + 1));
+            if self.scores[c] > self.scores[a] {
+                c
+            } else {
+                a
+            }
+        };
+        (1..n)
+            .map(|i| {
+                let (a, c) = (
+                    &self.people[tournament(i, 0)],
+                    &self.people[tournament(i, 2)],
+                );
+                let cross = u(i, 4) < ga.crossover;
+                (0..self.ranges.len())
+                    .map(|g| {
+                        let k = 8 + 4 * g as u32;
+                        let (lo, hi) = self.ranges[g];
+                        let mut v = a[g];
+                        if cross {
+                            let (x, y) = (a[g].min(c[g]), a[g].max(c[g]));
+                            let w = 0.5 * (y - x);
+                            v = draw_in((x - w, y + w), u(i, k));
+                        }
+                        if u(i, k + 1) < ga.mutation {
+                            v = mutate(v, (lo, hi), u(i, k + 2), u(i, k + 3), progress);
+                        }
+                        v.clamp(lo, hi)
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// The best individual scored so far, its score, the history and the evaluations (an
+    /// empty individual scoring −∞ before the first [`tell`](Search::tell)).
+    pub fn outcome(&self) -> Outcome {
+        let (best, score) = match self.scores.is_empty() {
+            true => (Vec::new(), f64::NEG_INFINITY),
+            false => {
+                let b = best_of(&self.scores);
+                (self.people[b].clone(), self.scores[b])
+            }
+        };
+        Outcome {
+            best,
+            score,
+            history: self.history.clone(),
+            evaluations: self.evaluations,
+        }
+    }
+}
+
+/// The index of the first best score.
+fn best_of(s: &[f64]) -> usize {
+    (0..s.len()).fold(0, |b, i| if s[i] > s[b] { i } else { b })
+}
+
+/// The point a share `u` of the way from `lo` to `hi`.
+fn draw_in((lo, hi): (f64, f64), u: f64) -> f64 {
+    lo + (hi - lo) * u
 }
 
 #[cfg(test)]
@@ -191,6 +292,31 @@ mod tests {
         assert_eq!(fit, ga.maximise(&ranges, bowl, |_, _| {}));
         let other = Ga { seed: 2, ..ga }.maximise(&ranges, bowl, |_, _| {});
         assert_ne!(other.best, fit.best);
+    }
+
+    /// Asked and told a generation at a time, the search scores the whole first generation
+    /// and then every child (the best goes on), stops after its generations and gives what
+    /// [`Ga::maximise`] gives.
+    #[test]
+    fn ask_and_tell_is_maximise() {
+        let ranges = [(0.0, 1.0), (-3.0, 3.0)];
+        let score = |x: &[f64]| -(x[0] - 0.2).powi(2) - x[1].abs();
+        let ga = Ga {
+            population: 6,
+            generations: 4,
+            ..Ga::default()
+        };
+        let mut search = Search::new(ga, &ranges);
+        let mut asked = Vec::new();
+        while !search.done() {
+            asked.push(search.ask().len());
+            let scores: Vec<f64> = search.ask().iter().map(|x| score(x)).collect();
+            search.tell(&scores);
+        }
+        assert_eq!(asked, [6, 5, 5, 5]);
+        assert!(search.ask().is_empty());
+        assert_eq!(search.history().len(), 4);
+        assert_eq!(search.outcome(), ga.maximise(&ranges, score, |_, _| {}));
     }
 
     /// Genes stay in their ranges; refused individuals (NaN) never win.

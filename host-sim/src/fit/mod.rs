@@ -34,7 +34,7 @@ mod ga;
 use std::str::FromStr;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-pub use ga::{Ga, Outcome};
+pub use ga::{Ga, Outcome, Search};
 
 use crate::engine::{Engine, apply_due_events};
 use crate::error::{Result, SimError};
@@ -154,14 +154,24 @@ pub fn with_params(sc: &Scenario, values: &[(&str, f64)]) -> Result<Scenario> {
     Ok(sc)
 }
 
-/// The tracks of `sc` run with each of `sampling.seeds`: after the burn-in, every agent's
-/// position every `sampling.every` ticks for `sampling.frames` frames, at frame interval `dt`
-/// (s); the runs' agents are distinct insects.
+/// The tracks of `sc` run with each of `sampling.seeds` ([`record`]) at frame interval `dt`
+/// (s).
 ///
 /// # Errors
 ///
 /// What building the engine or a tick refuses.
 pub fn simulate(sc: &Scenario, dt: f64, sampling: &Sampling) -> Result<Tracks> {
+    Ok(Tracks::from_samples(dt, record(sc, sampling)?))
+}
+
+/// The `(insect, frame, position)` samples of `sc` run with each of `sampling.seeds`: after
+/// the burn-in, every agent's position every `sampling.every` ticks for `sampling.frames`
+/// frames; the runs' agents are distinct insects (the second run's ids follow the first's).
+///
+/// # Errors
+///
+/// What building the engine or a tick refuses.
+pub fn record(sc: &Scenario, sampling: &Sampling) -> Result<Vec<(u64, i64, [f64; 3])>> {
     let mut points = Vec::new();
     let mut first_id = 0u64;
     for &seed in &sampling.seeds {
@@ -189,7 +199,7 @@ pub fn simulate(sc: &Scenario, dt: f64, sampling: &Sampling) -> Result<Tracks> {
         }
         first_id += engine.agents() as u64;
     }
-    Ok(Tracks::from_samples(dt, points))
+    Ok(points)
 }
 
 /// The largest E_φ there is: two densities of [`BINS`] bins over [`RANGE`] with no mass in

@@ -26,6 +26,7 @@ pub static ENTRY: ModelEntry = ModelEntry {
     name: <WalkParams<f32> as Model>::NAME,
     about: "test-only random walkers between four walls, 2D",
     dim: 2,
+    params: <WalkParams<f32> as ModelParams>::SPECS,
     check,
     engine: |sc, seed| from_scenario(sc, seed),
     // The walker benchmarks in f32 whatever the scalar asked for (a test model).
