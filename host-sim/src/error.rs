@@ -729,6 +729,14 @@ pub enum SimError {
         /// The track file.
         path: PathBuf,
     },
+    /// A frame interval given for a track file that is not a positive number of seconds.
+    #[error("{}: frame interval {dt}: expected a positive number of seconds", path.display())]
+    TrackDt {
+        /// The track file.
+        path: PathBuf,
+        /// The interval given.
+        dt: f64,
+    },
     /// A track sample whose time is not on the frame grid.
     #[error(
         "{}:{line}: time {time} is not on the frame grid (interval {dt} s from the earliest \

@@ -152,11 +152,19 @@ fn run_to(
     serde_json::to_string(&done.summary).map_err(err)
 }
 
-/// A tracks CSV file as `(positions, dt)`: a `frames × columns × 3` array, NaN where a
-/// column holds no insect, and the frame interval (`dt`, else the file's). Tracks share a
-/// column when they never meet and at least one frame lies between them (what tracking
-/// software gives when it loses an insect and numbers it anew): the array is as wide as the
-/// most insects seen at once, and every metric reads the same tracks from it.
+/// The most positions [`read_tracks`] puts in one array (1.5 GiB).
+const MAX_POSITIONS: usize = 1 << 26;
+
+/// A tracks CSV file (or a run folder) as `(positions, dt)`: a `frames × columns × 3` array,
+/// NaN where a column holds no insect, and the frame interval (`dt`, else the file's). A
+/// track takes the first column free since at least one frame before it starts, so tracks of
+/// insects lost and numbered anew share columns and the array stays about as wide as the most
+/// insects seen at once; every metric reads the same tracks from it.
+///
+/// # Errors
+///
+/// What the evaluation command refuses in the file, and tracks spanning more than
+/// [`MAX_POSITIONS`] positions.
 #[pyfunction]
 #[pyo3(signature = (path, dt=None))]
 fn read_tracks<'py>(
@@ -174,7 +182,7 @@ fn read_tracks<'py>(
     let mut placed = Vec::with_capacity(runs.len());
     for t in &runs {
         let (start, end) = (t[0].0, t[t.len() - 1].0);
-        let column = match ends.iter().position(|&e| e + 1 < start) {
+        let column = match ends.iter().position(|&e| e.saturating_add(1) < start) {
             Some(c) => c,
             None => {
                 ends.push(end);
@@ -184,12 +192,20 @@ fn read_tracks<'py>(
         ends[column] = end;
         placed.push(column);
     }
-    let last = runs
-        .iter()
-        .map(|t| t[t.len() - 1].0)
-        .max()
-        .unwrap_or(first - 1);
-    let frames = usize::try_from(last + 1 - first).unwrap_or(0);
+    let last = runs.iter().map(|t| t[t.len() - 1].0).max().unwrap_or(first);
+    let frames = last
+        .checked_sub(first)
+        .and_then(|d| usize::try_from(d).ok())
+        .map_or(usize::MAX, |d| {
+            d.saturating_add(usize::from(!runs.is_empty()))
+        });
+    if frames.saturating_mul(ends.len()) > MAX_POSITIONS {
+        return Err(err(format!(
+            "{path}: the tracks span {frames} frames of {} columns, more than one array \
+             holds ({MAX_POSITIONS} positions): is a time far off the others, or dt too small?",
+            ends.len()
+        )));
+    }
     let mut a = Array3::from_elem((frames, ends.len(), 3), f64::NAN);
     for (t, column) in runs.iter().zip(placed) {
         for &(k, p) in t.iter() {
@@ -371,9 +387,9 @@ fn score(
 /// The positions of the scenario of JSON text `scenario` run with each seed of `seeds`
 /// (`swarm_sim::fit::record`): after `burn_in` ticks, every `every` ticks for `frames` frames,
 /// as a `frames × insects × 3` array (the runs' insects side by side, NaN where one was not
-/// there), the GIL released.
+/// there), on `threads` workers (default: the process's pool), the GIL released.
 #[pyfunction]
-#[pyo3(signature = (scenario, source=None, *, seeds, burn_in, frames, every=1, backend=None))]
+#[pyo3(signature = (scenario, source=None, *, seeds, burn_in, frames, every=1, backend=None, threads=None))]
 #[allow(clippy::too_many_arguments)]
 fn simulate<'py>(
     py: Python<'py>,
@@ -384,6 +400,7 @@ fn simulate<'py>(
     frames: u32,
     every: u32,
     backend: Option<&str>,
+    threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyArray3<f64>>> {
     let mut sc = from_json(scenario, source)?;
     if let Some(b) = backend_of(backend)? {
@@ -401,7 +418,12 @@ fn simulate<'py>(
         every,
         seeds,
     };
-    let points = py.detach(|| fit::record(&sc, &sampling)).map_err(err)?;
+    let points = py
+        .detach(|| match threads {
+            Some(t) => fit::record_on(&sc, &sampling, t),
+            None => fit::record(&sc, &sampling),
+        })
+        .map_err(err)?;
     let insects = points.iter().map(|p| p.0 + 1).max().unwrap_or(0) as usize;
     let mut a = Array3::from_elem((frames as usize, insects, 3), f64::NAN);
     for (id, k, p) in points {
@@ -501,6 +523,11 @@ impl GeneticAlgorithm {
 
     /// The scores of the individuals `ask` gave, in their order (NaN: refused).
     fn tell(&mut self, scores: Vec<f64>) -> PyResult<()> {
+        if self.0.done() {
+            return Err(PyValueError::new_err(
+                "the search is done: every generation is scored",
+            ));
+        }
         let asked = self.0.ask().len();
         if scores.len() != asked {
             return Err(PyValueError::new_err(format!(

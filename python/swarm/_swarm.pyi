@@ -47,6 +47,7 @@ def simulate(
     frames: int,
     every: int = 1,
     backend: Optional[str] = None,
+    threads: Optional[int] = None,
 ) -> Any: ...
 def parameters(model: str) -> List[Tuple[str, str, float, float, bool, str]]: ...
 

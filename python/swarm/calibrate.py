@@ -73,7 +73,8 @@ class Bound:
         return math.log(value) if self.log else value
 
     def value(self, gene: float) -> float:
-        return min(max(math.exp(gene), self.low), self.high) if self.log else gene
+        v = math.exp(gene) if self.log else gene
+        return min(max(v, self.low), self.high)
 
 
 ParamsLike = Union[Sequence[str], Mapping[str, Any]]
@@ -96,6 +97,12 @@ def search_space(scenario: ScenarioLike, params: ParamsLike) -> List[Bound]:
     sc = _scenario(scenario)
     model = _model_of(sc)
     table = {p.name: p for p in parameters(model)}
+    if isinstance(params, str):
+        params = [params]
+    if not isinstance(params, Mapping):
+        repeated = sorted({n for n in params if list(params).count(n) > 1})
+        if repeated:
+            raise SwarmError(f"{', '.join(repeated)}: named more than once")
     given: Mapping[str, Any] = params if isinstance(params, Mapping) else {n: None for n in params}
     if not given:
         raise SwarmError("nothing to calibrate: name at least one parameter")
@@ -108,8 +115,12 @@ def search_space(scenario: ScenarioLike, params: ParamsLike) -> List[Bound]:
         if spec.kind != "real":
             raise SwarmError(f"{name}: {spec}; calibration fits real parameters only")
         if bounds is None:
-            low = np.nextafter(spec.low, math.inf) if spec.low_open else spec.low
-            space.append(Bound(name, float(low), spec.high))
+            low = spec.low
+            if spec.low_open:
+                # Just inside: a part in a million of the range, and at least the fixed point's
+                # step, so that both number types the model checks in accept it.
+                low += max((spec.high - spec.low) * 1e-6, 2.0**-16)
+            space.append(Bound(name, low, spec.high))
             continue
         if len(bounds) not in (2, 3) or (len(bounds) == 3 and bounds[2] != "log"):
             raise SwarmError(f"{name}: {bounds!r}: give (low, high) or (low, high, \"log\")")
@@ -127,26 +138,46 @@ def search_space(scenario: ScenarioLike, params: ParamsLike) -> List[Bound]:
 
 
 def read_tracks(path: str, dt: Optional[float] = None) -> Tuple[np.ndarray, float]:
-    """A tracks CSV file (``id,time,x,y,z``, the evaluation command's format) as ``(positions,
-    dt)``: positions ``(frames, insects, 3)`` float64 with NaN where an insect was not seen,
-    insects in id order; ``dt`` the frame interval (given, else the file's)."""
+    """A tracks CSV file (``id,time,x,y,z``, the evaluation command's format) or a run folder as
+    ``(positions, dt)``: positions ``(frames, columns, 3)`` float64, NaN where a column holds
+    no insect; ``dt`` the frame interval (given, else the file's). A track takes the first
+    column free since at least one frame before it starts (insects lost and numbered anew
+    share a column), so the array is about as wide as the most insects seen at once and every
+    metric reads the same tracks from it."""
     positions, step = _swarm.read_tracks(str(path), dt)
     return positions, step
+
+
+def _pair(t: Tracks) -> Union[str, Tuple[np.ndarray, float]]:
+    """A path as it is, a pair as float64 positions and a float interval."""
+    if isinstance(t, str):
+        return t
+    positions, step = t
+    return np.ascontiguousarray(positions, dtype=np.float64), float(step)
 
 
 def _tracks(t: Tracks, dt: Optional[float] = None) -> Tuple[np.ndarray, float]:
     if isinstance(t, str):
         return read_tracks(t, dt)
-    positions, step = t
-    return np.ascontiguousarray(positions, dtype=np.float64), float(step)
+    if dt is not None:
+        raise SwarmError("dt is for a tracks file; a (positions, dt) pair carries its own")
+    positions, step = _pair(t)
+    return positions, step
 
 
-def score(reference: Tracks, candidate: Tracks, *, scaling: str = "reference") -> float:
-    """Calibration's score E of ``candidate`` against ``reference`` (each a tracks CSV path or a
-    ``(positions, dt)`` pair): 1 − (1/7) Σ_φ E_φ, ren2016 Eq. 6 with Step 1's weights, each
-    metric z-scored by the reference's moments (``scaling="reference"``) or its own
-    (``"separate"``). 1 for identical distributions."""
-    return _swarm.score(_tracks(reference), _tracks(candidate), scaling=scaling)
+def score(
+    reference: Tracks,
+    candidate: Tracks,
+    *,
+    dt: Optional[float] = None,
+    scaling: str = "reference",
+) -> float:
+    """Calibration's score E of ``candidate`` against ``reference`` (each a tracks CSV path, its
+    frame interval ``dt`` when the file does not say, or a ``(positions, dt)`` pair): 1 − (1/7)
+    Σ_φ E_φ, ren2016 Eq. 6 with Step 1's weights, each metric z-scored by the reference's
+    moments (``scaling="reference"``) or its own (``"separate"``). 1 for identical
+    distributions."""
+    return _swarm.score(_pair(reference), _pair(candidate), dt=dt, scaling=scaling)
 
 
 def simulate(
@@ -157,13 +188,16 @@ def simulate(
     frames: int,
     every: int = 1,
     backend: Optional[str] = None,
+    threads: Optional[int] = None,
 ) -> np.ndarray:
     """The positions of ``scenario`` run with each seed: after ``burn_in`` ticks, every
     ``every`` ticks for ``frames`` frames, ``(frames, insects, 3)`` float64, the runs'
-    insects side by side (what calibration scores)."""
+    insects side by side (what calibration scores); ``threads`` workers (default: all cores;
+    the same bits for any count)."""
     sc = _scenario(scenario)
     return _swarm.simulate(json.dumps(sc.data), sc.source, seeds=[int(s) for s in seeds],
-                           burn_in=burn_in, frames=frames, every=every, backend=backend)
+                           burn_in=burn_in, frames=frames, every=every, backend=backend,
+                           threads=threads)
 
 
 @dataclass(frozen=True)
@@ -177,18 +211,18 @@ class _Job:
     frames: int
     every: int
     backend: Optional[str]
+    threads: Optional[int]
     scaling: str
 
 
-def _score_individual(job: _Job, values: Dict[str, float]) -> Optional[float]:
-    """E of the scenario with ``values``; ``None`` when the model refuses them or the run
-    fails."""
+def _score_individual(job: _Job, values: Dict[str, float]) -> Union[float, str]:
+    """E of the scenario with ``values``, or why the model refused them or the run failed."""
     try:
         sc = job.scenario.with_params(**values).checked()
         positions = simulate(sc, seeds=job.seeds, burn_in=job.burn_in, frames=job.frames,
-                             every=job.every, backend=job.backend)
-    except SwarmError:
-        return None
+                             every=job.every, backend=job.backend, threads=job.threads)
+    except SwarmError as e:
+        return str(e)
     return _swarm.score(job.reference, (positions, job.reference[1]), scaling=job.scaling)
 
 
@@ -245,6 +279,7 @@ def calibrate(
     sigma: float = 0.3,
     seed: int = 1,
     backend: Optional[str] = None,
+    threads: Optional[int] = 1,
     use_ray: bool = True,
     address: Optional[str] = None,
     num_cpus: float = 1,
@@ -260,32 +295,42 @@ def calibrate(
     (``population`` 20 × ``generations`` 100, ``crossover`` 0.9, ``mutation`` 0.15 per gene
     by default; chen prints 10 × 200, 0.9, 0.01), or ``"cma"``, CMA-ES (the ``cma`` package;
     ``population`` default 4 + 3 ln d, ``generations`` default 100, initial step ``sigma``
-    as a share of each range, started at the ranges' middle). ``seed`` seeds the search.
-    Each generation is scored by the pool of :func:`swarm.ensemble` (``use_ray``,
-    ``address``, ``num_cpus``); the fit is the same either way. ``on_generation`` hears the
-    generation and the best score so far."""
+    as a share of each range, started at the ranges' middle; it may stop before its last
+    generation when its step has shrunk to nothing; two parameters or more). ``seed`` (a
+    positive integer) seeds the search. Each generation is scored by the pool of
+    :func:`swarm.ensemble` (``use_ray``, ``address``, ``num_cpus``; ``threads`` per run, on
+    ``backend``); the fit is the same either way. ``on_generation`` hears the generation and
+    the best score so far.
+
+    Individuals the model's rules refuse, or whose run fails, score worst and are counted
+    (:attr:`Fit.refused`); a first generation refused whole ends the fit with the first
+    refusal's message."""
     sc = _scenario(scenario).checked()
     space = search_space(sc, params)
     ref = _tracks(reference, dt)
     if frames < 3 or burn_in < 0 or every < 1:
         raise SwarmError(f"frames {frames}, burn_in {burn_in}, every {every}: at least 3 frames, "
                          "a burn-in of 0 or more and 1 tick a frame")
-    if method not in ("ga", "cma"):
-        raise SwarmError(f"method {method!r}: \"ga\" or \"cma\"")
+    _check_search(method, len(space), population, generations, crossover, mutation, sigma, seed)
     # A misspelt name or a range the model cannot take fails here, not 2,000 runs later.
     middle = {b.name: b.value(sum(b.gene_range()) / 2) for b in space}
     sc.with_params(**middle).checked()
     job = _Job(sc, ref, tuple(int(s) for s in (seeds or [sc.data.get("seed", 1)])), burn_in,
-               frames, every, backend, scaling)
+               frames, every, backend, threads, scaling)
     pool = Pool(_score_individual, job, use_ray=use_ray, address=address, num_cpus=num_cpus)
-    refused = 0
+    refusals: List[str] = []
+    scored = 0
 
     def judge(genes: Sequence[Sequence[float]]) -> List[float]:
-        nonlocal refused
+        nonlocal scored
         values = [{b.name: b.value(g) for b, g in zip(space, x)} for x in genes]
-        scores = pool.map(values)
-        refused += sum(s is None for s in scores)
-        return [math.nan if s is None else float(s) for s in scores]
+        out = pool.map(values)
+        refusals.extend(r for r in out if isinstance(r, str))
+        scored += sum(not isinstance(r, str) for r in out)
+        if not scored:
+            raise SwarmError(f"the model refused every individual of the first generation, or "
+                             f"its runs failed; the first: {refusals[0]}")
+        return [math.nan if isinstance(r, str) else float(r) for r in out]
 
     ranges = [b.gene_range() for b in space]
     if method == "ga":
@@ -294,12 +339,31 @@ def calibrate(
     else:
         best, history, evaluations = _by_cma(ranges, judge, population, generations, sigma,
                                              seed, on_generation)
-    if best.score == -math.inf:
-        raise SwarmError(f"every one of the {evaluations} individuals was refused by the model's "
-                         "rules or failed to run")
     values = {b.name: b.value(g) for b, g in zip(space, best.genes)}
     return Fit(values, best.score, sc.with_params(**values).checked(), history, evaluations,
-               refused, method, space)
+               len(refusals), method, space)
+
+
+def _check_search(method: str, genes: int, population: Optional[int],
+                  generations: Optional[int], crossover: Optional[float],
+                  mutation: Optional[float], sigma: float, seed: int) -> None:
+    """Refuses a search that cannot run, before any process starts."""
+    if method not in ("ga", "cma"):
+        raise SwarmError(f"method {method!r}: \"ga\" or \"cma\"")
+    if population is not None and population < 2:
+        raise SwarmError(f"population {population}: at least 2 individuals")
+    if generations is not None and generations < 1:
+        raise SwarmError(f"generations {generations}: at least 1")
+    for name, p in [("crossover", crossover), ("mutation", mutation)]:
+        if p is not None and not 0 <= p <= 1:
+            raise SwarmError(f"{name} {p}: not a probability")
+    if not 0 < sigma <= 1:
+        raise SwarmError(f"sigma {sigma}: a share of each range in (0, 1]")
+    if seed < 1:
+        raise SwarmError(f"seed {seed}: a positive integer (cma takes 0 as \"from the clock\")")
+    if method == "cma" and genes < 2:
+        raise SwarmError("CMA-ES needs at least two parameters (the cma package's bounds do not "
+                         "work in one dimension); fit one with method=\"ga\"")
 
 
 Judge = Callable[[Sequence[Sequence[float]]], List[float]]
@@ -327,8 +391,6 @@ def _by_cma(ranges, judge: Judge, population, generations, sigma, seed,
         warnings.simplefilter("ignore")
         import cma
 
-    if not 0 < sigma <= 1:
-        raise SwarmError(f"sigma {sigma}: a share of each range in (0, 1]")
     low = np.array([r[0] for r in ranges])
     span = np.array([r[1] - r[0] for r in ranges])
     options = {"bounds": [0.0, 1.0], "seed": int(seed), "maxiter": int(generations or 100),

@@ -1,6 +1,7 @@
 //! R-T10: the metrics on analytic tracks; reading track files.
 
 use super::*;
+use crate::SimError;
 
 fn rel(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-9 * b.abs().max(1e-12)
@@ -149,6 +150,11 @@ fn reading_track_files() {
     let e = Tracks::read_csv(&path, None).unwrap_err().to_string();
     assert!(e.contains("--dt"), "{e}");
     assert_eq!(Tracks::read_csv(&path, Some(0.5)).unwrap().dt, 0.5);
+    for dt in [0.0, -0.1, f64::NAN, f64::INFINITY] {
+        let e = Tracks::read_csv(&path, Some(dt)).unwrap_err();
+        assert!(matches!(e, SimError::TrackDt { .. }), "{e}");
+        assert!(e.to_string().contains("positive number of seconds"), "{e}");
+    }
 }
 
 /// The truth scores above a distorted copy: the same process against the same process

@@ -43,7 +43,8 @@ impl Tracks {
     /// # Errors
     ///
     /// The file cannot be read, the header differs, a row has too few or too many fields or
-    /// a field that is not a number (line and field named), no frame interval can be found,
+    /// a field that is not a number (line and field named), `dt` is not a positive number
+    /// ([`SimError::TrackDt`]), no frame interval can be found,
     /// or a time lies off the grid ([`SimError::TrackTime`]).
     pub fn read_csv(path: &Path, dt: Option<f64>) -> Result<Self> {
         let text = std::fs::read_to_string(path).map_err(|e| SimError::io("read", path, e))?;
@@ -98,7 +99,7 @@ impl Tracks {
             }
             rows.push((line_no, id, v[0], [v[1], v[2], v[3]]));
         }
-        let dt = match dt {
+        let dt = match positive_dt(path, dt)? {
             Some(dt) => dt,
             None => {
                 smallest_step(&rows).ok_or_else(|| SimError::TrackInterval { path: path.into() })?
@@ -128,11 +129,13 @@ impl Tracks {
     ///
     /// # Errors
     ///
-    /// What [`RunDir::open`](crate::output::RunDir::open) or [`Tracks::read_csv`] refuse.
+    /// What [`RunDir::open`](crate::output::RunDir::open) or [`Tracks::read_csv`] refuse; a
+    /// `dt` that is not a positive number ([`SimError::TrackDt`]).
     pub fn open(path: &Path, dt: Option<f64>) -> Result<Self> {
         if !path.is_dir() {
             return Self::read_csv(path, dt);
         }
+        let dt = positive_dt(path, dt)?;
         let run = crate::output::RunDir::open(path)?;
         let samples = run.frames.iter().enumerate().flat_map(|(k, f)| {
             f.agents
@@ -166,6 +169,18 @@ impl Tracks {
     /// Whether there is no sample.
     pub fn is_empty(&self) -> bool {
         self.len() == 0
+    }
+}
+
+/// `dt` when it is a positive number of seconds (or not given), else [`SimError::TrackDt`]
+/// for the tracks at `path`.
+fn positive_dt(path: &Path, dt: Option<f64>) -> Result<Option<f64>> {
+    match dt {
+        Some(dt) if !(dt.is_finite() && dt > 0.0) => Err(SimError::TrackDt {
+            path: path.into(),
+            dt,
+        }),
+        _ => Ok(dt),
     }
 }
 

@@ -202,6 +202,20 @@ pub fn record(sc: &Scenario, sampling: &Sampling) -> Result<Vec<(u64, i64, [f64;
     Ok(points)
 }
 
+/// [`record`] on a pool of `threads` workers (the results are the same for any count).
+///
+/// # Errors
+///
+/// What [`record`] refuses, [`SimError::NoThreads`] for zero threads.
+pub fn record_on(
+    sc: &Scenario,
+    sampling: &Sampling,
+    threads: usize,
+) -> Result<Vec<(u64, i64, [f64; 3])>> {
+    let (pool, _) = crate::par::pool(Some(threads))?;
+    pool.install(|| record(sc, sampling))
+}
+
 /// The largest E_φ there is: two densities of [`BINS`] bins over [`RANGE`] with no mass in
 /// common. A metric with no sample on either side scores it.
 pub const WORST_ENERGY: f64 = 2.0 * BINS as f64 / (RANGE.1 - RANGE.0);
