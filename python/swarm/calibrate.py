@@ -99,11 +99,14 @@ def search_space(scenario: ScenarioLike, params: ParamsLike) -> List[Bound]:
     table = {p.name: p for p in parameters(model)}
     if isinstance(params, str):
         params = [params]
-    if not isinstance(params, Mapping):
-        repeated = sorted({n for n in params if list(params).count(n) > 1})
+    if isinstance(params, Mapping):
+        given: Mapping[str, Any] = params
+    else:
+        names = list(params)
+        repeated = sorted({n for n in names if names.count(n) > 1})
         if repeated:
             raise SwarmError(f"{', '.join(repeated)}: named more than once")
-    given: Mapping[str, Any] = params if isinstance(params, Mapping) else {n: None for n in params}
+        given = {n: None for n in names}
     if not given:
         raise SwarmError("nothing to calibrate: name at least one parameter")
     space = []
@@ -122,7 +125,8 @@ def search_space(scenario: ScenarioLike, params: ParamsLike) -> List[Bound]:
                 low += max((spec.high - spec.low) * 1e-6, 2.0**-16)
             space.append(Bound(name, low, spec.high))
             continue
-        if len(bounds) not in (2, 3) or (len(bounds) == 3 and bounds[2] != "log"):
+        if (not isinstance(bounds, (tuple, list)) or len(bounds) not in (2, 3)
+                or (len(bounds) == 3 and bounds[2] != "log")):
             raise SwarmError(f"{name}: {bounds!r}: give (low, high) or (low, high, \"log\")")
         low, high, log = float(bounds[0]), float(bounds[1]), len(bounds) == 3
         if not (math.isfinite(low) and math.isfinite(high)) or low > high:

@@ -58,6 +58,7 @@ def test_a_models_parameter_table_gives_the_search_ranges():
         ({"gamma": (0, 10, "log")}, "log scale needs low > 0"),
         ({"gamma": (5, 1)}, "not a range"),
         ({"gamma": (1, 5, "ln")}, "give \\(low, high\\)"),
+        ({"gamma": 5.0}, "give \\(low, high\\)"),
         (["orca_neighbours"], "real parameters only"),
         ([], "at least one parameter"),
         (["gamma", "scale", "gamma"], "gamma: named more than once"),
