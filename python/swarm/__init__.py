@@ -221,6 +221,14 @@ def run_to(
 Tracks = Union[str, Tuple[Any, float]]
 
 
+def _pair(t: Tracks) -> Tracks:
+    """A tracks path as it is, a ``(positions, dt)`` pair as float64 positions and a float."""
+    if isinstance(t, str):
+        return t
+    positions, step = t
+    return np.ascontiguousarray(positions, dtype=np.float64), float(step)
+
+
 def eval(
     reference: Tracks,
     candidates: Sequence[Tracks],
@@ -235,14 +243,8 @@ def eval(
     ``positions`` ``(frames, insects, 3)`` with NaN where an insect was not seen
     (:meth:`Run.tracks`). ``scaling``: ``"separate"`` (the paper) or ``"reference"``."""
 
-    def norm(t: Tracks) -> Tracks:
-        if isinstance(t, str):
-            return t
-        positions, step = t
-        return np.ascontiguousarray(positions, dtype=np.float64), float(step)
-
     text = _swarm.evaluate_tracks(
-        norm(reference), [norm(c) for c in candidates], dt=dt, scaling=scaling
+        _pair(reference), [_pair(c) for c in candidates], dt=dt, scaling=scaling
     )
     return json.loads(text)
 

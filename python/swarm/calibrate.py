@@ -22,7 +22,7 @@ from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import Scenario, ScenarioLike, SwarmError, Tracks, _scenario, _swarm
+from . import Scenario, ScenarioLike, SwarmError, Tracks, _pair, _scenario, _swarm
 from .ensemble import Pool
 
 __all__ = ["Bound", "Fit", "Parameter", "calibrate", "parameters", "read_tracks", "score",
@@ -152,21 +152,13 @@ def read_tracks(path: str, dt: Optional[float] = None) -> Tuple[np.ndarray, floa
     return positions, step
 
 
-def _pair(t: Tracks) -> Union[str, Tuple[np.ndarray, float]]:
-    """A path as it is, a pair as float64 positions and a float interval."""
-    if isinstance(t, str):
-        return t
-    positions, step = t
-    return np.ascontiguousarray(positions, dtype=np.float64), float(step)
-
-
 def _tracks(t: Tracks, dt: Optional[float] = None) -> Tuple[np.ndarray, float]:
     if isinstance(t, str):
         return read_tracks(t, dt)
     if dt is not None:
         raise SwarmError("dt is for a tracks file; a (positions, dt) pair carries its own")
     positions, step = _pair(t)
-    return positions, step
+    return positions, float(step)
 
 
 def score(
