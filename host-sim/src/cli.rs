@@ -115,10 +115,11 @@ enum Command {
         scenario: String,
         /// The trajectories to match: a track file (`id,time,x,y,z`) or a run folder.
         reference: PathBuf,
-        /// A parameter and its range: `NAME=LOW:HIGH`, or `NAME=LOW:HIGH:log` to search its
-        /// logarithm (a positive range over decades). Repeat for each parameter.
-        #[arg(long = "param", required = true, value_name = "NAME=LOW:HIGH[:log]")]
-        params: Vec<crate::fit::Param>,
+        /// A parameter and its range: `NAME=LOW:HIGH`, `NAME=LOW:HIGH:log` to search its
+        /// logarithm (a positive range over decades), or `NAME` alone for the model's whole
+        /// range (`swarm models MODEL`). Repeat for each parameter.
+        #[arg(long = "param", required = true, value_name = "NAME[=LOW:HIGH[:log]]")]
+        params: Vec<String>,
         /// Frame interval of a track file in seconds (default: the smallest time step within
         /// a track).
         #[arg(long)]
@@ -555,6 +556,17 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 }
             }
             let sc = crate::scenario::resolve(&scenario)?;
+            let model = sc
+                .groups
+                .first()
+                .ok_or(crate::SimError::NoAgents)?
+                .model
+                .as_str();
+            let table = models::get(model)?.params;
+            let params = params
+                .iter()
+                .map(|p| crate::fit::Param::resolve(p, table))
+                .collect::<crate::Result<Vec<_>>>()?;
             let reference_tracks = crate::eval::Tracks::open(&reference, dt)?;
             let first = seed.unwrap_or(sc.seed);
             let cal = crate::fit::Calibration {

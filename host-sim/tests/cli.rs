@@ -341,6 +341,7 @@ fn fit_writes_a_scenario_that_loads() {
         .args(["--dt", "0.01", "--burn-in", "0", "--frames", "30"])
         .args(["--generations", "3", "--population", "4"])
         .args(["--param", "gamma=2:20:log", "--param", "chi_att=5:20"])
+        .args(["--param", "gain"]) // the model's whole range, [0, 64]
         .arg("--out")
         .arg(&fitted)
         .arg("--json")
@@ -356,11 +357,14 @@ fn fit_writes_a_scenario_that_loads() {
     assert_eq!(report["evaluations"], 4 + 2 * 3);
     let gamma = report["values"]["gamma"].as_f64().unwrap();
     assert!((2.0..=20.0).contains(&gamma), "{report}");
+    let gain = report["values"]["gain"].as_f64().unwrap();
+    assert!((0.0..=64.0).contains(&gain), "{report}");
     let sc = swarm_sim::scenario::Scenario::from_path(&fitted).unwrap();
     let p = swarm_sim::fly::fly_params(&sc.groups[0]).unwrap();
     assert!((f64::from(p.gamma) - gamma).abs() < 1e-4 * gamma, "{p:?}");
     for (param, says) in [
         ("gamma=2", "expected a range"),
+        ("orca_neighbours", "an integer parameter"),
         ("gamma_typo=1:2", "gamma_typo"),
     ] {
         let err = fails(

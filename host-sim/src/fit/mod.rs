@@ -36,6 +36,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 pub use ga::{Ga, Outcome, Search};
 
+use swarm_core::model::{ParamSpec, Range};
+
 use crate::engine::{Engine, apply_due_events};
 use crate::error::{Result, SimError};
 use crate::eval::score::{BINS, RANGE};
@@ -75,6 +77,46 @@ impl Param {
         } else {
             g
         }
+    }
+}
+
+impl Param {
+    /// `NAME=LOW:HIGH[:log]` as [`FromStr`] reads it, or `NAME` alone: the whole range of that
+    /// real parameter of the model's table `params` ([`ModelEntry::params`], an open lower end
+    /// moved just inside, as the Python package's `search_space` does).
+    ///
+    /// [`ModelEntry::params`]: crate::models::ModelEntry::params
+    ///
+    /// # Errors
+    ///
+    /// What [`FromStr`] refuses; a name alone that is not a real parameter of the table.
+    pub fn resolve(spec: &str, params: &[ParamSpec]) -> Result<Param> {
+        if spec.contains('=') {
+            return spec.parse();
+        }
+        let bad = |problem: &'static str| SimError::FitParam {
+            spec: spec.into(),
+            problem,
+        };
+        let name = spec.trim();
+        let found = params.iter().find(|p| p.name == name);
+        let found = found.ok_or(bad(
+            "not a parameter of the scenario's model (`swarm models MODEL` lists them)",
+        ))?;
+        let Range::Real { min, max, min_open } = found.range else {
+            return Err(bad("an integer parameter: calibration fits real ones"));
+        };
+        let (mut low, high) = (f64::from(min.f32()), f64::from(max.f32()));
+        if min_open {
+            // A part in a million of the range inside, and at least the fixed point's step.
+            low += ((high - low) * 1e-6).max(1.0 / 65536.0);
+        }
+        Ok(Param {
+            name: name.into(),
+            low,
+            high,
+            log: false,
+        })
     }
 }
 
@@ -322,6 +364,24 @@ pub fn calibrate(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A name alone is the model's whole range; an open end starts just inside.
+    #[test]
+    fn a_name_alone_takes_the_models_range() {
+        let fly = crate::models::get("fly").unwrap().params;
+        let p = Param::resolve("gamma", fly).unwrap();
+        assert_eq!((p.low, p.high, p.log), (0.0, 100.0, false));
+        let p = Param::resolve("scale", fly).unwrap();
+        assert!(p.low > 0.0 && p.low < 1e-4 && p.high == 64.0, "{p:?}");
+        assert_eq!(
+            Param::resolve("gamma=1:2:log", fly).unwrap(),
+            "gamma=1:2:log".parse().unwrap()
+        );
+        for (bad, says) in [("gama", "not a parameter"), ("orca_neighbours", "integer")] {
+            let e = Param::resolve(bad, fly).unwrap_err().to_string();
+            assert!(e.contains(bad) && e.contains(says), "{e}");
+        }
+    }
 
     #[test]
     fn params_read_and_refuse() {
