@@ -466,6 +466,15 @@ fn parameters(model: &str) -> PyResult<Vec<ParamRow>> {
         .collect())
 }
 
+/// The whole range of real parameter `name` of `model` as calibration searches it
+/// (`swarm_sim::fit::Param::resolve`: an open lower end moved just inside).
+#[pyfunction]
+fn whole_range(model: &str, name: &str) -> PyResult<(f64, f64)> {
+    let entry = swarm_sim::models::get(model).map_err(err)?;
+    let p = fit::Param::resolve(name, entry.params).map_err(err)?;
+    Ok((p.low, p.high))
+}
+
 /// The genetic algorithm of `swarm fit` (chen §VI's, `swarm_sim::fit::Ga`), asked and told
 /// one generation at a time so that a pool or a cluster scores the individuals.
 #[pyclass(module = "swarm._swarm")]
@@ -573,6 +582,7 @@ fn _swarm(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_tracks, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(parameters, m)?)?;
+    m.add_function(wrap_pyfunction!(whole_range, m)?)?;
     m.add_class::<GeneticAlgorithm>()?;
     Ok(())
 }

@@ -118,12 +118,9 @@ def search_space(scenario: ScenarioLike, params: ParamsLike) -> List[Bound]:
         if spec.kind != "real":
             raise SwarmError(f"{name}: {spec}; calibration fits real parameters only")
         if bounds is None:
-            low = spec.low
-            if spec.low_open:
-                # Just inside: a part in a million of the range, and at least the fixed point's
-                # step, so that both number types the model checks in accept it.
-                low += max((spec.high - spec.low) * 1e-6, 2.0**-16)
-            space.append(Bound(name, low, spec.high))
+            # `swarm fit --param NAME`'s range: an open end moved just inside, where both
+            # number types the model checks in accept it.
+            space.append(Bound(name, *_swarm.whole_range(model, name)))
             continue
         if (not isinstance(bounds, (tuple, list)) or len(bounds) not in (2, 3)
                 or (len(bounds) == 3 and bounds[2] != "log")):
