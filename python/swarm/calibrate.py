@@ -23,7 +23,7 @@ from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from . import Scenario, ScenarioLike, SwarmError, Tracks, _pair, _scenario, _swarm
-from .ensemble import Pool
+from .ensemble import Pool, Progress
 
 __all__ = ["Bound", "Fit", "Parameter", "calibrate", "parameters", "read_tracks", "score",
            "search_space", "simulate"]
@@ -277,6 +277,7 @@ def calibrate(
     address: Optional[str] = None,
     num_cpus: float = 1,
     on_generation: Optional[Callable[[int, float], None]] = None,
+    progress: bool = False,
 ) -> Fit:
     """Fits ``params`` of ``scenario`` (:func:`search_space`) to ``reference`` (a tracks CSV
     path, ``dt`` its frame interval when the file does not say, or a ``(positions, dt)``
@@ -293,7 +294,7 @@ def calibrate(
     positive integer) seeds the search. Each generation is scored by the pool of
     :func:`swarm.ensemble` (``use_ray``, ``address``, ``num_cpus``; ``threads`` per run, on
     ``backend``); the fit is the same either way. ``on_generation`` hears the generation and
-    the best score so far.
+    the best score so far; ``progress`` shows them on standard error.
 
     Individuals the model's rules refuse, or whose run fails, score worst and are counted
     (:attr:`Fit.refused`); a first generation refused whole ends the fit with the first
@@ -326,12 +327,20 @@ def calibrate(
         return [math.nan if isinstance(r, str) else float(r) for r in out]
 
     ranges = [b.gene_range() for b in space]
+    bar = Progress(f"calibrate ({method})", generations or 100, progress)
+
+    def heard(generation: int, best: float) -> None:
+        bar.update(generation, f"generations, best E {best:.4f}")
+        if on_generation:
+            on_generation(generation, best)
+
     if method == "ga":
         best, history, evaluations = _by_ga(ranges, judge, population, generations, crossover,
-                                            mutation, seed, on_generation)
+                                            mutation, seed, heard)
     else:
         best, history, evaluations = _by_cma(ranges, judge, population, generations, sigma,
-                                             seed, on_generation)
+                                             seed, heard)
+    bar.update(bar.total)
     values = {b.name: b.value(g) for b, g in zip(space, best.genes)}
     return Fit(values, best.score, sc.with_params(**values).checked(), history, evaluations,
                len(refusals), method, space)

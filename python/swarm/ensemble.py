@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import itertools
 import os
+import sys
+import time
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
@@ -58,12 +60,46 @@ class Pool:
             self._task = ray.remote(num_cpus=num_cpus)(fn)
             self._shared = ray.put(shared)
 
-    def map(self, items: Sequence[Any]) -> List[Any]:
+    def map(
+        self, items: Sequence[Any], on_done: Optional[Callable[[int], None]] = None
+    ) -> List[Any]:
+        """``fn(shared, item)`` of every item, in item order; ``on_done`` hears how many are
+        done each time one finishes."""
+        tell = on_done or (lambda done: None)
         if not self.use_ray:
-            return [self.fn(self.shared, x) for x in items]
+            out = []
+            for x in items:
+                out.append(self.fn(self.shared, x))
+                tell(len(out))
+            return out
         import ray
 
-        return list(ray.get([self._task.remote(self._shared, x) for x in items]))
+        refs = [self._task.remote(self._shared, x) for x in items]
+        pending = list(refs)
+        while pending:
+            _, pending = ray.wait(pending, num_returns=1)
+            tell(len(refs) - len(pending))
+        return list(ray.get(refs))
+
+
+class Progress:
+    """One line on standard error that rewrites itself (``what: 3/16 ...``), finished by a
+    newline; silent when not ``shown``."""
+
+    def __init__(self, what: str, total: int, shown: bool) -> None:
+        self.what, self.total, self.shown = what, total, shown
+        self.start, self.note = time.monotonic(), ""
+
+    def update(self, done: int, note: Optional[str] = None) -> None:
+        """Shows ``done`` of the total (the line ends at the total, once)."""
+        if not self.shown:
+            return
+        self.note = self.note if note is None else note
+        took = time.monotonic() - self.start
+        end = "\n" if done >= self.total else ""
+        sys.stderr.write(f"\r{self.what}: {done}/{self.total} {self.note} [{took:.0f} s]{end}")
+        sys.stderr.flush()
+        self.shown = not end
 
 
 @dataclass(frozen=True)
@@ -101,6 +137,7 @@ def ensemble(
     use_ray: bool = True,
     address: Optional[str] = None,
     num_cpus: float = 1,
+    progress: bool = False,
 ) -> List[Any]:
     """Runs every member (every parameter set of ``params``, each with every seed of
     ``seeds``) of ``scenario``; returns the runs in member order (:func:`members`).
@@ -113,11 +150,14 @@ def ensemble(
     Without ``out`` the runs come back as :class:`Run` objects (their arrays through Ray's
     object store). With ``out``, a folder every worker can write (a shared file system on a
     cluster), member ``i`` writes its run there as ``swarm run --out OUT/member-000i`` does
-    (``positions.npy``, ``summary.json``, ...) and the folders' paths come back."""
+    (``positions.npy``, ``summary.json``, ...) and the folders' paths come back. ``progress``
+    shows the runs done on standard error."""
     sc = _scenario(scenario)
     if out is not None:
         out = os.path.abspath(out)
         os.makedirs(out, exist_ok=True)
     pool = Pool(_run_member, _Sweep(sc, steps, backend, threads, out), use_ray=use_ray,
                 address=address, num_cpus=num_cpus)
-    return pool.map(list(enumerate(members(seeds, params))))
+    todo = list(enumerate(members(seeds, params)))
+    bar = Progress("ensemble", len(todo), progress)
+    return pool.map(todo, lambda done: bar.update(done, "runs"))

@@ -2,6 +2,7 @@
 ensembles into a folder (pytest)."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -242,3 +243,17 @@ def test_an_ensemble_writes_each_member_into_a_shared_folder(ray_pool, tmp_path)
         npy = np.load(f"{folder}/positions.npy")
         ran = swarm.run(sc.with_params(gamma=9.0), steps=20, seed=seed)
         assert npy.tobytes() == ran.positions.tobytes()
+
+
+def test_progress_goes_to_standard_error(capsys):
+    """One line that rewrites itself and ends once: the runs of an ensemble, the generations
+    of a calibration with the best E."""
+    sc = fly_jar()
+    swarm.ensemble(sc, [1, 2, 3], steps=5, use_ray=False, progress=True)
+    err = capsys.readouterr().err
+    assert re.search(r"ensemble: 3/3 runs \[\d+ s\]\n$", err) and err.count("\n") == 1, err
+    ref = (swarm.simulate(sc, seeds=[1], burn_in=0, frames=10), FLY_DT)
+    fit = swarm.calibrate(sc, ref, {"gamma": (2, 20)}, seeds=[2], burn_in=0, frames=10,
+                          population=3, generations=2, use_ray=False, progress=True)
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"2/2 generations, best E {fit.score:.4f}" in err, err
