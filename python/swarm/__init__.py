@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import copy
 import json
+import os
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
@@ -218,13 +219,14 @@ def run_to(
     return json.loads(text)
 
 
-Tracks = Union[str, Tuple[Any, float]]
+Tracks = Union[str, "os.PathLike[str]", Tuple[Any, float]]
 
 
 def _pair(t: Tracks) -> Tracks:
-    """A tracks path as it is, a ``(positions, dt)`` pair as float64 positions and a float."""
-    if isinstance(t, str):
-        return t
+    """A tracks path (``str`` or ``os.PathLike``) as a ``str``, a ``(positions, dt)`` pair as
+    float64 positions and a float."""
+    if isinstance(t, (str, os.PathLike)):
+        return os.fspath(t)
     positions, step = t
     return np.ascontiguousarray(positions, dtype=np.float64), float(step)
 

@@ -17,13 +17,14 @@ from __future__ import annotations
 
 import json
 import math
+import os
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from . import Scenario, ScenarioLike, SwarmError, Tracks, _pair, _scenario, _swarm
-from .ensemble import Pool, Progress
+from .ensemble import Pool, Progress, per_run_threads
 
 __all__ = ["Bound", "Fit", "Parameter", "calibrate", "parameters", "read_tracks", "score",
            "search_space", "simulate"]
@@ -122,8 +123,11 @@ def search_space(scenario: ScenarioLike, params: ParamsLike) -> List[Bound]:
             # number types the model checks in accept it.
             space.append(Bound(name, *_swarm.whole_range(model, name)))
             continue
-        if (not isinstance(bounds, (tuple, list)) or len(bounds) not in (2, 3)
-                or (len(bounds) == 3 and bounds[2] != "log")):
+        try:
+            bounds = list(bounds)
+        except TypeError:
+            bounds = [bounds]
+        if len(bounds) not in (2, 3) or (len(bounds) == 3 and bounds[2] != "log"):
             raise SwarmError(f"{name}: {bounds!r}: give (low, high) or (low, high, \"log\")")
         low, high, log = float(bounds[0]), float(bounds[1]), len(bounds) == 3
         if not (math.isfinite(low) and math.isfinite(high)) or low > high:
@@ -145,13 +149,13 @@ def read_tracks(path: str, dt: Optional[float] = None) -> Tuple[np.ndarray, floa
     column free since at least one frame before it starts (insects lost and numbered anew
     share a column), so the array is about as wide as the most insects seen at once and every
     metric reads the same tracks from it."""
-    positions, step = _swarm.read_tracks(str(path), dt)
+    positions, step = _swarm.read_tracks(os.fspath(path), dt)
     return positions, step
 
 
 def _tracks(t: Tracks, dt: Optional[float] = None) -> Tuple[np.ndarray, float]:
-    if isinstance(t, str):
-        return read_tracks(t, dt)
+    if isinstance(t, (str, os.PathLike)):
+        return read_tracks(os.fspath(t), dt)
     if dt is not None:
         raise SwarmError("dt is for a tracks file; a (positions, dt) pair carries its own")
     positions, step = _pair(t)
@@ -170,6 +174,8 @@ def score(
     Σ_φ E_φ, ren2016 Eq. 6 with Step 1's weights, each metric z-scored by the reference's
     moments (``scaling="reference"``) or its own (``"separate"``). 1 for identical
     distributions."""
+    if dt is not None and not any(isinstance(t, (str, os.PathLike)) for t in (reference, candidate)):
+        raise SwarmError("dt is for a tracks file; a (positions, dt) pair carries its own")
     return _swarm.score(_pair(reference), _pair(candidate), dt=dt, scaling=scaling)
 
 
@@ -272,7 +278,7 @@ def calibrate(
     sigma: float = 0.3,
     seed: int = 1,
     backend: Optional[str] = None,
-    threads: Optional[int] = 1,
+    threads: Optional[int] = None,
     use_ray: bool = True,
     address: Optional[str] = None,
     num_cpus: float = 1,
@@ -292,8 +298,8 @@ def calibrate(
     as a share of each range, started at the ranges' middle; it may stop before its last
     generation when its step has shrunk to nothing; two parameters or more). ``seed`` (a
     positive integer) seeds the search. Each generation is scored by the pool of
-    :func:`swarm.ensemble` (``use_ray``, ``address``, ``num_cpus``; ``threads`` per run, on
-    ``backend``); the fit is the same either way. ``on_generation`` hears the generation and
+    :func:`swarm.ensemble` (``use_ray``, ``address``, ``num_cpus``; ``threads`` per run as
+    there, on ``backend``); the fit is the same either way. ``on_generation`` hears the generation and
     the best score so far; ``progress`` shows them on standard error.
 
     Individuals the model's rules refuse, or whose run fails, score worst and are counted
@@ -310,7 +316,7 @@ def calibrate(
     middle = {b.name: b.value(sum(b.gene_range()) / 2) for b in space}
     sc.with_params(**middle).checked()
     job = _Job(sc, ref, tuple(int(s) for s in (seeds or [sc.data.get("seed", 1)])), burn_in,
-               frames, every, backend, threads, scaling)
+               frames, every, backend, per_run_threads(threads, use_ray), scaling)
     pool = Pool(_score_individual, job, use_ray=use_ray, address=address, num_cpus=num_cpus)
     refusals: List[str] = []
     scored = 0
@@ -334,13 +340,15 @@ def calibrate(
         if on_generation:
             on_generation(generation, best)
 
-    if method == "ga":
-        best, history, evaluations = _by_ga(ranges, judge, population, generations, crossover,
-                                            mutation, seed, heard)
-    else:
-        best, history, evaluations = _by_cma(ranges, judge, population, generations, sigma,
-                                             seed, heard)
-    bar.update(bar.total)
+    try:
+        if method == "ga":
+            best, history, evaluations = _by_ga(ranges, judge, population, generations,
+                                                crossover, mutation, seed, heard)
+        else:
+            best, history, evaluations = _by_cma(ranges, judge, population, generations, sigma,
+                                                 seed, heard)
+    finally:
+        bar.finish()  # CMA-ES may stop before its last generation
     values = {b.name: b.value(g) for b, g in zip(space, best.genes)}
     return Fit(values, best.score, sc.with_params(**values).checked(), history, evaluations,
                len(refusals), method, space)
@@ -361,8 +369,9 @@ def _check_search(method: str, genes: int, population: Optional[int],
             raise SwarmError(f"{name} {p}: not a probability")
     if not 0 < sigma <= 1:
         raise SwarmError(f"sigma {sigma}: a share of each range in (0, 1]")
-    if seed < 1:
-        raise SwarmError(f"seed {seed}: a positive integer (cma takes 0 as \"from the clock\")")
+    if not 1 <= seed < 2**32:
+        raise SwarmError(f"seed {seed}: a positive 32-bit integer (cma takes 0 as \"from the "
+                         "clock\")")
     if method == "cma" and genes < 2:
         raise SwarmError("CMA-ES needs at least two parameters (the cma package's bounds do not "
                          "work in one dimension); fit one with method=\"ga\"")

@@ -16,7 +16,7 @@ import time
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
-from . import Run, Scenario, ScenarioLike, _scenario, run, run_to
+from . import Run, Scenario, ScenarioLike, SwarmError, _scenario, run, run_to
 
 
 @dataclass(frozen=True)
@@ -64,21 +64,23 @@ class Pool:
         self, items: Sequence[Any], on_done: Optional[Callable[[int], None]] = None
     ) -> List[Any]:
         """``fn(shared, item)`` of every item, in item order; ``on_done`` hears how many are
-        done each time one finishes."""
-        tell = on_done or (lambda done: None)
+        done (after each item here, about every second on Ray)."""
         if not self.use_ray:
             out = []
             for x in items:
                 out.append(self.fn(self.shared, x))
-                tell(len(out))
+                if on_done:
+                    on_done(len(out))
             return out
         import ray
 
         refs = [self._task.remote(self._shared, x) for x in items]
-        pending = list(refs)
-        while pending:
-            _, pending = ray.wait(pending, num_returns=1)
-            tell(len(refs) - len(pending))
+        if on_done:
+            pending = refs
+            while pending:
+                _, pending = ray.wait(pending, num_returns=len(pending), timeout=1.0,
+                                      fetch_local=False)
+                on_done(len(refs) - len(pending))
         return list(ray.get(refs))
 
 
@@ -88,18 +90,32 @@ class Progress:
 
     def __init__(self, what: str, total: int, shown: bool) -> None:
         self.what, self.total, self.shown = what, total, shown
-        self.start, self.note = time.monotonic(), ""
+        self.start, self.note, self.done = time.monotonic(), "", 0
 
     def update(self, done: int, note: Optional[str] = None) -> None:
         """Shows ``done`` of the total (the line ends at the total, once)."""
         if not self.shown:
             return
         self.note = self.note if note is None else note
+        self.done = done
         took = time.monotonic() - self.start
         end = "\n" if done >= self.total else ""
         sys.stderr.write(f"\r{self.what}: {done}/{self.total} {self.note} [{took:.0f} s]{end}")
         sys.stderr.flush()
         self.shown = not end
+
+    def finish(self, total: Optional[int] = None) -> None:
+        """Ends the line (at ``total`` when the work stopped short of the planned total)."""
+        if self.shown:
+            self.total = self.done if total is None else total
+            self.update(self.total)
+
+
+def per_run_threads(threads: Optional[int], use_ray: bool) -> Optional[int]:
+    """A run's threads: those given, else one on Ray (a core per task), else all cores."""
+    if threads is not None and threads < 1:
+        raise SwarmError(f"threads {threads}: at least 1")
+    return threads if threads is not None else (1 if use_ray else None)
 
 
 @dataclass(frozen=True)
@@ -132,7 +148,7 @@ def ensemble(
     *,
     steps: Optional[int] = None,
     backend: Optional[str] = None,
-    threads: Optional[int] = 1,
+    threads: Optional[int] = None,
     out: Optional[str] = None,
     use_ray: bool = True,
     address: Optional[str] = None,
@@ -145,7 +161,8 @@ def ensemble(
     With ``use_ray`` (the default) each member is a Ray task of ``num_cpus`` CPUs (a
     :class:`Pool`): ``address`` ``None`` starts a local pool of this machine's cores,
     ``"auto"`` or a head's address joins a cluster. ``use_ray=False`` runs them one after the
-    other here, with the same bits. ``threads``: each run's threads (1: one core per task).
+    other here, with the same bits. ``threads``: each run's threads (default: 1 on Ray, one
+    core per task; all cores one after the other here).
 
     Without ``out`` the runs come back as :class:`Run` objects (their arrays through Ray's
     object store). With ``out``, a folder every worker can write (a shared file system on a
@@ -156,8 +173,12 @@ def ensemble(
     if out is not None:
         out = os.path.abspath(out)
         os.makedirs(out, exist_ok=True)
+    threads = per_run_threads(threads, use_ray)
     pool = Pool(_run_member, _Sweep(sc, steps, backend, threads, out), use_ray=use_ray,
                 address=address, num_cpus=num_cpus)
     todo = list(enumerate(members(seeds, params)))
     bar = Progress("ensemble", len(todo), progress)
-    return pool.map(todo, lambda done: bar.update(done, "runs"))
+    try:
+        return pool.map(todo, (lambda done: bar.update(done, "runs")) if progress else None)
+    finally:
+        bar.finish()

@@ -63,6 +63,7 @@ def test_a_models_parameter_table_gives_the_search_ranges():
         (["orca_neighbours"], "real parameters only"),
         ([], "at least one parameter"),
         (["gamma", "scale", "gamma"], "gamma: named more than once"),
+        ({"gamma": np.array([1.0, 500.0])}, "1..500 leaves"),
     ]:
         with pytest.raises(swarm.SwarmError, match=message):
             swarm.search_space(sc, params)
@@ -83,7 +84,8 @@ def test_a_calibration_refuses_what_cannot_work():
         swarm.calibrate(sc, ref, ["gamma"], **dict(fit, frames=2))
     for bad, message in [({"population": 1}, "population 1"), ({"generations": 0}, "generations"),
                          ({"mutation": 1.5}, "probability"), ({"sigma": 0}, "sigma"),
-                         ({"seed": 0}, "positive"), ({"method": "cma"}, "two parameters")]:
+                         ({"seed": 0}, "positive"), ({"seed": 2**32}, "32-bit"),
+                         ({"threads": 0}, "threads 0"), ({"method": "cma"}, "two parameters")]:
         with pytest.raises(swarm.SwarmError, match=message):
             swarm.calibrate(sc, ref, {"gamma": (2, 20)}, **dict(fit, **bad))
     with pytest.raises(swarm.SwarmError, match="dt is for a tracks file"):
@@ -192,10 +194,12 @@ def test_tracks_packed_into_columns_score_as_the_file(tmp_path):
     positions, dt = swarm.read_tracks(str(path))
     assert positions.shape == r.shape and np.isnan(positions[30]).all()
     assert np.array_equal(positions[31:], r[31:]) and math.isclose(dt, FLY_DT)
-    assert swarm.score(str(path), other) == swarm.score((positions, dt), other)
+    assert swarm.score(path, other) == swarm.score((positions, dt), other)  # a Path too
     assert swarm.score(other, str(path)) == swarm.score(other, (positions, dt))
     with pytest.raises(swarm.SwarmError, match="positive number of seconds"):
         swarm.read_tracks(str(path), 0.0)
+    with pytest.raises(swarm.SwarmError, match="dt is for a tracks file"):
+        swarm.score((positions, dt), other, dt=0.01)
 
 
 def test_a_tracks_file_reads_into_an_array_that_scores_as_the_file(tmp_path):
