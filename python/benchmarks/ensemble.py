@@ -59,8 +59,9 @@ def main() -> None:
 
     serial, pooled = [], []
     for _ in range(a.rounds):
-        serial.append(timed(lambda: swarm.ensemble(sc, seeds, steps=a.steps, use_ray=False)))
-        pooled.append(timed(lambda: swarm.ensemble(sc, seeds, steps=a.steps)))
+        serial.append(timed(lambda: swarm.ensemble(sc, seeds, steps=a.steps, threads=1,
+                                                   use_ray=False)))
+        pooled.append(timed(lambda: swarm.ensemble(sc, seeds, steps=a.steps, threads=1)))
 
     tiny = sc.with_(groups=[dict(sc.groups[0], count=10)])
     task = ray.remote(num_cpus=1)(lambda s: swarm.run(s, steps=1, threads=1).positions.shape)
