@@ -11,7 +11,7 @@ mod gpu_common;
 
 use std::path::Path;
 
-use gpu_common::{fixed, normalised_summary, run_on, same_bytes_on_the_gpu};
+use gpu_common::{every_scenario_of, fixed, normalised_summary, run_on, same_bytes_on_the_gpu};
 use swarm_sim::scenario::{self, Backend, ScalarType, Scenario};
 
 /// One test per built-in scenario of the models with a GPU engine.
@@ -50,15 +50,7 @@ gpu_is_cpu! {
 /// `scenarios/` is compared without a line here.
 #[test]
 fn fly_scenarios_are_the_cpus_bytes() {
-    let names: Vec<&str> = scenario::builtin_names()
-        .iter()
-        .copied()
-        .filter(|n| n.starts_with("fly-"))
-        .collect();
-    assert!(names.contains(&"fly-fig1-midges"), "{names:?}");
-    for name in names {
-        same_bytes_on_the_gpu(name);
-    }
+    every_scenario_of("fly-", "fly-fig1-midges");
 }
 
 /// Every built-in scenario is covered: a model's scenarios join the list above when its GPU

@@ -4,20 +4,11 @@
 
 mod gpu_common;
 
-use gpu_common::same_bytes_on_the_gpu;
-use swarm_sim::scenario;
+use gpu_common::every_scenario_of;
 
 /// Every built-in li scenario (`li-*`), found by its name, as the fly's: the lights of Fig. 6
 /// move each group's density on between steps (the host sees every step until the last).
 #[test]
 fn li_scenarios_are_the_cpus_bytes() {
-    let names: Vec<&str> = scenario::builtin_names()
-        .iter()
-        .copied()
-        .filter(|n| n.starts_with("li-"))
-        .collect();
-    assert!(names.contains(&"li-fig6-lights"), "{names:?}");
-    for name in names {
-        same_bytes_on_the_gpu(name);
-    }
+    every_scenario_of("li-", "li-fig6-lights");
 }

@@ -86,3 +86,18 @@ pub fn same_bytes_on_the_gpu(name: &str) {
         "{name}: summary.json differs on the GPU"
     );
 }
+
+/// [`same_bytes_on_the_gpu`] for every built-in scenario whose name starts with `prefix`
+/// (found by name: a scenario added to `scenarios/` is compared without a line in a test),
+/// `example` among them.
+pub fn every_scenario_of(prefix: &str, example: &str) {
+    let names: Vec<&str> = swarm_sim::scenario::builtin_names()
+        .iter()
+        .copied()
+        .filter(|n| n.starts_with(prefix))
+        .collect();
+    assert!(names.contains(&example), "{names:?}");
+    for name in names {
+        same_bytes_on_the_gpu(name);
+    }
+}
