@@ -45,7 +45,7 @@ struct BeeTickParams {
 @group(0) @binding(17) var<storage, read_write> bee_tick_corrected: array<u32>;
 
 // The words of `bee_tick_shared` (host-sim/src/gpu/bee/engine.rs, SHARED_*): this tick's
-// refusal (n - the lowest slot refused, 0 for none) and corrections (obstacle, bounds), cleared
+// refusal (0xffffffff − the lowest id refused, 0 for none) and corrections (obstacle, bounds), cleared
 // by the host every tick; the first refusal kept (a flag, its step, slot and status word); the
 // corrections since the start, each a u64 as two words (low, high).
 const BEE_TICK_REFUSED: u32 = 0u;
@@ -101,8 +101,8 @@ fn bee_tick_step_main(@builtin(global_invocation_id) id: vec3<u32>,
     let r = bee_step_checked(bee_tick_state(i), &frame, bee_tick_params_of(i));
     bee_tick_status[i] = r.status;
     if (r.status != BEE_OK) {
-        // for_each_agent (par.rs): the lowest slot refused is the error reported.
-        atomicMax(&bee_tick_shared[BEE_TICK_REFUSED], n - i);
+        // for_each_agent_by (par.rs): the lowest id refused is the error reported.
+        atomicMax(&bee_tick_shared[BEE_TICK_REFUSED], 0xffffffffu - bee_sensed_id(i));
     }
     let d = bee_decision_to_words(r.decision);
     for (var k = 0u; k < BEE_DECISION_WORDS; k = k + 1u) {
@@ -127,6 +127,18 @@ fn bee_tick_confine(s: ptr<function, BeeState>) -> u32 {
     return flags;
 }
 
+// The slot of bee `id` (slots never move here; looked up only for a refusal, which ends the
+// run); the ids from the commit's own binding of the sensed words (`bee_tick_sensed`).
+fn bee_tick_slot_of(id: u32) -> u32 {
+    let n = bee_sense_params.n;
+    for (var i = 0u; i < n; i = i + 1u) {
+        if (bee_tick_sensed[BEE_SENSED_ID * n + i] == id) {
+            return i;
+        }
+    }
+    return 0u;
+}
+
 // Adds one to the u64 of words `at` (low) and `at + 1` (high): the add that wraps the low word
 // carries.
 fn bee_tick_count64(at: u32) {
@@ -148,7 +160,7 @@ fn bee_tick_commit_main(@builtin(global_invocation_id) id: vec3<u32>,
     if (i == 0u && atomicLoad(&bee_tick_shared[BEE_TICK_KEPT]) == 0u) {
         let refused = atomicLoad(&bee_tick_shared[BEE_TICK_REFUSED]);
         if (refused != 0u) {
-            let slot = n - refused;
+            let slot = bee_tick_slot_of(0xffffffffu - refused);
             atomicStore(&bee_tick_shared[BEE_TICK_KEPT], 1u);
             atomicStore(&bee_tick_shared[BEE_TICK_KEPT_STEP], bee_tick.step);
             atomicStore(&bee_tick_shared[BEE_TICK_KEPT_SLOT], slot);

@@ -67,8 +67,8 @@ const FLY_NO_SOURCE: u32 = 0xffffffffu;
 // container), whether the frame was truncated.
 const FLY_FLAG_TRUNCATED: u32 = 4u;
 
-// The words of `fly_shared` (engine.rs, SHARED_*): this tick's lowest refused slot (n − slot,
-// 0 for none), infeasible programs, truncated frames, corrections (obstacle, bounds), cleared
+// The words of `fly_shared` (engine.rs, SHARED_*): this tick's lowest refused id (0xffffffff −
+// id, 0 for none), infeasible programs, truncated frames, corrections (obstacle, bounds), cleared
 // by the host every tick; the first refusal kept (a flag, its step, slot and status word); the
 // counts since the start, each a u64 as two words.
 const FLY_SHARED_REFUSED: u32 = 0u;
@@ -146,6 +146,17 @@ fn fly_group_params(g: u32) -> FlyParams {
 // The id of the insect in slot i.
 fn fly_tick_id(i: u32) -> u32 {
     return fly_slots[fly_tick.n + i];
+}
+
+// The slot of insect `id` (slots never move here; looked up only for a refusal, which ends
+// the run).
+fn fly_slot_of(id: u32) -> u32 {
+    for (var i = 0u; i < fly_tick.n; i = i + 1u) {
+        if (fly_tick_id(i) == id) {
+            return i;
+        }
+    }
+    return 0u;
 }
 
 // ---- the frame (host-sim/src/fly/sense.rs, world.rs) ----
@@ -379,8 +390,8 @@ fn fly_tick_step_main(@builtin(global_invocation_id) id: vec3<u32>,
     let r = fly_step_checked(s, &f, p, c);
     fly_status[i] = r.status;
     if (r.status != BEE_OK) {
-        // The lowest slot refused is the one reported (for_each_agent, par.rs).
-        atomicMax(&fly_shared[FLY_SHARED_REFUSED], fly_tick.n - i);
+        // The lowest id refused is the one reported (for_each_agent_by, par.rs).
+        atomicMax(&fly_shared[FLY_SHARED_REFUSED], 0xffffffffu - fly_tick_id(i));
     }
     let w = fly_state_words(r.next);
     for (var k = 0u; k < FLY_STATE_WORDS; k = k + 1u) {
@@ -410,7 +421,7 @@ fn fly_tick_commit_main(@builtin(global_invocation_id) id: vec3<u32>,
     if (i == 0u && atomicLoad(&fly_shared[FLY_SHARED_KEPT]) == 0u) {
         let refused = atomicLoad(&fly_shared[FLY_SHARED_REFUSED]);
         if (refused != 0u) {
-            let slot = n - refused;
+            let slot = fly_slot_of(0xffffffffu - refused);
             atomicStore(&fly_shared[FLY_SHARED_KEPT], 1u);
             atomicStore(&fly_shared[FLY_SHARED_KEPT_STEP], fly_tick.step);
             atomicStore(&fly_shared[FLY_SHARED_KEPT_SLOT], slot);

@@ -45,8 +45,8 @@ const LI_DECISION_WORDS: u32 = 6u;
 // bit 1 the container), whether the frame was truncated.
 const LI_FLAG_TRUNCATED: u32 = 4u;
 
-// The words of `li_shared` (swarm3d.rs, SharedLayout): this tick's lowest refused slot (n − slot,
-// 0 for none) and counts, cleared by the host every tick; the first refusal kept (a flag, its
+// The words of `li_shared` (swarm3d.rs, SharedLayout): this tick's lowest refused id (0xffffffff −
+// id, 0 for none) and counts, cleared by the host every tick; the first refusal kept (a flag, its
 // step, slot and status word); the counts since the start, each a u64 as two words.
 const LI_SHARED_REFUSED: u32 = 0u;
 const LI_SHARED_ARRIVALS: u32 = 1u;
@@ -114,6 +114,17 @@ fn li_write_state(i: u32, s: LiState, to_next: bool) {
 // The id of the insect in slot i.
 fn li_tick_id(i: u32) -> u32 {
     return li_slots[li_tick.n + i];
+}
+
+// The slot of insect `id` (slots never move here; looked up only for a refusal, which ends
+// the run).
+fn li_slot_of(id: u32) -> u32 {
+    for (var i = 0u; i < li_tick.n; i = i + 1u) {
+        if (li_tick_id(i) == id) {
+            return i;
+        }
+    }
+    return 0u;
 }
 
 // ---- the frame (sim.rs, li_frame) ----
@@ -201,8 +212,8 @@ fn li_tick_step_main(@builtin(global_invocation_id) id: vec3<u32>,
     let r = li_step_checked(g, s, &f, p, c);
     li_status[i] = r.status;
     if (r.status != BEE_OK) {
-        // The lowest slot refused is the one reported (for_each_agent, par.rs).
-        atomicMax(&li_shared[LI_SHARED_REFUSED], li_tick.n - i);
+        // The lowest id refused is the one reported (for_each_agent_by, par.rs).
+        atomicMax(&li_shared[LI_SHARED_REFUSED], 0xffffffffu - li_tick_id(i));
     }
     li_write_state(i, r.next, true);
     let d = i * LI_DECISION_WORDS;
@@ -238,7 +249,7 @@ fn li_tick_commit_main(@builtin(global_invocation_id) id: vec3<u32>,
     if (i == 0u && atomicLoad(&li_shared[LI_SHARED_KEPT]) == 0u) {
         let refused = atomicLoad(&li_shared[LI_SHARED_REFUSED]);
         if (refused != 0u) {
-            let slot = n - refused;
+            let slot = li_slot_of(0xffffffffu - refused);
             atomicStore(&li_shared[LI_SHARED_KEPT], 1u);
             atomicStore(&li_shared[LI_SHARED_KEPT_STEP], li_tick.step);
             atomicStore(&li_shared[LI_SHARED_KEPT_SLOT], slot);

@@ -65,8 +65,8 @@ const WANG_FIELD_CELL: u32 = 6u;
 const WANG_FIELD_CELLS: u32 = 7u;
 const WANG_FIELD_SCALE: u32 = 8u;
 
-// The words of `wang_shared` (engine.rs, SHARED_*): this tick's refusals (n - the lowest slot
-// refused, 0 for none; advect, separate), corrections (obstacle, bounds) and insects pushed,
+// The words of `wang_shared` (engine.rs, SHARED_*): this tick's refusals (0xffffffff − the lowest
+// id refused, 0 for none; advect, separate), corrections (obstacle, bounds) and insects pushed,
 // cleared by the host every tick; the first refusal kept (a flag, its step, slot, phase and
 // status word); the corrections and pushes since the start, each a u64 as two words.
 const WANG_SHARED_REFUSED: u32 = 0u;
@@ -358,10 +358,21 @@ fn wang_count_fix(fix: u32) {
     }
 }
 
-// Notes a refusal of slot i in `phase`: the lowest slot refused is the one reported
-// (for_each_agent, par.rs).
+// Notes a refusal of slot i in `phase`: the lowest id refused is the one reported
+// (for_each_agent_by, par.rs).
 fn wang_refuse(i: u32, phase: u32) {
-    atomicMax(&wang_shared[WANG_SHARED_REFUSED + phase], wang_tick.n - i);
+    atomicMax(&wang_shared[WANG_SHARED_REFUSED + phase], 0xffffffffu - wang_tick_id(i));
+}
+
+// The slot of insect `id` (slots never move here; looked up only for a refusal, which ends
+// the run).
+fn wang_slot_of(id: u32) -> u32 {
+    for (var i = 0u; i < wang_tick.n; i = i + 1u) {
+        if (wang_tick_id(i) == id) {
+            return i;
+        }
+    }
+    return 0u;
 }
 
 // ---- the kernels ----
@@ -471,7 +482,7 @@ fn wang_tick_commit_main(@builtin(global_invocation_id) id: vec3<u32>,
         for (var phase = 0u; phase < 2u; phase = phase + 1u) {
             let refused = atomicLoad(&wang_shared[WANG_SHARED_REFUSED + phase]);
             if (refused != 0u) {
-                let slot = n - refused;
+                let slot = wang_slot_of(0xffffffffu - refused);
                 atomicStore(&wang_shared[WANG_SHARED_KEPT], 1u);
                 atomicStore(&wang_shared[WANG_SHARED_KEPT_STEP], wang_tick.step);
                 atomicStore(&wang_shared[WANG_SHARED_KEPT_SLOT], slot);

@@ -29,7 +29,7 @@ const LEAF: usize = 1024;
 
 /// Runs `f(scratch, k, item)` on every `(k, item)` of `items` in parallel, each worker with its
 /// own `scratch` from `init`. Returns the error of the lowest `k` that failed, whatever the
-/// thread count.
+/// thread count ([`for_each_agent_by`] with `k` as the key).
 ///
 /// Unlike rayon's `try_for_each_init`, no result travels through the reduction: an agent step
 /// that succeeds costs nothing beyond the call (failures are rare and only end a run).
@@ -41,15 +41,32 @@ pub(crate) fn for_each_agent<I, T, W>(
 where
     I: IndexedParallelIterator<Item = T>,
 {
-    let first: Mutex<Option<(usize, SimError)>> = Mutex::new(None);
+    for_each_agent_by(items, |k| k as u64, init, f)
+}
+
+/// [`for_each_agent`] returning the error of the item with the lowest `key(k)` that failed:
+/// an engine that reorders its slots passes each slot's agent id, so that the agent a run
+/// names does not depend on where its slot lies (nor on an engine that never reorders, such
+/// as the GPU's).
+pub(crate) fn for_each_agent_by<I, T, W>(
+    items: I,
+    key: impl Fn(usize) -> u64 + Sync + Send,
+    init: impl Fn() -> W + Sync + Send,
+    f: impl Fn(&mut W, usize, T) -> Result<()> + Sync + Send,
+) -> Result<()>
+where
+    I: IndexedParallelIterator<Item = T>,
+{
+    let first: Mutex<Option<(u64, SimError)>> = Mutex::new(None);
     items
         .enumerate()
         .with_max_len(LEAF)
         .for_each_init(init, |w, (k, item)| {
             if let Err(e) = f(w, k, item) {
+                let key = key(k);
                 let mut slot = first.lock().unwrap_or_else(|p| p.into_inner());
-                if slot.as_ref().is_none_or(|(j, _)| k < *j) {
-                    *slot = Some((k, e));
+                if slot.as_ref().is_none_or(|(j, _)| key < *j) {
+                    *slot = Some((key, e));
                 }
             }
         });
@@ -95,5 +112,39 @@ mod tests {
             assert!(out.iter().enumerate().all(|(k, &o)| o == k as u32));
         }
         assert!(for_each_agent((0..10u32).into_par_iter(), || (), |_, _, _| Ok(())).is_ok());
+    }
+
+    /// With a key, the failure of the lowest key wins, wherever its item lies.
+    #[test]
+    fn the_lowest_failing_key_wins() {
+        for threads in [1, 2, 4] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let r = pool.install(|| {
+                for_each_agent_by(
+                    (0..5_000u32).into_par_iter(),
+                    |k| 10_000 - k as u64,
+                    || (),
+                    |_, k, _| match k % 1_000 {
+                        7 => Err(SimError::NoAgent {
+                            id: k as u32,
+                            agents: 0,
+                        }),
+                        _ => Ok(()),
+                    },
+                )
+            });
+            let e = r.unwrap_err().to_string();
+            assert_eq!(
+                e,
+                SimError::NoAgent {
+                    id: 4_007,
+                    agents: 0
+                }
+                .to_string()
+            );
+        }
     }
 }

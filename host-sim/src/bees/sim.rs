@@ -13,7 +13,7 @@ use super::world::BeeWorld;
 use crate::by_scalar;
 use crate::error::{Result, SimError};
 use crate::grid::permuted;
-use crate::par::for_each_agent;
+use crate::par::for_each_agent_by;
 use crate::scalar::{AgentGroup, ByScalar, SimScalar};
 
 /// Corrections the world made because the controller's move would have left a bee inside an
@@ -122,11 +122,13 @@ impl<S: SimScalar> BeeGroup<S> {
         let (first, params) = (self.first, &self.params);
         let goal = self.goal.and_then(|g| w.target_center(g));
         let dt = params.dt.to_f64();
-        for_each_agent(
+        let ids = &self.ids;
+        for_each_agent_by(
             self.next
                 .par_iter_mut()
                 .zip(self.decisions.par_iter_mut())
-                .zip(self.states.par_iter().zip(self.ids.par_iter())),
+                .zip(self.states.par_iter().zip(ids.par_iter())),
+            |k| u64::from(ids[k]),
             || (BlockCache::default(), BeeFrame::new(S::ZERO)),
             |(cache, frame), k, ((out, dec), (s, &id))| {
                 // Each bee's own clock (its phase of eq. 3-4), hence its own constants.

@@ -41,3 +41,13 @@ pub use context::{AdapterSummary, Gpu};
 pub(crate) fn test_gpu() -> Gpu {
     Gpu::new().unwrap_or_else(|e| panic!("the GPU tests need an adapter: {e}"))
 }
+
+/// Two slots `(a, b)`, `a < b`, whose agents' ids run the other way (`ids[a] > ids[b]`): where
+/// two refusals in one tick tell "the lowest slot" from "the lowest id". Panics if the slots
+/// are in id order (the engine must have reordered them for the test to test anything).
+#[cfg(test)]
+pub(crate) fn inverted_slots(ids: &[u32]) -> (usize, usize) {
+    (1..ids.len())
+        .find_map(|b| (0..b).find(|&a| ids[a] > ids[b]).map(|a| (a, b)))
+        .expect("the slots are in id order: reorder them first")
+}

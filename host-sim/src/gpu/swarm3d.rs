@@ -19,7 +19,7 @@
 //!
 //! The tick's atomics (`{MODEL}_SHARED_*` in the model's tick module, e.g. `FLY_SHARED_*`;
 //! [`SharedLayout`]): word 0 the
-//! tick's lowest refused slot, then the model's [`GpuModel3d::COUNTS`] counts of this tick
+//! tick's lowest refused insect id (as `0xffffffff − id`: `par::for_each_agent_by`), then the model's [`GpuModel3d::COUNTS`] counts of this tick
 //! (cleared by the host every tick), the first refusal kept (a flag, its step, slot and status
 //! word), and the counts since the start, each a `u64` as two words from an even word on.
 

@@ -23,7 +23,7 @@ use crate::engine::{Exchange, StateNames};
 use crate::error::{Result, SimError};
 use crate::grid::permuted;
 use crate::output::{AgentSample, Frame, Summary};
-use crate::par::for_each_agent;
+use crate::par::for_each_agent_by;
 use crate::scalar::{AgentGroup, ByScalar, SimScalar};
 use crate::scenario::{Group, ScalarType, Scenario};
 use crate::space::{BeeObstacle, Shape3};
@@ -225,10 +225,11 @@ impl<M: Model3d, S: SimScalar> Group3d<M, S> {
             std::mem::take(&mut self.truncated),
         );
         let this = &*self;
-        let result = for_each_agent(
+        let result = for_each_agent_by(
             next.par_iter_mut()
                 .zip(decisions.par_iter_mut())
                 .zip(truncated.par_iter_mut()),
+            |k| u64::from(this.ids[k]),
             || (),
             |(), k, ((out, dec), cut)| {
                 let (frame, more) = this.params.frame(w, this.first + k, this.inputs);

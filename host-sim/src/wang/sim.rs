@@ -22,7 +22,7 @@ use crate::by_scalar;
 use crate::error::{Result, SimError};
 use crate::grid::permuted;
 use crate::nearest::select;
-use crate::par::for_each_agent;
+use crate::par::for_each_agent_by;
 use crate::scalar::{AgentGroup, ByScalar, SimScalar, a3, a3f, v3};
 use crate::space::confine;
 
@@ -178,8 +178,9 @@ impl<S: SimScalar> WangGroup<S> {
     fn advect(&mut self, w: &WangWorld, seed: u32, step: u32) -> Result<()> {
         let mut moved = std::mem::take(&mut self.moved);
         let this = &*self;
-        let result = for_each_agent(
+        let result = for_each_agent_by(
             moved.par_iter_mut(),
+            |k| u64::from(this.ids[k]),
             || (),
             |(), k, out| {
                 if k % WARM_BLOCK == 0 {
@@ -227,8 +228,9 @@ impl<S: SimScalar> WangGroup<S> {
             std::mem::take(&mut self.pushes),
         );
         let this = &*self;
-        let result = for_each_agent(
+        let result = for_each_agent_by(
             next.par_iter_mut().zip(pushes.par_iter_mut()),
+            |k| u64::from(this.ids[k]),
             || (),
             |(), k, (out, pushed)| {
                 let frame = this.separate_frame(w, first + k);

@@ -13,7 +13,7 @@ use super::world::{GridShape3, world_words};
 use crate::bees::{BeeGroup, BeeObstacle, BeeSim, BeeTarget, BeeWorld, Contacts, Shape3};
 use crate::engine::{Engine, apply_due_events};
 use crate::error::SimError;
-use crate::gpu::test_gpu;
+use crate::gpu::{inverted_slots, test_gpu};
 use crate::scalar::ByScalar;
 use crate::scenario::{Action, Event, Object, ObjectKind, ScalarType, Scenario, World, builtin};
 
@@ -350,19 +350,29 @@ fn broken(sc: &Scenario, slots: &[usize]) -> BeeSim {
     sim
 }
 
-/// A controller's refusal on the GPU is the CPU's error: the same step, bee (the lowest slot
-/// refused) and field, reported at the next sync, or by a tick after at most `CHECK_EVERY`.
+/// A controller's refusal on the GPU is the CPU's error: the same step, bee (the lowest id
+/// refused, wherever its slot lies) and field, reported at the next sync, or by a tick after
+/// at most `CHECK_EVERY`.
 #[test]
 fn a_refusal_is_the_cpus_error() {
     let sc = fixed("bees-fig14-shafts", 10);
-    let mut cpu = broken(&sc, &[30, 7]);
+    let ids = match &broken(&sc, &[]).groups[0] {
+        ByScalar::Fixed(g) => g.ids.clone(),
+        ByScalar::F32(_) => panic!("fixed point"),
+    };
+    let (a, b) = inverted_slots(&ids);
+    let mut cpu = broken(&sc, &[a, b]);
     let cpu_error = Engine::tick(&mut cpu).unwrap_err().to_string();
     assert!(cpu_error.contains("state.density"), "{cpu_error}");
-    let mut gpu = GpuBeeSim::new(broken(&sc, &[30, 7]), test_gpu()).unwrap();
+    assert!(
+        cpu_error.contains(&format!("agent {} ", ids[b])),
+        "{cpu_error}"
+    );
+    let mut gpu = GpuBeeSim::new(broken(&sc, &[a, b]), test_gpu()).unwrap();
     gpu.tick().unwrap();
     assert_eq!(gpu.sync().unwrap_err().to_string(), cpu_error);
 
-    let mut gpu = GpuBeeSim::new(broken(&sc, &[30, 7]), test_gpu()).unwrap();
+    let mut gpu = GpuBeeSim::new(broken(&sc, &[a, b]), test_gpu()).unwrap();
     for t in 1..CHECK_EVERY {
         gpu.tick().unwrap_or_else(|e| panic!("tick {t}: {e}"));
     }

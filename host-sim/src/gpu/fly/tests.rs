@@ -18,8 +18,8 @@ use super::layout::{self, FIELDS, WGSL_CONSTANTS, status_error, status_of};
 use crate::engine::{Engine, apply_due_events};
 use crate::fly::{FlyGroup, FlySim, bench_fly_world};
 use crate::gpu::shaders::{FLY_STEP, FLY_TICK};
-use crate::gpu::test_gpu;
 use crate::gpu::tests::harness::{StatusWords, assert_constants, assert_valid_wgsl};
+use crate::gpu::{inverted_slots, test_gpu};
 use crate::scalar::ByScalar;
 use crate::scenario::{ScalarType, Scenario, builtin, builtin_names};
 
@@ -275,6 +275,30 @@ fn a_refusal_is_the_cpus() {
     let b = gpu.sync().unwrap_err().to_string();
     assert_eq!(a, b);
     assert!(a.contains("state.pos"), "{a}");
+}
+
+/// Two insects refused in one tick: both engines name the lower id, whatever slots they hold
+/// (the CPU reorders its slots by cell, the GPU keeps them).
+#[test]
+fn two_refusals_name_the_lower_id() {
+    let make = || {
+        let mut sim = bench_fly_world(200, 3, ScalarType::Fixed);
+        let ByScalar::Fixed(g) = &mut sim.groups[0] else {
+            panic!("fixed point");
+        };
+        let (a, b) = inverted_slots(&g.ids);
+        for k in [a, b] {
+            g.states[k].pos.x = Fx::from_f32(20_000.0);
+        }
+        let lower = g.ids[b];
+        (sim, lower)
+    };
+    let (mut cpu, lower) = make();
+    let mut gpu = GpuFlySim::new(make().0, test_gpu()).unwrap();
+    let a = Engine::tick(&mut cpu).unwrap_err().to_string();
+    Engine::tick(&mut gpu).unwrap();
+    assert_eq!(a, gpu.sync().unwrap_err().to_string());
+    assert!(a.contains(&format!("agent {lower} ")), "{a}");
 }
 
 /// The `region` stimuli: a threat's echo where the heading meets its walls (until an event

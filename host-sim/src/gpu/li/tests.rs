@@ -15,8 +15,8 @@ use super::layout::{self, FIELDS, WGSL_CONSTANTS, status_error, status_of};
 use super::{GpuLiSim, modules, wgsl_shared};
 use crate::engine::Engine;
 use crate::gpu::shaders::{LI_STEP, LI_TICK};
-use crate::gpu::test_gpu;
 use crate::gpu::tests::harness::{StatusWords, assert_constants, assert_valid_wgsl};
+use crate::gpu::{inverted_slots, test_gpu};
 use crate::li::{LiGroup, LiSim, bench_li_world};
 use crate::scalar::ByScalar;
 use crate::scenario::{ScalarType, Scenario, builtin, builtin_names};
@@ -239,6 +239,34 @@ fn a_refusal_is_the_cpus() {
     let b = gpu.sync().unwrap_err().to_string();
     assert_eq!(a, b);
     assert!(a.contains("state.waypoint"), "{a}");
+}
+
+/// Two insects refused in one tick: both engines name the lower id, whatever slots they hold.
+#[test]
+fn two_refusals_name_the_lower_id() {
+    // A neighbour range of 0.2 m splits the 0.91 m cube into cells (the scenario's 1.48 m
+    // makes one cell, where slots stay in id order).
+    let mut sc = fixed("li-fig4-confined", 1);
+    let table = sc.groups[0].params.get_or_insert_with(toml::Table::new);
+    table.insert("range".into(), toml::Value::Float(0.2));
+    let make = || {
+        let mut sim = LiSim::from_scenario(&sc, sc.seed).unwrap();
+        let ByScalar::Fixed(g) = &mut sim.groups[0] else {
+            panic!("fixed point");
+        };
+        let (a, b) = inverted_slots(&g.ids);
+        for k in [a, b] {
+            g.states[k].waypoint.z = Fx::from_f32(20_000.0);
+        }
+        let lower = g.ids[b];
+        (sim, lower)
+    };
+    let (mut cpu, lower) = make();
+    let mut gpu = GpuLiSim::new(make().0, test_gpu()).unwrap();
+    let a = Engine::tick(&mut cpu).unwrap_err().to_string();
+    Engine::tick(&mut gpu).unwrap();
+    assert_eq!(a, gpu.sync().unwrap_err().to_string());
+    assert!(a.contains(&format!("agent {lower} ")), "{a}");
 }
 
 /// `f32` on the GPU is measured, not promised: after 40 ticks of the bench world the positions
