@@ -51,3 +51,16 @@ pub(crate) fn inverted_slots(ids: &[u32]) -> (usize, usize) {
         .find_map(|b| (0..b).find(|&a| ids[a] > ids[b]).map(|a| (a, b)))
         .expect("the slots are in id order: reorder them first")
 }
+
+/// Ticks `cpu` (which must refuse) and `gpu` once, syncs the GPU, and checks that both report
+/// the same error; returns it.
+#[cfg(test)]
+pub(crate) fn same_refusal(
+    cpu: &mut dyn crate::engine::Engine,
+    gpu: &mut dyn crate::engine::Engine,
+) -> String {
+    let a = cpu.tick().unwrap_err().to_string();
+    gpu.tick().unwrap();
+    assert_eq!(a, gpu.sync().unwrap_err().to_string());
+    a
+}

@@ -19,7 +19,7 @@ use crate::engine::{Engine, apply_due_events};
 use crate::fly::{FlyGroup, FlySim, bench_fly_world};
 use crate::gpu::shaders::{FLY_STEP, FLY_TICK};
 use crate::gpu::tests::harness::{StatusWords, assert_constants, assert_valid_wgsl};
-use crate::gpu::{inverted_slots, test_gpu};
+use crate::gpu::{inverted_slots, same_refusal, test_gpu};
 use crate::scalar::ByScalar;
 use crate::scenario::{ScalarType, Scenario, builtin, builtin_names};
 
@@ -268,13 +268,9 @@ fn a_refusal_is_the_cpus() {
         }
         FlySim::new(sim.world, sim.groups, 3)
     };
-    let mut cpu = make();
     let mut gpu = GpuFlySim::new(make(), test_gpu()).unwrap();
-    let a = Engine::tick(&mut cpu).unwrap_err().to_string();
-    Engine::tick(&mut gpu).unwrap();
-    let b = gpu.sync().unwrap_err().to_string();
-    assert_eq!(a, b);
-    assert!(a.contains("state.pos"), "{a}");
+    let e = same_refusal(&mut make(), &mut gpu);
+    assert!(e.contains("state.pos"), "{e}");
 }
 
 /// Two insects refused in one tick: both engines name the lower id, whatever slots they hold
@@ -295,10 +291,8 @@ fn two_refusals_name_the_lower_id() {
     };
     let (mut cpu, lower) = make();
     let mut gpu = GpuFlySim::new(make().0, test_gpu()).unwrap();
-    let a = Engine::tick(&mut cpu).unwrap_err().to_string();
-    Engine::tick(&mut gpu).unwrap();
-    assert_eq!(a, gpu.sync().unwrap_err().to_string());
-    assert!(a.contains(&format!("agent {lower} ")), "{a}");
+    let e = same_refusal(&mut cpu, &mut gpu);
+    assert!(e.contains(&format!("agent {lower} ")), "{e}");
 }
 
 /// The `region` stimuli: a threat's echo where the heading meets its walls (until an event

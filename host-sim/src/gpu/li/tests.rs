@@ -16,7 +16,7 @@ use super::{GpuLiSim, modules, wgsl_shared};
 use crate::engine::Engine;
 use crate::gpu::shaders::{LI_STEP, LI_TICK};
 use crate::gpu::tests::harness::{StatusWords, assert_constants, assert_valid_wgsl};
-use crate::gpu::{inverted_slots, test_gpu};
+use crate::gpu::{inverted_slots, same_refusal, test_gpu};
 use crate::li::{LiGroup, LiSim, bench_li_world};
 use crate::scalar::ByScalar;
 use crate::scenario::{ScalarType, Scenario, builtin, builtin_names};
@@ -232,13 +232,9 @@ fn a_refusal_is_the_cpus() {
         }
         LiSim::new(sim.world, sim.groups, 3)
     };
-    let mut cpu = make();
     let mut gpu = GpuLiSim::new(make(), test_gpu()).unwrap();
-    let a = Engine::tick(&mut cpu).unwrap_err().to_string();
-    Engine::tick(&mut gpu).unwrap();
-    let b = gpu.sync().unwrap_err().to_string();
-    assert_eq!(a, b);
-    assert!(a.contains("state.waypoint"), "{a}");
+    let e = same_refusal(&mut make(), &mut gpu);
+    assert!(e.contains("state.waypoint"), "{e}");
 }
 
 /// Two insects refused in one tick: both engines name the lower id, whatever slots they hold.
@@ -263,10 +259,8 @@ fn two_refusals_name_the_lower_id() {
     };
     let (mut cpu, lower) = make();
     let mut gpu = GpuLiSim::new(make().0, test_gpu()).unwrap();
-    let a = Engine::tick(&mut cpu).unwrap_err().to_string();
-    Engine::tick(&mut gpu).unwrap();
-    assert_eq!(a, gpu.sync().unwrap_err().to_string());
-    assert!(a.contains(&format!("agent {lower} ")), "{a}");
+    let e = same_refusal(&mut cpu, &mut gpu);
+    assert!(e.contains(&format!("agent {lower} ")), "{e}");
 }
 
 /// `f32` on the GPU is measured, not promised: after 40 ticks of the bench world the positions

@@ -12,7 +12,7 @@ use super::layout::{self, FIELDS, WGSL_CONSTANTS, status_error, status_of};
 use crate::engine::{Engine, apply_due_events};
 use crate::gpu::shaders::{WANG_STEP, WANG_TICK};
 use crate::gpu::tests::harness::{StatusWords, assert_constants, assert_valid_wgsl};
-use crate::gpu::{inverted_slots, test_gpu};
+use crate::gpu::{inverted_slots, same_refusal, test_gpu};
 use crate::scalar::ByScalar;
 use crate::scenario::{ScalarType, Scenario, builtin};
 use crate::wang::{WangGroup, WangSim, bench_wang_world};
@@ -183,13 +183,9 @@ fn a_refusal_is_the_cpus() {
         }
         sim
     };
-    let mut cpu = make();
     let mut gpu = GpuWangSim::new(make(), test_gpu()).unwrap();
-    let a = Engine::tick(&mut cpu).unwrap_err().to_string();
-    Engine::tick(&mut gpu).unwrap();
-    let b = gpu.sync().unwrap_err().to_string();
-    assert_eq!(a, b);
-    assert!(a.contains("state.pos"), "{a}");
+    let e = same_refusal(&mut make(), &mut gpu);
+    assert!(e.contains("state.pos"), "{e}");
 }
 
 /// Two insects refused in one tick: both engines name the lower id, whatever slots they hold.
@@ -209,10 +205,8 @@ fn two_refusals_name_the_lower_id() {
     };
     let (mut cpu, lower) = make();
     let mut gpu = GpuWangSim::new(make().0, test_gpu()).unwrap();
-    let a = Engine::tick(&mut cpu).unwrap_err().to_string();
-    Engine::tick(&mut gpu).unwrap();
-    assert_eq!(a, gpu.sync().unwrap_err().to_string());
-    assert!(a.contains(&format!("agent {lower} ")), "{a}");
+    let e = same_refusal(&mut cpu, &mut gpu);
+    assert!(e.contains(&format!("agent {lower} ")), "{e}");
 }
 
 /// `f32` on the GPU is measured, not promised: after 50 ticks of the bench world the
