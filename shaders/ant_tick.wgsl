@@ -68,7 +68,8 @@ struct AntChunk {
 
 // The words of `ant_tick_shared` (host-sim/src/gpu/ant/engine.rs, SHARED_*): the tick's
 // largest shift (the word of a non-negative S: its order is the order of the values), the
-// refusals of the plan and the resolve phase (n - the lowest slot refused, 0 for none), and the
+// refusals of the plan and the resolve phase (0xffffffff − the lowest id refused, 0 for
+// none), and the
 // first refusal kept (a flag, its step, phase, slot and status word).
 const ANT_TICK_SHIFT: u32 = 0u;
 const ANT_TICK_PLAN_REFUSED: u32 = 1u;
@@ -97,9 +98,21 @@ fn ant_tick_params_of(i: u32) -> AntParams {
     return ant_params_from_words(w);
 }
 
-// Notes a refusal of slot `i` in the phase's word (the lowest slot wins).
+// Notes a refusal of slot `i` in the phase's word: the lowest id wins (for_each_agent_by,
+// par.rs: the CPU's slots move, these do not).
 fn ant_tick_refused(word: u32, i: u32) {
-    atomicMax(&ant_tick_shared[word], ant_sense_params.n - i);
+    atomicMax(&ant_tick_shared[word], 0xffffffffu - ant_sensed_field(ANT_SENSED_ID, i));
+}
+
+// The slot of ant `id` (slots never move here; looked up only for a refusal, which ends the
+// run).
+fn ant_tick_slot_of(id: u32) -> u32 {
+    for (var i = 0u; i < ant_sense_params.n; i = i + 1u) {
+        if (ant_sensed_field(ANT_SENSED_ID, i) == id) {
+            return i;
+        }
+    }
+    return 0u;
 }
 
 @compute @workgroup_size(WORKGROUP)
@@ -239,7 +252,7 @@ const ANT_TICK_ROUTE_STREAM: u32 = 0x5200u;
 
 // One thread per object (at least one): food sources with an amount lose what was collected
 // this tick and disappear when empty (AntSim::consume_food); thread 0 keeps the tick's first
-// refusal if none is kept yet (the plan's before the resolve's, the lowest slot).
+// refusal if none is kept yet (the plan's before the resolve's, the lowest id).
 @compute @workgroup_size(WORKGROUP)
 fn ant_tick_end_main(@builtin(global_invocation_id) id: vec3<u32>,
                      @builtin(num_workgroups) groups: vec3<u32>) {
@@ -274,7 +287,7 @@ fn ant_tick_end_main(@builtin(global_invocation_id) id: vec3<u32>,
         refused = resolve;
     }
     if (refused != 0u) {
-        let slot = n - refused;
+        let slot = ant_tick_slot_of(0xffffffffu - refused);
         atomicStore(&ant_tick_shared[ANT_TICK_KEPT], 1u);
         atomicStore(&ant_tick_shared[ANT_TICK_KEPT_STEP], ant_tick.step);
         atomicStore(&ant_tick_shared[ANT_TICK_KEPT_PHASE], phase);

@@ -8,7 +8,7 @@
 // 2. `bee_tick_step_main`: sense the frame (`bee_sense_frame`, with the bee's frame time and
 //    its group's goal from the inputs, binding 3), run `bee_step_checked`, write the status,
 //    the decision and the next state as the controller gave them, and note a refusal (the
-//    lowest slot);
+//    lowest id);
 // 3. `bee_tick_commit_main`: the world's corrections (`BeeWorld::confine`: out of every active
 //    obstacle, inside the bounds), counted per kind with atomics (sums: any order gives the
 //    same counts), the corrected state made current and sensed; thread 0 keeps the first

@@ -567,6 +567,13 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 .iter()
                 .map(|p| crate::fit::Param::resolve(p, table))
                 .collect::<crate::Result<Vec<_>>>()?;
+            for (k, p) in params.iter().enumerate() {
+                if params[..k].iter().any(|q| q.name == p.name) {
+                    let spec = p.name.clone();
+                    let problem = "named more than once";
+                    return Err(crate::SimError::FitParam { spec, problem }.into());
+                }
+            }
             let reference_tracks = crate::eval::Tracks::open(&reference, dt)?;
             let first = seed.unwrap_or(sc.seed);
             let cal = crate::fit::Calibration {

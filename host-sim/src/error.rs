@@ -761,6 +761,18 @@ pub enum SimError {
         /// What is wrong with it.
         problem: &'static str,
     },
+    /// A `--param` range that leaves the values the model takes for the parameter.
+    #[error("--param {name}={low}:{high}: leaves the model's range for {name}, {range}")]
+    FitRange {
+        /// The parameter.
+        name: String,
+        /// The range given.
+        low: f64,
+        /// The range given.
+        high: f64,
+        /// What the model takes.
+        range: swarm_core::model::Range,
+    },
     /// A calibration with nothing to fit: no parameter, no seed, or fewer than 3 frames (the
     /// jerk needs 3 consecutive velocities).
     #[error("fit: needs at least one parameter, one seed and 3 frames")]

@@ -28,26 +28,13 @@ pub(crate) fn pool(threads: Option<usize>) -> Result<(rayon::ThreadPool, usize)>
 const LEAF: usize = 1024;
 
 /// Runs `f(scratch, k, item)` on every `(k, item)` of `items` in parallel, each worker with its
-/// own `scratch` from `init`. Returns the error of the lowest `k` that failed, whatever the
-/// thread count ([`for_each_agent_by`] with `k` as the key).
+/// own `scratch` from `init`. Returns the error of the item with the lowest `key(k)` that
+/// failed, whatever the thread count: the engines, which reorder their slots, pass each
+/// slot's agent id, so that the agent a run names depends neither on where its slot lies nor
+/// on the engine (the GPU's never reorder).
 ///
 /// Unlike rayon's `try_for_each_init`, no result travels through the reduction: an agent step
 /// that succeeds costs nothing beyond the call (failures are rare and only end a run).
-pub(crate) fn for_each_agent<I, T, W>(
-    items: I,
-    init: impl Fn() -> W + Sync + Send,
-    f: impl Fn(&mut W, usize, T) -> Result<()> + Sync + Send,
-) -> Result<()>
-where
-    I: IndexedParallelIterator<Item = T>,
-{
-    for_each_agent_by(items, |k| k as u64, init, f)
-}
-
-/// [`for_each_agent`] returning the error of the item with the lowest `key(k)` that failed:
-/// an engine that reorders its slots passes each slot's agent id, so that the agent a run
-/// names does not depend on where its slot lies (nor on an engine that never reorders, such
-/// as the GPU's).
 pub(crate) fn for_each_agent_by<I, T, W>(
     items: I,
     key: impl Fn(usize) -> u64 + Sync + Send,
@@ -89,8 +76,9 @@ mod tests {
                 .unwrap();
             let mut out = vec![0u32; 10_000];
             let r = pool.install(|| {
-                for_each_agent(
+                for_each_agent_by(
                     out.par_iter_mut(),
+                    |k| k as u64,
                     || (),
                     |_, k, o| {
                         *o = k as u32;
@@ -111,7 +99,13 @@ mod tests {
             );
             assert!(out.iter().enumerate().all(|(k, &o)| o == k as u32));
         }
-        assert!(for_each_agent((0..10u32).into_par_iter(), || (), |_, _, _| Ok(())).is_ok());
+        let none = for_each_agent_by(
+            (0..10u32).into_par_iter(),
+            |k| k as u64,
+            || (),
+            |_, _, _| Ok(()),
+        );
+        assert!(none.is_ok());
     }
 
     /// With a key, the failure of the lowest key wins, wherever its item lies.

@@ -365,6 +365,7 @@ fn fit_writes_a_scenario_that_loads() {
     for (param, says) in [
         ("gamma=2", "expected a range"),
         ("orca_neighbours", "an integer parameter"),
+        ("gamma=0:500", "leaves the model's range"),
         ("gamma_typo=1:2", "gamma_typo"),
     ] {
         let err = fails(
@@ -376,6 +377,18 @@ fn fit_writes_a_scenario_that_loads() {
         );
         assert!(err.contains(says), "{param}: {err}");
     }
+    let err = fails(swarm().arg("fit").arg(&scenario).arg(&reference).args([
+        "--param",
+        "gamma",
+        "--param",
+        "gamma=1:2",
+        "--dt",
+        "0.01",
+    ]));
+    assert!(
+        err.contains("gamma") && err.contains("named more than once"),
+        "{err}"
+    );
 }
 
 /// `swarm fly temperature` writes a resized scenario that loads, with the density it reports

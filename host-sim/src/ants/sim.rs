@@ -16,7 +16,7 @@ use super::world::{AntObjectDef, AntObjectKind, AntWorld};
 use crate::by_scalar;
 use crate::error::{Result, SimError};
 use crate::grid::permuted;
-use crate::par::for_each_agent;
+use crate::par::for_each_agent_by;
 use crate::scalar::{AgentGroup, ByScalar, SimScalar, a2};
 
 /// A group of ants sharing parameters and a scalar type. The group owns the world slots
@@ -72,11 +72,13 @@ impl<S: SimScalar> AntGroup<S> {
     fn plan(&mut self, w: &AntWorld, seed: u32, step: u32, reach: f32) -> Result<()> {
         let (first, params) = (self.first, &self.params);
         let idle = PlanFrame::new(bounds::<S>(w));
-        for_each_agent(
+        let ids = &self.ids;
+        for_each_agent_by(
             self.plans
                 .par_iter_mut()
                 .zip(self.around.par_iter_mut())
-                .zip(self.states.par_iter().zip(self.ids.par_iter())),
+                .zip(self.states.par_iter().zip(ids.par_iter())),
+            |k| u64::from(ids[k]),
             || idle.clone(),
             |frame, k, ((out, around), (s, &id))| {
                 let ctx = StepCtx {
@@ -126,11 +128,13 @@ impl<S: SimScalar> AntGroup<S> {
     fn resolve(&mut self, w: &AntWorld, step: u32, noted: bool) -> Result<()> {
         let (first, params) = (self.first, &self.params);
         let idle = ResolveFrame::new(bounds::<S>(w));
-        for_each_agent(
+        let ids = &self.ids;
+        for_each_agent_by(
             self.next
                 .par_iter_mut()
-                .zip(self.plans.par_iter().zip(self.ids.par_iter()))
+                .zip(self.plans.par_iter().zip(ids.par_iter()))
                 .zip(self.around.par_iter()),
+            |k| u64::from(ids[k]),
             || idle.clone(),
             |frame, k, ((out, (p, &id)), around)| {
                 // A stopped ant does not move: its resolve frame is never read.

@@ -81,38 +81,59 @@ impl Param {
 }
 
 impl Param {
-    /// `NAME=LOW:HIGH[:log]` as [`FromStr`] reads it, or `NAME` alone: the whole range of that
-    /// real parameter of the model's table `params` ([`ModelEntry::params`], an open lower end
-    /// moved just inside, as the Python package's `search_space` does).
+    /// `NAME=LOW:HIGH[:log]` as [`FromStr`] reads it, inside the values the model's table
+    /// `params` gives the parameter ([`ModelEntry::params`]), or `NAME` alone: the whole range
+    /// of that real parameter (an open lower end moved just inside, where f32 and fixed point
+    /// both accept it; what the Python package's `search_space` uses).
     ///
     /// [`ModelEntry::params`]: crate::models::ModelEntry::params
     ///
     /// # Errors
     ///
-    /// What [`FromStr`] refuses; a name alone that is not a real parameter of the table.
+    /// What [`FromStr`] refuses; a name alone that is not a real parameter of the table; an
+    /// integer parameter; a range leaving the model's ([`SimError::FitRange`]). A name the
+    /// table lacks, given with a range, is left to [`calibrate`]'s check (which names it).
     pub fn resolve(spec: &str, params: &[ParamSpec]) -> Result<Param> {
-        if spec.contains('=') {
-            return spec.parse();
-        }
         let bad = |problem: &'static str| SimError::FitParam {
             spec: spec.into(),
             problem,
         };
-        let name = spec.trim();
-        let found = params.iter().find(|p| p.name == name);
-        let found = found.ok_or(bad(
-            "not a parameter of the scenario's model (`swarm models MODEL` lists them)",
-        ))?;
+        let given = match spec.contains('=') {
+            true => Some(spec.parse::<Param>()?),
+            false => None,
+        };
+        let name = given
+            .as_ref()
+            .map_or(spec.trim(), |p| p.name.as_str())
+            .to_string();
+        let Some(found) = params.iter().find(|p| p.name == name) else {
+            return given.ok_or(bad(
+                "not a parameter of the scenario's model (`swarm models MODEL` lists them)",
+            ));
+        };
         let Range::Real { min, max, min_open } = found.range else {
             return Err(bad("an integer parameter: calibration fits real ones"));
         };
+        if let Some(p) = given {
+            let (lo, hi) = (f64::from(min.f32()), f64::from(max.f32()));
+            let inside = if min_open { p.low > lo } else { p.low >= lo } && p.high <= hi;
+            if !inside {
+                return Err(SimError::FitRange {
+                    name: p.name,
+                    low: p.low,
+                    high: p.high,
+                    range: found.range,
+                });
+            }
+            return Ok(p);
+        }
         let (mut low, high) = (f64::from(min.f32()), f64::from(max.f32()));
         if min_open {
             // A part in a million of the range inside, and at least the fixed point's step.
             low += ((high - low) * 1e-6).max(1.0 / 65536.0);
         }
         Ok(Param {
-            name: name.into(),
+            name,
             low,
             high,
             log: false,
@@ -377,7 +398,22 @@ mod tests {
             Param::resolve("gamma=1:2:log", fly).unwrap(),
             "gamma=1:2:log".parse().unwrap()
         );
-        for (bad, says) in [("gama", "not a parameter"), ("orca_neighbours", "integer")] {
+        let e = Param::resolve("gamma=1:200", fly).unwrap_err().to_string();
+        assert!(e.contains("a number in [0, 100]"), "{e}");
+        assert!(
+            Param::resolve("scale=0:1", fly).is_err(),
+            "an open end is left out"
+        );
+        let typo = Param::resolve("gama=1:2", fly).unwrap();
+        assert_eq!(
+            typo.name, "gama",
+            "left to calibrate's check, which names it"
+        );
+        for (bad, says) in [
+            ("gama", "not a parameter"),
+            ("orca_neighbours", "integer"),
+            ("orca_neighbours=1:4", "integer"),
+        ] {
             let e = Param::resolve(bad, fly).unwrap_err().to_string();
             assert!(e.contains(bad) && e.contains(says), "{e}");
         }

@@ -35,7 +35,7 @@ use swarm_core::{Error, Vec3};
 
 use crate::error::{Result, SimError};
 use crate::grid::{Grid, permuted};
-use crate::par::for_each_agent;
+use crate::par::for_each_agent_by;
 
 pub use cube::{CUBE_RADIUS, Cube, random_cube, toward};
 
@@ -217,7 +217,7 @@ impl OrcaCrowd {
     ///
     /// Errors: `Controller` (phase `orca`) when `orca3d::solve` refuses an agent's input (a
     /// preferred velocity that is not finite, ...); the crowd is then left as it was. Of
-    /// several failing agents the one in the lowest slot is reported.
+    /// several failing agents the one of the lowest id is reported.
     pub fn step<P>(&mut self, pref: P) -> Result<()>
     where
         P: Fn(u32, Vec3<f32>) -> Vec3<f32> + Sync,
@@ -231,8 +231,9 @@ impl OrcaCrowd {
             std::mem::take(&mut self.next_reach),
         );
         let this = &*self;
-        let result = for_each_agent(
+        let result = for_each_agent_by(
             next.par_iter_mut().zip(reach.par_iter_mut()),
+            |k| u64::from(this.ids[k]),
             Block::default,
             |block, k, (out, reach)| {
                 (*out, *reach) = this.advance(block, k, &pref)?;
