@@ -22,22 +22,58 @@ passed=0
 failed=0
 failures=()
 timings=()
+started=$SECONDS
+# The most resident memory one test process may hold (CI's machine has 24 GiB and 2 cores).
+MAX_TEST_PROCESS_GIB=6
+peaks=$(mktemp -d)
+trap 'rm -rf "$peaks"' EXIT
 
 say() { printf '\n\033[1m==> %s\033[0m\n' "$*"; }
 warn() { printf '\n\033[1;33m!!! %s\033[0m\n' "$*" >&2; }
 
+# GiB of a KiB count, one decimal.
+gib() { awk -v k="$1" 'BEGIN { printf "%.1f", k / 1048576 }'; }
+
+# Runs one stage, noting its time and the peak resident memory of its largest process (a
+# stage that is a shell function of this script measures itself into $peaks/stage).
 stage() {
     local name="$1"; shift
     say "$name"
-    local start=$SECONDS
-    if "$@"; then
+    local start=$SECONDS log="$peaks/stage" run=("$@")
+    rm -f "$log"
+    declare -F "$1" >/dev/null || run=(python3 scripts/lib/peak-rss.py "$log" "$@")
+    if "${run[@]}"; then
         passed=$((passed + 1))
     else
         failed=$((failed + 1))
         failures+=("$name")
         warn "FAILED: $name"
     fi
-    timings+=("$((SECONDS - start)) s  $name")
+    local peak
+    peak=$(cut -d' ' -f1 "$log" 2>/dev/null || echo 0)
+    timings+=("$(printf '%5d s %6s GiB  %s' $((SECONDS - start)) "$(gib "${peak:-0}")" "$name")")
+}
+
+# `cargo test`, each test process run by scripts/lib/peak-rss.py (cargo's runner): prints the
+# largest peaks and fails if a test process held more than MAX_TEST_PROCESS_GIB.
+cargo_test_within_memory() {
+    local log="$peaks/tests" host status=0
+    rm -f "$log"
+    host=$(rustc -vV | sed -n 's/^host: //p' | tr 'a-z.-' 'A-Z__')
+    python3 scripts/lib/peak-rss.py "$peaks/stage" \
+        env "CARGO_TARGET_${host}_RUNNER=$PWD/scripts/lib/peak-rss.py $log" "$@" || status=$?
+    [[ -s $log ]] || { warn "no test process reported its memory"; return 1; }
+    printf 'peak resident memory of the largest test processes:\n'
+    sort -rn "$log" | head -5 | while read -r kib bin; do
+        printf '  %6s GiB  %s\n' "$(gib "$kib")" "$bin"
+    done
+    local over
+    over=$(awk -v max=$((MAX_TEST_PROCESS_GIB * 1048576)) '$1 > max { print $2 }' "$log")
+    if [[ -n $over ]]; then
+        warn "test processes above ${MAX_TEST_PROCESS_GIB} GiB resident: $over"
+        return 1
+    fi
+    return $status
 }
 
 # --- system packages -------------------------------------------------------------------
@@ -100,7 +136,8 @@ stage "swarm-core with feature small (the ant node's size options) passes its un
     cargo test -q -p swarm-core --profile ci --features small --lib
 stage "cargo doc (warnings are errors)" env RUSTDOCFLAGS="-D warnings" cargo doc -q --workspace --no-deps
 stage "docs/protocol.md: the Python reference appendices run and every assertion holds" python3 scripts/protocol-reference.py
-stage "cargo test --workspace (unit, property, integration, doc tests)" cargo test --workspace --profile ci
+stage "cargo test --workspace (unit, property, integration, doc tests; each test process within ${MAX_TEST_PROCESS_GIB} GiB)" \
+    cargo_test_within_memory cargo test --workspace --profile ci
 stage "python: the swarm package (pip install ./python into a venv, pytest on a 2-worker Ray cluster)" scripts/python-test.sh
 
 if ((QUICK == 1)); then
@@ -117,7 +154,8 @@ elif ((firmware_ok == 1)); then
 fi
 
 echo
-printf 'time per stage:\n'; printf '  %s\n' "${timings[@]}"
+printf 'time and peak memory (largest process) per stage:\n'; printf '  %s\n' "${timings[@]}"
+printf 'total: %d min %d s\n' $(((SECONDS - started) / 60)) $(((SECONDS - started) % 60))
 if ((failed > 0)); then
     printf 'failed stages:\n'; printf '  - %s\n' "${failures[@]}"
 fi

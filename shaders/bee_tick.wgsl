@@ -11,7 +11,7 @@
 //    lowest id);
 // 3. `bee_tick_commit_main`: the world's corrections (`BeeWorld::confine`: out of every active
 //    obstacle, inside the bounds), counted per kind with atomics (sums: any order gives the
-//    same counts), the corrected state made current and sensed; thread 0 keeps the first
+//    same counts), the corrected state made current and sensed; the refused bee's thread keeps the first
 //    refusal for the host.
 //
 // The frame times are not computed here: the CPU computes each bee's clock in f64 (`bee_time`,
@@ -46,14 +46,14 @@ struct BeeTickParams {
 
 // The words of `bee_tick_shared` (host-sim/src/gpu/bee/engine.rs, SHARED_*): this tick's
 // refusal (0xffffffff − the lowest id refused, 0 for none) and corrections (obstacle, bounds), cleared
-// by the host every tick; the first refusal kept (a flag, its step, slot and status word); the
+// by the host every tick; the first refusal kept (a flag, its step, the bee's id and status word); the
 // corrections since the start, each a u64 as two words (low, high).
 const BEE_TICK_REFUSED: u32 = 0u;
 const BEE_TICK_OBSTACLE: u32 = 1u;
 const BEE_TICK_BOUNDS: u32 = 2u;
 const BEE_TICK_KEPT: u32 = 3u;
 const BEE_TICK_KEPT_STEP: u32 = 4u;
-const BEE_TICK_KEPT_SLOT: u32 = 5u;
+const BEE_TICK_KEPT_ID: u32 = 5u;
 const BEE_TICK_KEPT_STATUS: u32 = 6u;
 const BEE_TICK_TOTAL_OBSTACLE: u32 = 7u;
 const BEE_TICK_TOTAL_BOUNDS: u32 = 9u;
@@ -127,18 +127,6 @@ fn bee_tick_confine(s: ptr<function, BeeState>) -> u32 {
     return flags;
 }
 
-// The slot of bee `id` (slots never move here; looked up only for a refusal, which ends the
-// run); the ids from the commit's own binding of the sensed words (`bee_tick_sensed`).
-fn bee_tick_slot_of(id: u32) -> u32 {
-    let n = bee_sense_params.n;
-    for (var i = 0u; i < n; i = i + 1u) {
-        if (bee_tick_sensed[BEE_SENSED_ID * n + i] == id) {
-            return i;
-        }
-    }
-    return 0u;
-}
-
 // Adds one to the u64 of words `at` (low) and `at + 1` (high): the add that wraps the low word
 // carries.
 fn bee_tick_count64(at: u32) {
@@ -151,24 +139,26 @@ fn bee_tick_count64(at: u32) {
 // corrections of the next state of the bee in slot i (`BeeWorld::confine`), noted
 // (`corrected`) and counted per kind (`Contacts`: this tick's and since the start), the state
 // made current and sensed (`Sensed::write`: the sensed words are the state's, the sensed `f64`
-// converting back exactly); thread 0 keeps the tick's refusal if none is kept yet.
+// converting back exactly); the thread of the refused bee keeps the tick's refusal if none is
+// kept yet.
 @compute @workgroup_size(WORKGROUP)
 fn bee_tick_commit_main(@builtin(global_invocation_id) id: vec3<u32>,
                         @builtin(num_workgroups) groups: vec3<u32>) {
     let i = thread_index(id, groups);
     let n = bee_sense_params.n;
-    if (i == 0u && atomicLoad(&bee_tick_shared[BEE_TICK_KEPT]) == 0u) {
-        let refused = atomicLoad(&bee_tick_shared[BEE_TICK_REFUSED]);
-        if (refused != 0u) {
-            let slot = bee_tick_slot_of(0xffffffffu - refused);
-            atomicStore(&bee_tick_shared[BEE_TICK_KEPT], 1u);
-            atomicStore(&bee_tick_shared[BEE_TICK_KEPT_STEP], bee_tick.step);
-            atomicStore(&bee_tick_shared[BEE_TICK_KEPT_SLOT], slot);
-            atomicStore(&bee_tick_shared[BEE_TICK_KEPT_STATUS], bee_tick_status[slot]);
-        }
-    }
     if (i >= n) {
         return;
+    }
+    // The thread of the lowest id refused keeps the tick's refusal (ids are unique: one
+    // thread at most), if none is kept yet.
+    let refused = atomicLoad(&bee_tick_shared[BEE_TICK_REFUSED]);
+    let me = bee_tick_sensed[BEE_SENSED_ID * n + i];
+    if (refused != 0u && me == 0xffffffffu - refused
+        && atomicLoad(&bee_tick_shared[BEE_TICK_KEPT]) == 0u) {
+        atomicStore(&bee_tick_shared[BEE_TICK_KEPT], 1u);
+        atomicStore(&bee_tick_shared[BEE_TICK_KEPT_STEP], bee_tick.step);
+        atomicStore(&bee_tick_shared[BEE_TICK_KEPT_ID], me);
+        atomicStore(&bee_tick_shared[BEE_TICK_KEPT_STATUS], bee_tick_status[i]);
     }
     var s = bee_tick_next_state(i);
     let fix = bee_tick_confine(&s);

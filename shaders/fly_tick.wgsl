@@ -11,7 +11,7 @@
 //    the next state as the controller gave it and the decision written, the infeasible programs
 //    and truncated frames counted;
 // 4. `fly_tick_commit_main`: the world's corrections (`space_confine`, `FlyWorld::confine`),
-//    counted, the state made current; thread 0 keeps the tick's first refusal for the host.
+//    counted, the state made current; the refused insect's thread keeps the tick's first refusal.
 //
 // Bindings (group 0), besides the world (1, bee_world.wgsl: the container, the obstacles, the
 // stimulus sources as targets, the grid), the grid's `starts` and `order` (4, 5, bee_sense.wgsl)
@@ -69,7 +69,7 @@ const FLY_FLAG_TRUNCATED: u32 = 4u;
 
 // The words of `fly_shared` (engine.rs, SHARED_*): this tick's lowest refused id (0xffffffff −
 // id, 0 for none), infeasible programs, truncated frames, corrections (obstacle, bounds), cleared
-// by the host every tick; the first refusal kept (a flag, its step, slot and status word); the
+// by the host every tick; the first refusal kept (a flag, its step, the insect's id and status word); the
 // counts since the start, each a u64 as two words.
 const FLY_SHARED_REFUSED: u32 = 0u;
 const FLY_SHARED_INFEASIBLE: u32 = 1u;
@@ -78,7 +78,7 @@ const FLY_SHARED_OBSTACLE: u32 = 3u;
 const FLY_SHARED_BOUNDS: u32 = 4u;
 const FLY_SHARED_KEPT: u32 = 5u;
 const FLY_SHARED_KEPT_STEP: u32 = 6u;
-const FLY_SHARED_KEPT_SLOT: u32 = 7u;
+const FLY_SHARED_KEPT_ID: u32 = 7u;
 const FLY_SHARED_KEPT_STATUS: u32 = 8u;
 const FLY_SHARED_TOTAL_INFEASIBLE: u32 = 10u;
 const FLY_SHARED_TOTAL_TRUNCATED: u32 = 12u;
@@ -146,17 +146,6 @@ fn fly_group_params(g: u32) -> FlyParams {
 // The id of the insect in slot i.
 fn fly_tick_id(i: u32) -> u32 {
     return fly_slots[fly_tick.n + i];
-}
-
-// The slot of insect `id` (slots never move here; looked up only for a refusal, which ends
-// the run).
-fn fly_slot_of(id: u32) -> u32 {
-    for (var i = 0u; i < fly_tick.n; i = i + 1u) {
-        if (fly_tick_id(i) == id) {
-            return i;
-        }
-    }
-    return 0u;
 }
 
 // ---- the frame (host-sim/src/fly/sense.rs, world.rs) ----
@@ -411,25 +400,26 @@ fn fly_tick_step_main(@builtin(global_invocation_id) id: vec3<u32>,
     }
 }
 
-// FlyGroup::commit: the world's corrections of the next state, counted, made current; thread 0
-// keeps the tick's refusal if none is kept yet.
+// FlyGroup::commit: the world's corrections of the next state, counted, made current; the
+// thread of the refused insect keeps the tick's refusal if none is kept yet.
 @compute @workgroup_size(WORKGROUP)
 fn fly_tick_commit_main(@builtin(global_invocation_id) id: vec3<u32>,
                         @builtin(num_workgroups) groups: vec3<u32>) {
     let i = thread_index(id, groups);
     let n = fly_tick.n;
-    if (i == 0u && atomicLoad(&fly_shared[FLY_SHARED_KEPT]) == 0u) {
-        let refused = atomicLoad(&fly_shared[FLY_SHARED_REFUSED]);
-        if (refused != 0u) {
-            let slot = fly_slot_of(0xffffffffu - refused);
-            atomicStore(&fly_shared[FLY_SHARED_KEPT], 1u);
-            atomicStore(&fly_shared[FLY_SHARED_KEPT_STEP], fly_tick.step);
-            atomicStore(&fly_shared[FLY_SHARED_KEPT_SLOT], slot);
-            atomicStore(&fly_shared[FLY_SHARED_KEPT_STATUS], fly_status[slot]);
-        }
-    }
     if (i >= n) {
         return;
+    }
+    // The thread of the lowest id refused keeps the tick's refusal (ids are unique: one
+    // thread at most), if none is kept yet.
+    let refused = atomicLoad(&fly_shared[FLY_SHARED_REFUSED]);
+    let me = fly_tick_id(i);
+    if (refused != 0u && me == 0xffffffffu - refused
+        && atomicLoad(&fly_shared[FLY_SHARED_KEPT]) == 0u) {
+        atomicStore(&fly_shared[FLY_SHARED_KEPT], 1u);
+        atomicStore(&fly_shared[FLY_SHARED_KEPT_STEP], fly_tick.step);
+        atomicStore(&fly_shared[FLY_SHARED_KEPT_ID], me);
+        atomicStore(&fly_shared[FLY_SHARED_KEPT_STATUS], fly_status[i]);
     }
     let s = fly_state_at(i * FLY_STATE_WORDS, true);
     var pos = s.pos;

@@ -10,7 +10,7 @@
 //    `li_step_checked`; the status, the next state as the controller gave it and the decision
 //    written, the arrivals, proposals, holds, infeasible programs and truncated frames counted;
 // 4. `li_tick_commit_main`: the world's corrections (`space_confine`), counted, the state made
-//    current; thread 0 keeps the tick's first refusal for the host.
+//    current; the refused insect's thread keeps the tick's first refusal.
 //
 // Bindings (group 0), besides the world (1, bee_world.wgsl), the grid's `starts` and `order`
 // (4, 5, bee_sense.wgsl), the groups' words (11, li_step.wgsl) and the confinement boxes (15,
@@ -47,7 +47,7 @@ const LI_FLAG_TRUNCATED: u32 = 4u;
 
 // The words of `li_shared` (swarm3d.rs, SharedLayout): this tick's lowest refused id (0xffffffff −
 // id, 0 for none) and counts, cleared by the host every tick; the first refusal kept (a flag, its
-// step, slot and status word); the counts since the start, each a u64 as two words.
+// step, the insect's id and status word); the counts since the start, each a u64 as two words.
 const LI_SHARED_REFUSED: u32 = 0u;
 const LI_SHARED_ARRIVALS: u32 = 1u;
 const LI_SHARED_PROPOSALS: u32 = 2u;
@@ -57,7 +57,7 @@ const LI_SHARED_TRUNCATED: u32 = 5u;
 const LI_SHARED_CORRECTED: u32 = 6u;
 const LI_SHARED_KEPT: u32 = 7u;
 const LI_SHARED_KEPT_STEP: u32 = 8u;
-const LI_SHARED_KEPT_SLOT: u32 = 9u;
+const LI_SHARED_KEPT_ID: u32 = 9u;
 const LI_SHARED_KEPT_STATUS: u32 = 10u;
 const LI_SHARED_TOTAL_ARRIVALS: u32 = 12u;
 const LI_SHARED_TOTAL_PROPOSALS: u32 = 14u;
@@ -114,17 +114,6 @@ fn li_write_state(i: u32, s: LiState, to_next: bool) {
 // The id of the insect in slot i.
 fn li_tick_id(i: u32) -> u32 {
     return li_slots[li_tick.n + i];
-}
-
-// The slot of insect `id` (slots never move here; looked up only for a refusal, which ends
-// the run).
-fn li_slot_of(id: u32) -> u32 {
-    for (var i = 0u; i < li_tick.n; i = i + 1u) {
-        if (li_tick_id(i) == id) {
-            return i;
-        }
-    }
-    return 0u;
 }
 
 // ---- the frame (sim.rs, li_frame) ----
@@ -239,25 +228,26 @@ fn li_tick_step_main(@builtin(global_invocation_id) id: vec3<u32>,
     }
 }
 
-// LiGroup::commit: the world's corrections of the next state, counted, made current; thread 0
-// keeps the tick's refusal if none is kept yet.
+// LiGroup::commit: the world's corrections of the next state, counted, made current; the
+// thread of the refused insect keeps the tick's refusal if none is kept yet.
 @compute @workgroup_size(WORKGROUP)
 fn li_tick_commit_main(@builtin(global_invocation_id) id: vec3<u32>,
                        @builtin(num_workgroups) groups: vec3<u32>) {
     let i = thread_index(id, groups);
     let n = li_tick.n;
-    if (i == 0u && atomicLoad(&li_shared[LI_SHARED_KEPT]) == 0u) {
-        let refused = atomicLoad(&li_shared[LI_SHARED_REFUSED]);
-        if (refused != 0u) {
-            let slot = li_slot_of(0xffffffffu - refused);
-            atomicStore(&li_shared[LI_SHARED_KEPT], 1u);
-            atomicStore(&li_shared[LI_SHARED_KEPT_STEP], li_tick.step);
-            atomicStore(&li_shared[LI_SHARED_KEPT_SLOT], slot);
-            atomicStore(&li_shared[LI_SHARED_KEPT_STATUS], li_status[slot]);
-        }
-    }
     if (i >= n) {
         return;
+    }
+    // The thread of the lowest id refused keeps the tick's refusal (ids are unique: one
+    // thread at most), if none is kept yet.
+    let refused = atomicLoad(&li_shared[LI_SHARED_REFUSED]);
+    let me = li_tick_id(i);
+    if (refused != 0u && me == 0xffffffffu - refused
+        && atomicLoad(&li_shared[LI_SHARED_KEPT]) == 0u) {
+        atomicStore(&li_shared[LI_SHARED_KEPT], 1u);
+        atomicStore(&li_shared[LI_SHARED_KEPT_STEP], li_tick.step);
+        atomicStore(&li_shared[LI_SHARED_KEPT_ID], me);
+        atomicStore(&li_shared[LI_SHARED_KEPT_STATUS], li_status[i]);
     }
     let s = li_state_at(i * LI_STATE_WORDS, true);
     var pos = s.pos;

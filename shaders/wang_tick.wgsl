@@ -11,7 +11,7 @@
 //    within the group's d_min, nearest first, ties by id: `WangGroup::separate_frame`), then
 //    `wang_separate_checked`, the insects pushed counted;
 // 4. `wang_tick_commit_main`: the world's corrections of x_{k+1}, counted, made current;
-//    thread 0 keeps the tick's first refusal for the host.
+//    the refused insect's thread keeps the tick's first refusal.
 //
 // Bindings (group 0), besides the world (1, bee_world.wgsl), the grid's `starts` and `order`
 // (4, 5, bee_sense.wgsl) and the confinement boxes (15, space.wgsl): 6 the cells of the x*,
@@ -67,7 +67,7 @@ const WANG_FIELD_SCALE: u32 = 8u;
 
 // The words of `wang_shared` (engine.rs, SHARED_*): this tick's refusals (0xffffffff − the lowest
 // id refused, 0 for none; advect, separate), corrections (obstacle, bounds) and insects pushed,
-// cleared by the host every tick; the first refusal kept (a flag, its step, slot, phase and
+// cleared by the host every tick; the first refusal kept (a flag, its step, the insect's id, phase and
 // status word); the corrections and pushes since the start, each a u64 as two words.
 const WANG_SHARED_REFUSED: u32 = 0u;
 const WANG_SHARED_OBSTACLE: u32 = 2u;
@@ -75,7 +75,7 @@ const WANG_SHARED_BOUNDS: u32 = 3u;
 const WANG_SHARED_PUSHED: u32 = 4u;
 const WANG_SHARED_KEPT: u32 = 5u;
 const WANG_SHARED_KEPT_STEP: u32 = 6u;
-const WANG_SHARED_KEPT_SLOT: u32 = 7u;
+const WANG_SHARED_KEPT_ID: u32 = 7u;
 const WANG_SHARED_KEPT_PHASE: u32 = 8u;
 const WANG_SHARED_KEPT_STATUS: u32 = 9u;
 const WANG_SHARED_TOTAL_OBSTACLE: u32 = 10u;
@@ -364,17 +364,6 @@ fn wang_refuse(i: u32, phase: u32) {
     atomicMax(&wang_shared[WANG_SHARED_REFUSED + phase], 0xffffffffu - wang_tick_id(i));
 }
 
-// The slot of insect `id` (slots never move here; looked up only for a refusal, which ends
-// the run).
-fn wang_slot_of(id: u32) -> u32 {
-    for (var i = 0u; i < wang_tick.n; i = i + 1u) {
-        if (wang_tick_id(i) == id) {
-            return i;
-        }
-    }
-    return 0u;
-}
-
 // ---- the kernels ----
 
 // Phase 1 (WangGroup::advect, WangGroup::place): the advect reply, x* after the world's
@@ -471,29 +460,29 @@ fn wang_tick_separate_main(@builtin(global_invocation_id) id: vec3<u32>,
     }
 }
 
-// WangGroup::commit: the world's corrections of x_{k+1}, counted, made current; thread 0 keeps
-// the tick's refusal (advect's before separate's) if none is kept yet.
+// WangGroup::commit: the world's corrections of x_{k+1}, counted, made current; the thread of
+// the refused insect keeps the tick's refusal (advect's before separate's) if none is kept yet.
 @compute @workgroup_size(WORKGROUP)
 fn wang_tick_commit_main(@builtin(global_invocation_id) id: vec3<u32>,
                          @builtin(num_workgroups) groups: vec3<u32>) {
     let i = thread_index(id, groups);
     let n = wang_tick.n;
-    if (i == 0u && atomicLoad(&wang_shared[WANG_SHARED_KEPT]) == 0u) {
-        for (var phase = 0u; phase < 2u; phase = phase + 1u) {
-            let refused = atomicLoad(&wang_shared[WANG_SHARED_REFUSED + phase]);
-            if (refused != 0u) {
-                let slot = wang_slot_of(0xffffffffu - refused);
-                atomicStore(&wang_shared[WANG_SHARED_KEPT], 1u);
-                atomicStore(&wang_shared[WANG_SHARED_KEPT_STEP], wang_tick.step);
-                atomicStore(&wang_shared[WANG_SHARED_KEPT_SLOT], slot);
-                atomicStore(&wang_shared[WANG_SHARED_KEPT_PHASE], phase);
-                atomicStore(&wang_shared[WANG_SHARED_KEPT_STATUS], wang_status[2u * slot + phase]);
-                break;
-            }
-        }
-    }
     if (i >= n) {
         return;
+    }
+    // The thread of the lowest id refused in the first phase with a refusal keeps it (ids are
+    // unique: one thread at most), if none is kept yet.
+    let advect = atomicLoad(&wang_shared[WANG_SHARED_REFUSED]);
+    let phase = select(0u, 1u, advect == 0u);
+    let refused = atomicLoad(&wang_shared[WANG_SHARED_REFUSED + phase]);
+    let me = wang_tick_id(i);
+    if (refused != 0u && me == 0xffffffffu - refused
+        && atomicLoad(&wang_shared[WANG_SHARED_KEPT]) == 0u) {
+        atomicStore(&wang_shared[WANG_SHARED_KEPT], 1u);
+        atomicStore(&wang_shared[WANG_SHARED_KEPT_STEP], wang_tick.step);
+        atomicStore(&wang_shared[WANG_SHARED_KEPT_ID], me);
+        atomicStore(&wang_shared[WANG_SHARED_KEPT_PHASE], phase);
+        atomicStore(&wang_shared[WANG_SHARED_KEPT_STATUS], wang_status[2u * i + phase]);
     }
     let s = wang_tick_next(i);
     var pos = s.pos;

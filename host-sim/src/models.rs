@@ -260,7 +260,7 @@ pub fn engine(sc: &Scenario, seed: u32) -> Result<Box<dyn Engine>> {
     let entry = get(model)?;
     match sc.backend {
         Backend::Cpu => (entry.engine)(sc, seed),
-        Backend::Gpu => (gpu_entry(entry)?.engine)(sc, seed, Gpu::new()?),
+        Backend::Gpu => (gpu_entry(entry)?.engine)(sc, seed, Gpu::shared()?),
     }
 }
 
@@ -287,7 +287,7 @@ pub fn bench_engine(
     let entry = get(name)?;
     match backend {
         Backend::Cpu => Ok((entry.bench_world)(agents, seed, scalar)),
-        Backend::Gpu => (gpu_entry(entry)?.bench_world)(agents, seed, scalar, Gpu::new()?),
+        Backend::Gpu => (gpu_entry(entry)?.bench_world)(agents, seed, scalar, Gpu::shared()?),
     }
 }
 

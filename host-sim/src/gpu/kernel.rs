@@ -3,18 +3,53 @@
 //! [`map_words`] runs a WGSL function over many inputs and returns its outputs: the harness of
 //! the bit-for-bit tests of every WGSL helper against its Rust original.
 
+use std::sync::Arc;
+
 use wgpu::util::DeviceExt;
 
 use super::Gpu;
+use super::context::Compiled;
 use super::shaders::{self, Module, WORKGROUP};
 use crate::error::{Result, SimError};
+
+/// Compiles entry point `entry` of the composed `source` on `gpu`'s device.
+fn compile(gpu: &Gpu, name: &'static str, source: &str, entry: &str) -> Result<Compiled> {
+    let bindings = bindings_used(name, source, entry)?;
+    let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let module = gpu
+        .device
+        .create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(name),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+    let pipeline = gpu
+        .device
+        .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(name),
+            layout: None,
+            module: &module,
+            entry_point: Some(entry),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            cache: None,
+        });
+    if let Some(e) = pollster::block_on(scope.pop()) {
+        return Err(SimError::GpuShader {
+            kernel: name,
+            message: e.to_string(),
+        });
+    }
+    Ok(Compiled {
+        pipeline,
+        bindings: bindings.into(),
+    })
+}
 
 /// A compute pipeline: one entry point of a composed WGSL source.
 pub struct Kernel {
     name: &'static str,
     pipeline: wgpu::ComputePipeline,
     /// The bindings of group 0 the entry point uses (its layout's; naga's analysis).
-    bindings: Vec<u32>,
+    bindings: Arc<[u32]>,
 }
 
 /// The bindings of group 0 that entry point `entry` of `source` uses, directly or through the
@@ -50,7 +85,8 @@ fn bindings_used(name: &'static str, source: &str, entry: &str) -> Result<Vec<u3
 
 impl Kernel {
     /// Compiles entry point `entry` of `kernel` (its text after the modules it `uses`, see
-    /// [`shaders::compose`]), with the bind-group layout wgpu derives from the source.
+    /// [`shaders::compose`]), with the bind-group layout wgpu derives from the source; once
+    /// per device ([`Gpu::compiled`]): later engines on the device share the pipeline.
     ///
     /// # Errors
     ///
@@ -63,30 +99,8 @@ impl Kernel {
         entry: &str,
     ) -> Result<Kernel> {
         let source = shaders::compose(uses, kernel);
-        let bindings = bindings_used(name, &source, entry)?;
-        let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let module = gpu
-            .device
-            .create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(name),
-                source: wgpu::ShaderSource::Wgsl(source.into()),
-            });
-        let pipeline = gpu
-            .device
-            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(name),
-                layout: None,
-                module: &module,
-                entry_point: Some(entry),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                cache: None,
-            });
-        if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(SimError::GpuShader {
-                kernel: name,
-                message: e.to_string(),
-            });
-        }
+        let Compiled { pipeline, bindings } =
+            gpu.compiled(&source, entry, || compile(gpu, name, &source, entry))?;
         Ok(Kernel {
             name,
             pipeline,
@@ -384,6 +398,31 @@ mod tests {
         assert_eq!(workgroups(65), [2, 1]);
         let [x, y] = workgroups(10_000_000);
         assert!(u64::from(x) * u64::from(y) * 64 >= 10_000_000 && x <= 65_535);
+    }
+
+    /// One device per process, a kernel compiled once per device: engines after the first
+    /// compile nothing (each used to take its own device and 20-35 s of compilation on
+    /// lavapipe, and the driver's memory with them), and another source is another kernel.
+    #[test]
+    fn the_process_shares_one_device_and_compiles_a_kernel_once() {
+        let (a, b) = (test_gpu(), Gpu::shared().expect("the shared device"));
+        assert!(a.device == b.device && a.queue == b.queue);
+        let body = |k: u32| {
+            format!(
+                "@group(0) @binding(0) var<storage, read_write> out: array<u32>;
+@compute @workgroup_size(WORKGROUP)
+fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {{
+    out[thread_index(id, groups)] = {k}u;
+}}"
+            )
+        };
+        let uses = [&shaders::DISPATCH];
+        let first = Kernel::new(&a, "first", &uses, &body(7), "main").unwrap();
+        let again = Kernel::new(&b, "again", &uses, &body(7), "main").unwrap();
+        let other = Kernel::new(&b, "other", &uses, &body(8), "main").unwrap();
+        assert!(first.pipeline == again.pipeline && *first.bindings == *again.bindings);
+        assert!(first.pipeline != other.pipeline);
+        assert_eq!((first.name(), again.name()), ("first", "again"));
     }
 
     #[test]

@@ -12,7 +12,7 @@
 //! values.
 //!
 //! ```no_run
-//! let gpu = swarm_sim::gpu::Gpu::new().unwrap(); // an error naming what to install if none
+//! let gpu = swarm_sim::gpu::Gpu::shared().unwrap(); // an error naming what to install if none
 //! println!("{}", gpu.info());
 //! ```
 
@@ -34,12 +34,12 @@ pub mod words;
 
 pub use context::{AdapterSummary, Gpu};
 
-/// The GPU of the tests: the adapter [`Gpu::new`] finds (lavapipe on a machine without a GPU).
+/// The GPU of the tests: the process's device, [`Gpu::shared`] (lavapipe on a machine without a GPU).
 /// Panics with the install hint if there is none: the test command installs the driver, and a
 /// GPU test must fail rather than skip.
 #[cfg(test)]
 pub(crate) fn test_gpu() -> Gpu {
-    Gpu::new().unwrap_or_else(|e| panic!("the GPU tests need an adapter: {e}"))
+    Gpu::shared().unwrap_or_else(|e| panic!("the GPU tests need an adapter: {e}"))
 }
 
 /// Two slots `(a, b)`, `a < b`, whose agents' ids run the other way (`ids[a] > ids[b]`): where

@@ -20,7 +20,7 @@
 //! The tick's atomics (`{MODEL}_SHARED_*` in the model's tick module, e.g. `FLY_SHARED_*`;
 //! [`SharedLayout`]): word 0 the
 //! tick's lowest refused insect id (as `0xffffffff − id`: `par::for_each_agent_by`), then the model's [`GpuModel3d::COUNTS`] counts of this tick
-//! (cleared by the host every tick), the first refusal kept (a flag, its step, slot and status
+//! (cleared by the host every tick), the first refusal kept (a flag, its step, the insect's id and status
 //! word), and the counts since the start, each a `u64` as two words from an even word on.
 
 use swarm_core::{Error, Fx, Scalar, ScalarKind};
@@ -107,7 +107,7 @@ impl SharedLayout {
     pub const fn count(&self, k: usize) -> usize {
         1 + k
     }
-    /// The kept refusal's flag; its step, slot and status word follow.
+    /// The kept refusal's flag; its step, the insect's id and status word follow.
     pub const fn kept(&self) -> usize {
         1 + self.counts
     }
@@ -131,7 +131,7 @@ impl SharedLayout {
             c("REFUSED", 0),
             c("KEPT", self.kept()),
             c("KEPT_STEP", self.kept() + 1),
-            c("KEPT_SLOT", self.kept() + 2),
+            c("KEPT_ID", self.kept() + 2),
             c("KEPT_STATUS", self.kept() + 3),
         ];
         for (k, name) in counts.iter().enumerate() {
@@ -485,8 +485,7 @@ impl<M: GpuModel3d> GpuSwarm3d<M> {
         if w[kept] == 0 {
             return Ok(());
         }
-        let slot = w[kept + 2] as usize;
-        let agent = self.sim.world.sensed.id.get(slot).copied().unwrap_or(0);
+        let agent = w[kept + 2];
         let status = w[kept + 3];
         let Err(e) = M::status_error(status)? else {
             return Err(SimError::GpuWords {

@@ -58,7 +58,7 @@ const SHARED_OBSTACLE: usize = 1;
 const SHARED_BOUNDS: usize = 2;
 const SHARED_KEPT: usize = 3;
 const SHARED_KEPT_STEP: usize = 4;
-const SHARED_KEPT_SLOT: usize = 5;
+const SHARED_KEPT_ID: usize = 5;
 const SHARED_KEPT_STATUS: usize = 6;
 const SHARED_TOTAL_OBSTACLE: usize = 7;
 const SHARED_TOTAL_BOUNDS: usize = 9;
@@ -398,8 +398,7 @@ impl GpuBeeSim {
         if w[SHARED_KEPT] == 0 {
             return Ok(());
         }
-        let slot = w[SHARED_KEPT_SLOT] as usize;
-        let agent = self.sim.world.sensed.id.get(slot).copied().unwrap_or(0);
+        let agent = w[SHARED_KEPT_ID];
         let status = w[SHARED_KEPT_STATUS];
         let Err(e) = layout::status_error(status)? else {
             return Err(SimError::GpuWords {

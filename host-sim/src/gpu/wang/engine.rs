@@ -53,7 +53,7 @@ const SHARED_BOUNDS: usize = 3;
 const SHARED_PUSHED: usize = 4;
 const SHARED_KEPT: usize = 5;
 const SHARED_KEPT_STEP: usize = 6;
-const SHARED_KEPT_SLOT: usize = 7;
+const SHARED_KEPT_ID: usize = 7;
 const SHARED_KEPT_PHASE: usize = 8;
 const SHARED_KEPT_STATUS: usize = 9;
 const SHARED_TOTAL_OBSTACLE: usize = 10;
@@ -425,8 +425,7 @@ impl GpuWangSim {
         if w[SHARED_KEPT] == 0 {
             return Ok(());
         }
-        let slot = w[SHARED_KEPT_SLOT] as usize;
-        let agent = self.sim.world.id.get(slot).copied().unwrap_or(0);
+        let agent = w[SHARED_KEPT_ID];
         let status = w[SHARED_KEPT_STATUS];
         let Err(e) = layout::status_error(status)? else {
             return Err(SimError::GpuWords {

@@ -1,0 +1,31 @@
+#!/usr/bin/env python3
+"""Runs a command and records its peak resident memory.
+
+    peak-rss.py LOG CMD [ARGS...]
+
+Runs CMD, appends "<peak KiB> <CMD's file name>" to LOG (the largest resident set of CMD and
+of every process it waited for, getrusage's RUSAGE_CHILDREN) and exits with CMD's status.
+scripts/test.sh makes it cargo's runner for the test binaries, so each test process's peak is
+known (docs/benchmarks.md, "The test command").
+"""
+
+import os
+import resource
+import subprocess
+import sys
+
+
+def main() -> int:
+    if len(sys.argv) < 3:
+        print(__doc__, file=sys.stderr)
+        return 2
+    log, cmd = sys.argv[1], sys.argv[2:]
+    status = subprocess.call(cmd)
+    peak_kib = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    with open(log, "a", encoding="utf-8") as f:
+        f.write(f"{peak_kib} {os.path.basename(cmd[0])}\n")
+    return status if status >= 0 else 128 - status
+
+
+if __name__ == "__main__":
+    sys.exit(main())
