@@ -64,3 +64,18 @@ pub(crate) fn same_refusal(
     assert_eq!(a, gpu.sync().unwrap_err().to_string());
     a
 }
+
+/// Breaks, with `break_one`, the agents of two slots whose ids run the other way
+/// ([`inverted_slots`] of `ids`, `states` by slot); returns the lower of their two ids, the
+/// one a refusal must name.
+#[cfg(test)]
+pub(crate) fn break_two_inverted<T>(
+    ids: &[u32],
+    states: &mut [T],
+    break_one: impl Fn(&mut T),
+) -> u32 {
+    let (a, b) = inverted_slots(ids);
+    break_one(&mut states[a]);
+    break_one(&mut states[b]);
+    ids[b]
+}

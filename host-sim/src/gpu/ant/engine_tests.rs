@@ -6,7 +6,7 @@ use swarm_core::Fx;
 use super::engine::GpuAntSim;
 use crate::ants::{AntGroup, AntObjectKind, AntSim};
 use crate::engine::{Engine, apply_due_events};
-use crate::gpu::{inverted_slots, same_refusal, test_gpu};
+use crate::gpu::{break_two_inverted, same_refusal, test_gpu};
 use crate::scalar::ByScalar;
 use crate::scenario::{ObjectKind, ScalarType, Scenario, builtin};
 
@@ -165,11 +165,9 @@ fn a_refusal_is_the_cpus_error() {
             panic!("fixed point");
         };
         // Two ants, their slots and ids the other way round, have lost their heading.
-        let (a, b) = inverted_slots(&g.ids);
-        for k in [a, b] {
-            g.states[k].heading = swarm_core::Vec2::zero();
-        }
-        let lower = g.ids[b];
+        let lower = break_two_inverted(&g.ids, &mut g.states, |s| {
+            s.heading = swarm_core::Vec2::zero()
+        });
         (sim, lower)
     };
     let (mut cpu, lower) = broken();

@@ -19,7 +19,7 @@ use crate::engine::{Engine, apply_due_events};
 use crate::fly::{FlyGroup, FlySim, bench_fly_world};
 use crate::gpu::shaders::{FLY_STEP, FLY_TICK};
 use crate::gpu::tests::harness::{StatusWords, assert_constants, assert_valid_wgsl};
-use crate::gpu::{inverted_slots, same_refusal, test_gpu};
+use crate::gpu::{break_two_inverted, same_refusal, test_gpu};
 use crate::scalar::ByScalar;
 use crate::scenario::{ScalarType, Scenario, builtin, builtin_names};
 
@@ -282,11 +282,7 @@ fn two_refusals_name_the_lower_id() {
         let ByScalar::Fixed(g) = &mut sim.groups[0] else {
             panic!("fixed point");
         };
-        let (a, b) = inverted_slots(&g.ids);
-        for k in [a, b] {
-            g.states[k].pos.x = Fx::from_f32(20_000.0);
-        }
-        let lower = g.ids[b];
+        let lower = break_two_inverted(&g.ids, &mut g.states, |s| s.pos.x = Fx::from_f32(20_000.0));
         (sim, lower)
     };
     let (mut cpu, lower) = make();

@@ -16,7 +16,7 @@ use super::{GpuLiSim, modules, wgsl_shared};
 use crate::engine::Engine;
 use crate::gpu::shaders::{LI_STEP, LI_TICK};
 use crate::gpu::tests::harness::{StatusWords, assert_constants, assert_valid_wgsl};
-use crate::gpu::{inverted_slots, same_refusal, test_gpu};
+use crate::gpu::{break_two_inverted, same_refusal, test_gpu};
 use crate::li::{LiGroup, LiSim, bench_li_world};
 use crate::scalar::ByScalar;
 use crate::scenario::{ScalarType, Scenario, builtin, builtin_names};
@@ -250,11 +250,9 @@ fn two_refusals_name_the_lower_id() {
         let ByScalar::Fixed(g) = &mut sim.groups[0] else {
             panic!("fixed point");
         };
-        let (a, b) = inverted_slots(&g.ids);
-        for k in [a, b] {
-            g.states[k].waypoint.z = Fx::from_f32(20_000.0);
-        }
-        let lower = g.ids[b];
+        let lower = break_two_inverted(&g.ids, &mut g.states, |s| {
+            s.waypoint.z = Fx::from_f32(20_000.0)
+        });
         (sim, lower)
     };
     let (mut cpu, lower) = make();
