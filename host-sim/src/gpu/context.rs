@@ -36,7 +36,7 @@ impl fmt::Display for AdapterSummary {
 /// A wgpu device and its queue, on the adapter wgpu prefers (high performance first).
 ///
 /// One device serves the whole process ([`Gpu::shared`]): every engine, test and kernel
-/// clones it, and a kernel is compiled once per device ([`Gpu::compiled`]). A device per
+/// clones it, and a kernel is compiled once per device (`Gpu::compiled`). A device per
 /// engine cost each engine a new instance and a new compilation of every kernel (20-35 s on
 /// lavapipe), and the driver's per-device memory with it.
 #[derive(Clone)]

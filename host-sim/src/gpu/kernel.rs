@@ -86,7 +86,7 @@ fn bindings_used(name: &'static str, source: &str, entry: &str) -> Result<Vec<u3
 impl Kernel {
     /// Compiles entry point `entry` of `kernel` (its text after the modules it `uses`, see
     /// [`shaders::compose`]), with the bind-group layout wgpu derives from the source; once
-    /// per device ([`Gpu::compiled`]): later engines on the device share the pipeline.
+    /// per device (`Gpu::compiled`): later engines on the device share the pipeline.
     ///
     /// # Errors
     ///
