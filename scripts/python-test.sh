@@ -7,7 +7,9 @@
 #
 # Needs python3 with venv (scripts/test.sh installs python3-venv when missing) and the Python
 # package index, or a pip mirror, for numpy, pytest, ray, cma and maturin (pip's build of
-# ./python). The wheel builds in target/python; the tests compare with the `swarm` command
+# ./python). The module builds with the test suite's profile (`ci`) in the workspace's target
+# folder, so that it reuses every dependency `cargo test` built (python/Cargo.lock pins the
+# workspace's versions: tests/tests/architecture.rs); the tests compare with the `swarm` command
 # built here (target/ci/swarm).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,10 +21,11 @@ py="$venv/bin/python"
 "$py" -m pip install -q --disable-pip-version-check "numpy>=1.21" "pytest>=7" "ray>=2.9" "cma>=3.2"
 # The native crate is outside the workspace (maturin builds it): its own formatting and lints.
 cargo fmt --manifest-path python/Cargo.toml -- --check
-CARGO_TARGET_DIR="$PWD/target/python" cargo clippy -q --manifest-path python/Cargo.toml \
-    --all-targets -- -D warnings
-# The README's install command; maturin builds the wheel (release) in target/python.
-CARGO_TARGET_DIR="$PWD/target/python" "$py" -m pip install -q --disable-pip-version-check \
+export CARGO_TARGET_DIR="$PWD/target"
+cargo clippy -q --manifest-path python/Cargo.toml --all-targets -- -D warnings
+# The README's install command; maturin builds the wheel with the `ci` profile.
+MATURIN_PEP517_ARGS="--profile ci" "$py" -m pip install -q --disable-pip-version-check \
     --force-reinstall --no-deps ./python
+unset CARGO_TARGET_DIR
 cargo build -q --profile ci -p swarm-sim --bin swarm
 SWARM_EXE="$PWD/target/ci/swarm" "$py" -m pytest -q python/tests "$@"

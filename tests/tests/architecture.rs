@@ -120,3 +120,52 @@ fn swarm_core_depends_on_nothing_of_the_host() {
         }
     }
 }
+
+/// The `(name, version)` of every package a `Cargo.lock` pins.
+fn locked(path: &Path) -> std::collections::BTreeSet<(String, String)> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let quoted = |line: &str, key: &str| {
+        line.strip_prefix(key)
+            .map(|v| v.trim_matches(|c| c == ' ' || c == '=' || c == '"').to_string())
+    };
+    let mut out = std::collections::BTreeSet::new();
+    let mut name = None;
+    for line in text.lines() {
+        if let Some(n) = quoted(line, "name") {
+            name = Some(n);
+        } else if let (Some(v), Some(n)) = (quoted(line, "version"), name.take()) {
+            out.insert((n, v));
+        }
+    }
+    out
+}
+
+/// The Python module (`python/`, a workspace of its own for maturin) pins the workspace's
+/// version of every package the two share (in one semver series), so that `scripts/python-test.sh` builds it on what
+/// `cargo test` built (the same versions, profile and target folder) instead of building every
+/// dependency again. After `cargo update`: `cp Cargo.lock python/ && cargo tree --manifest-path
+/// python/Cargo.toml`.
+#[test]
+fn the_python_module_pins_the_workspaces_versions() {
+    let (ours, python) = (
+        locked(&root().join("Cargo.lock")),
+        locked(&root().join("python/Cargo.lock")),
+    );
+    // Semver-compatible: the same leading component, and the next one too below 1.0.
+    let series = |v: &str| -> Vec<String> {
+        let parts: Vec<&str> = v.split('.').collect();
+        let n = if parts[0] == "0" { 2 } else { 1 };
+        parts.iter().take(n).map(|s| s.to_string()).collect()
+    };
+    let apart: Vec<String> = python
+        .iter()
+        .filter(|p| !ours.contains(*p))
+        .filter(|(n, v)| ours.iter().any(|(m, w)| m == n && series(w) == series(v)))
+        .map(|(n, v)| format!("{n} {v}"))
+        .collect();
+    assert!(
+        apart.is_empty(),
+        "python/Cargo.lock pins other versions than Cargo.lock: {apart:?} (cp Cargo.lock \
+         python/ && cargo tree --manifest-path python/Cargo.toml)"
+    );
+}
