@@ -55,7 +55,7 @@ stage() {
 }
 
 # `cargo test`, each test process run by scripts/lib/peak-rss.py (cargo's runner): prints the
-# largest peaks and fails if a test process held more than MAX_TEST_PROCESS_GIB.
+# largest peaks and the longest processes, and fails if a test process held more than MAX_TEST_PROCESS_GIB.
 cargo_test_within_memory() {
     local log="$peaks/tests" host status=0
     rm -f "$log"
@@ -64,8 +64,12 @@ cargo_test_within_memory() {
         env "CARGO_TARGET_${host}_RUNNER=$PWD/scripts/lib/peak-rss.py $log" "$@" || status=$?
     [[ -s $log ]] || { warn "no test process reported its memory"; return 1; }
     printf 'peak resident memory of the largest test processes:\n'
-    sort -rn "$log" | head -5 | while read -r kib bin; do
-        printf '  %6s GiB  %s\n' "$(gib "$kib")" "$bin"
+    sort -rn "$log" | head -5 | while read -r kib bin secs; do
+        printf '  %6s GiB  %5s s  %s\n' "$(gib "$kib")" "$secs" "$bin"
+    done
+    printf 'the longest test processes:\n'
+    sort -k3 -rn "$log" | head -8 | while read -r kib bin secs; do
+        printf '  %5s s  %6s GiB  %s\n' "$secs" "$(gib "$kib")" "$bin"
     done
     local over
     over=$(awk -v max=$((MAX_TEST_PROCESS_GIB * 1048576)) '$1 > max { print $2 }' "$log")
@@ -132,12 +136,13 @@ stage "swarm-core builds without std, every backend" bash -c '
     cargo build -q -p swarm-core --no-default-features --features micromath,fixed,serde &&
     cargo build -q -p swarm-core --no-default-features --features libm &&
     cargo build -q -p swarm-core --features fixed,serde,defmt'
-stage "swarm-core with feature small (the ant node's size options) passes its unit tests" \
-    cargo test -q -p swarm-core --profile ci --features small --lib
 stage "cargo doc (warnings are errors)" env RUSTDOCFLAGS="-D warnings" cargo doc -q --workspace --no-deps
 stage "docs/protocol.md: the Python reference appendices run and every assertion holds" python3 scripts/protocol-reference.py
 stage "cargo test --workspace (unit, property, integration, doc tests; each test process within ${MAX_TEST_PROCESS_GIB} GiB)" \
     cargo_test_within_memory cargo test --workspace --profile ci
+# After the workspace's tests: their build of swarm-core's dependencies serves this one.
+stage "swarm-core with feature small (the ant node's size options) passes its unit tests" \
+    cargo test -q -p swarm-core --profile ci --features small --lib
 stage "python: the swarm package (pip install ./python into a venv, pytest on a 2-worker Ray cluster)" scripts/python-test.sh
 
 if ((QUICK == 1)); then

@@ -125,8 +125,10 @@ fn swarm_core_depends_on_nothing_of_the_host() {
 fn locked(path: &Path) -> std::collections::BTreeSet<(String, String)> {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let quoted = |line: &str, key: &str| {
-        line.strip_prefix(key)
-            .map(|v| v.trim_matches(|c| c == ' ' || c == '=' || c == '"').to_string())
+        line.strip_prefix(key).map(|v| {
+            v.trim_matches(|c| c == ' ' || c == '=' || c == '"')
+                .to_string()
+        })
     };
     let mut out = std::collections::BTreeSet::new();
     let mut name = None;

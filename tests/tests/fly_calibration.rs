@@ -9,8 +9,8 @@
 //! 0.363 at generation 70). With chen's 10 individuals the GA stalls far below (docs/models.md). The
 //! search stops at the first generation that reaches the bound.
 
-use swarm_sim::eval::{Scaling, samples};
 use rayon::prelude::*;
+use swarm_sim::eval::{Scaling, samples};
 use swarm_sim::fit::{self, Ga, Param, Sampling, Search};
 use swarm_sim::fly::fly_params;
 use swarm_sim::scenario::{self, Scenario};
@@ -113,7 +113,7 @@ fn the_ga_recovers_the_midges() {
         let scores: Vec<f64> = search.ask().par_iter().map(|g| score(g)).collect();
         search.tell(&scores);
         let g = search.history().len();
-        if g % 10 == 0 {
+        if g.is_multiple_of(10) {
             eprintln!(
                 "generation {g}: best E {:.4} (truth {e_truth:.4})",
                 search.history()[g - 1]

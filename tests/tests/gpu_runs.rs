@@ -1,18 +1,129 @@
 //! The GPU backend's promise, end to end: every built-in scenario of a model with a GPU engine,
 //! in fixed point, run by `swarm run` on the GPU writes the CPU run's bytes: `positions.npy`,
 //! `trajectories.csv`, `scene.json` and `summary.json` (without what depends on the machine and
-//! the moment: wall time, rate, threads, backend, adapter), over 1,000 ticks with the
-//! scenario's events moved into them; the CPU with 1 thread, the GPU backend's host side with 2,
+//! the moment: wall time, rate, threads, backend, adapter), over 50,000 agent-ticks (50 to 500
+//! ticks: [`steps_of`]) with the scenario's events moved into them; the CPU with 1
+//! thread, the GPU backend's host side with 2,
 //! so that the bytes are also checked not to depend on the thread count (one GPU run each: on
 //! lavapipe a second one doubled the suite's longest test). On lavapipe in CI (the test command
 //! installs it); a machine without any Vulkan driver fails here, as it should.
 
-mod gpu_common;
-
 use std::path::Path;
 
-use gpu_common::{every_scenario_of, fixed, normalised_summary, run_on, same_bytes_on_the_gpu};
+use swarm_sim::run::{RunOptions, run};
 use swarm_sim::scenario::{self, Backend, ScalarType, Scenario};
+
+/// Ticks of the `f32` comparisons.
+const STEPS: u32 = 1000;
+
+/// Agent-ticks a fixed-point comparison runs, within 50 to 500 ticks: a swarm of 100 runs 500
+/// ticks, one of 2,000 runs 50 (on lavapipe a GPU agent-tick costs several CPU ones; every
+/// kernel path a large swarm takes, a small one takes in fewer ticks). The environment's
+/// `SWARM_GPU_AGENT_STEPS` raises it (`SWARM_GPU_AGENT_STEPS=1e12`: every scenario 500 ticks;
+/// `docs/gpu.md`).
+const AGENT_STEPS: u64 = 50_000;
+
+/// The ticks a fixed-point comparison of `sc` runs ([`AGENT_STEPS`]).
+fn steps_of(sc: &Scenario) -> u32 {
+    let budget = std::env::var("SWARM_GPU_AGENT_STEPS")
+        .ok()
+        .and_then(|v| v.parse::<f64>().ok())
+        .map_or(AGENT_STEPS, |v| (v as u64).max(AGENT_STEPS));
+    (budget / sc.agents().max(1)).clamp(50, 500) as u32
+}
+
+/// The files compared byte for byte (the summary separately, normalised).
+const FILES: &[&str] = &["positions.npy", "trajectories.csv", "scene.json"];
+
+/// Built-in scenario `name` in `scalar` over `steps` ticks (its events moved into them), no
+/// pictures.
+fn shortened(name: &str, scalar: ScalarType, steps: u32) -> Scenario {
+    let mut sc = scenario::builtin(name)
+        .expect("built-in")
+        .in_scalar(scalar)
+        .squeezed(steps);
+    sc.outputs.render = false;
+    sc.outputs.gif = false;
+    sc.outputs.trajectories = true;
+    sc.outputs.npy = true;
+    sc
+}
+
+/// Built-in scenario `name` in fixed point over [`steps_of`] ticks.
+fn fixed(name: &str) -> Scenario {
+    let sc = scenario::builtin(name).expect("built-in");
+    shortened(name, ScalarType::Fixed, steps_of(&sc))
+}
+
+/// The summary without what depends on the machine, the moment and the backend.
+fn normalised_summary(dir: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(dir.join("summary.json")).expect("summary.json");
+    let mut v: serde_json::Value = serde_json::from_str(&text).expect("summary is JSON");
+    let obj = v.as_object_mut().expect("summary is an object");
+    for k in [
+        "wall_seconds",
+        "agent_steps_per_s",
+        "threads",
+        "backend",
+        "adapter",
+    ] {
+        obj.remove(k);
+    }
+    v
+}
+
+/// Runs `sc` on `backend` with `threads` threads into `dir`; returns the backend the summary
+/// names.
+fn run_on(sc: &Scenario, backend: Backend, threads: usize, dir: &Path) -> String {
+    let opts = RunOptions {
+        out: dir.to_path_buf(),
+        steps: None,
+        seed: None,
+        threads: Some(threads),
+        backend: Some(backend),
+        progress: false,
+        warnings: Vec::new(),
+    };
+    let report = run(sc, &opts).unwrap_or_else(|e| panic!("{} on {backend:?}: {e}", sc.name));
+    report.summary.backend
+}
+
+fn same_bytes_on_the_gpu(name: &str) {
+    let sc = fixed(name);
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let (cpu, gpu) = (tmp.path().join("cpu"), tmp.path().join("gpu"));
+    assert_eq!(run_on(&sc, Backend::Cpu, 1, &cpu), "cpu");
+    assert_eq!(run_on(&sc, Backend::Gpu, 2, &gpu), "gpu");
+    // 3D worlds (bees) also record the bodies' attitude.
+    for f in FILES
+        .iter()
+        .chain(Some(&"attitude.npy").filter(|f| cpu.join(f).exists()))
+    {
+        let (a, b) = (std::fs::read(cpu.join(f)), std::fs::read(gpu.join(f)));
+        let (a, b) = (a.expect("CPU output"), b.expect("GPU output"));
+        assert!(a == b, "{name}: {f} differs on the GPU");
+    }
+    assert_eq!(
+        normalised_summary(&cpu),
+        normalised_summary(&gpu),
+        "{name}: summary.json differs on the GPU"
+    );
+}
+
+/// [`same_bytes_on_the_gpu`] for every built-in scenario whose name starts with `prefix`
+/// (found by name: a scenario added to `scenarios/` is compared without a line in a test),
+/// `example` among them.
+fn every_scenario_of(prefix: &str, example: &str) {
+    let names: Vec<&str> = swarm_sim::scenario::builtin_names()
+        .iter()
+        .copied()
+        .filter(|n| n.starts_with(prefix))
+        .collect();
+    assert!(names.contains(&example), "{names:?}");
+    for name in names {
+        same_bytes_on_the_gpu(name);
+    }
+}
 
 /// One test per built-in scenario of the models with a GPU engine.
 macro_rules! gpu_is_cpu {
@@ -53,10 +164,16 @@ fn fly_scenarios_are_the_cpus_bytes() {
     every_scenario_of("fly-", "fly-fig1-midges");
 }
 
+/// Every built-in li scenario (`li-*`), found by its name, as the fly's: the lights of Fig. 6
+/// move each group's density on between steps (the host sees every step until the last).
+#[test]
+fn li_scenarios_are_the_cpus_bytes() {
+    every_scenario_of("li-", "li-fig6-lights");
+}
+
 /// Every built-in scenario is covered: a model's scenarios join the list above when its GPU
-/// engine lands (the fly and li models' by their prefix, `fly_scenarios_are_the_cpus_bytes`
-/// here and `li_scenarios_are_the_cpus_bytes` in `gpu_runs_li.rs`, a process of its own: on
-/// lavapipe the two together came within a GiB of a 23 GiB machine's memory).
+/// engine lands (the fly and li models' by their prefix: `fly_scenarios_are_the_cpus_bytes`,
+/// `li_scenarios_are_the_cpus_bytes`).
 #[test]
 fn every_built_in_scenario_is_compared() {
     let here = include_str!("gpu_runs.rs");
@@ -89,10 +206,7 @@ struct F32Agreement {
 
 /// Built-in scenario `name` in `f32` over [`STEPS`] ticks, recorded every 10.
 fn f32_scenario(name: &str) -> Scenario {
-    let mut sc = fixed(name);
-    for g in &mut sc.groups {
-        g.scalar = ScalarType::F32;
-    }
+    let mut sc = shortened(name, ScalarType::F32, STEPS);
     sc.outputs.every = 10;
     sc
 }

@@ -72,6 +72,31 @@ impl Scenario {
         self.groups.iter().find(|g| g.name == name)
     }
 
+    /// Agents in all groups.
+    pub fn agents(&self) -> u64 {
+        self.groups.iter().map(|g| u64::from(g.count)).sum()
+    }
+
+    /// This scenario over `steps` steps, every event at the same fraction of the run (step
+    /// `s` of the `S`-step scenario at `s·steps/S`): a short run that still sees every event.
+    #[must_use]
+    pub fn squeezed(mut self, steps: u32) -> Scenario {
+        for e in &mut self.events {
+            e.step = (u64::from(e.step) * u64::from(steps) / u64::from(self.steps.max(1))) as u32;
+        }
+        self.steps = steps;
+        self
+    }
+
+    /// This scenario with every group in `scalar`.
+    #[must_use]
+    pub fn in_scalar(mut self, scalar: ScalarType) -> Scenario {
+        for g in &mut self.groups {
+            g.scalar = scalar;
+        }
+        self
+    }
+
     /// The world's corners, `D` numbers each, for `model`, a model of `D`-dimensional worlds.
     ///
     /// # Errors

@@ -6,22 +6,10 @@ use swarm_core::Fx;
 use super::engine::GpuAntSim;
 use crate::ants::{AntGroup, AntObjectKind, AntSim};
 use crate::engine::{Engine, apply_due_events};
+use crate::gpu::tests::harness::fixed;
 use crate::gpu::{break_two_inverted, same_refusal, test_gpu};
 use crate::scalar::ByScalar;
-use crate::scenario::{ObjectKind, ScalarType, Scenario, builtin};
-
-/// Scenario `name` in fixed point, its events moved into its first `ticks` ticks.
-fn fixed(name: &str, ticks: u32) -> Scenario {
-    let mut sc = builtin(name).unwrap_or_else(|| panic!("no built-in scenario {name}"));
-    for g in &mut sc.groups {
-        g.scalar = ScalarType::Fixed;
-    }
-    for e in &mut sc.events {
-        e.step = (u64::from(e.step) * u64::from(ticks) / u64::from(sc.steps)) as u32;
-    }
-    sc.steps = ticks;
-    sc
-}
+use crate::scenario::ObjectKind;
 
 /// Every ant's state words, in id order.
 fn states(sim: &AntSim) -> Vec<(u32, Vec<u32>)> {

@@ -13,22 +13,10 @@ use super::world::{GridShape3, world_words};
 use crate::bees::{BeeGroup, BeeObstacle, BeeSim, BeeTarget, BeeWorld, Contacts, Shape3};
 use crate::engine::{Engine, apply_due_events};
 use crate::error::SimError;
+use crate::gpu::tests::harness::fixed;
 use crate::gpu::{inverted_slots, test_gpu};
 use crate::scalar::ByScalar;
-use crate::scenario::{Action, Event, Object, ObjectKind, ScalarType, Scenario, World, builtin};
-
-/// Scenario `name` in fixed point, its events moved into its first `ticks` ticks.
-fn fixed(name: &str, ticks: u32) -> Scenario {
-    let mut sc = builtin(name).unwrap_or_else(|| panic!("no built-in scenario {name}"));
-    for g in &mut sc.groups {
-        g.scalar = ScalarType::Fixed;
-    }
-    for e in &mut sc.events {
-        e.step = (u64::from(e.step) * u64::from(ticks) / u64::from(sc.steps)) as u32;
-    }
-    sc.steps = ticks;
-    sc
-}
+use crate::scenario::{Action, Event, Object, ObjectKind, ScalarType, Scenario, World};
 
 /// Every bee's words, in id order: its state, its last decision, what the world corrected.
 fn words(sim: &BeeSim) -> Vec<(u32, Vec<u32>)> {

@@ -18,23 +18,13 @@ use super::layout::{self, FIELDS, WGSL_CONSTANTS, status_error, status_of};
 use crate::engine::{Engine, apply_due_events};
 use crate::fly::{FlyGroup, FlySim, bench_fly_world};
 use crate::gpu::shaders::{FLY_STEP, FLY_TICK};
-use crate::gpu::tests::harness::{StatusWords, assert_constants, assert_valid_wgsl};
+use crate::gpu::tests::harness::fixed;
+use crate::gpu::tests::harness::{
+    StatusWords, assert_constants, assert_valid_wgsl, comparison_steps,
+};
 use crate::gpu::{break_two_inverted, same_refusal, test_gpu};
 use crate::scalar::ByScalar;
 use crate::scenario::{ScalarType, Scenario, builtin, builtin_names};
-
-/// Scenario `name` in fixed point, its events moved into its first `ticks` ticks.
-fn fixed(name: &str, ticks: u32) -> Scenario {
-    let mut sc = builtin(name).unwrap_or_else(|| panic!("no built-in scenario {name}"));
-    for g in &mut sc.groups {
-        g.scalar = ScalarType::Fixed;
-    }
-    for e in &mut sc.events {
-        e.step = (u64::from(e.step) * u64::from(ticks) / u64::from(sc.steps)) as u32;
-    }
-    sc.steps = ticks;
-    sc
-}
 
 /// Every insect's words, in id order: its state, its last decision, the corrections and the
 /// truncation of the last tick.
@@ -210,7 +200,8 @@ fn the_fallbacks_and_noises_are_the_cpus() {
     }
 }
 
-/// Every built-in fly scenario (`fly-*`, its events moved into the run): the midges of Fig. 1,
+/// Every built-in fly scenario (`fly-*`, its events moved into the run, 30,000 insect-ticks and
+/// 20 to 300 ticks: [`comparison_steps`]): the midges of Fig. 1,
 /// the predator of Fig. 8 added, moved through the swarm and removed (escape angles drawn), and
 /// whatever fly scenario joins them.
 #[test]
@@ -222,9 +213,10 @@ fn the_fly_scenarios_are_the_cpus() {
         .collect();
     assert!(names.contains(&"fly-fig1-midges") && names.contains(&"fly-fig8-escape"));
     for name in names {
-        let sc = fixed(name, 300);
+        let agents = builtin(name).unwrap().agents();
+        let sc = fixed(name, comparison_steps(agents, 30_000, 20, 300));
         let make = || FlySim::from_scenario(&sc, sc.seed).unwrap();
-        let c = same_run(name, make, 300, 25, Some(&sc));
+        let c = same_run(name, make, sc.steps, 25, Some(&sc));
         if sc.groups.iter().any(|g| g.threat.is_some()) {
             assert!(
                 c.escaping > 0,

@@ -15,21 +15,12 @@ use super::layout::{self, FIELDS, WGSL_CONSTANTS, status_error, status_of};
 use super::{GpuLiSim, modules, wgsl_shared};
 use crate::engine::Engine;
 use crate::gpu::shaders::{LI_STEP, LI_TICK};
+use crate::gpu::tests::harness::fixed;
 use crate::gpu::tests::harness::{StatusWords, assert_constants, assert_valid_wgsl};
 use crate::gpu::{break_two_inverted, same_refusal, test_gpu};
 use crate::li::{LiGroup, LiSim, bench_li_world};
 use crate::scalar::ByScalar;
-use crate::scenario::{ScalarType, Scenario, builtin, builtin_names};
-
-/// Scenario `name` in fixed point, `ticks` long.
-fn fixed(name: &str, ticks: u32) -> Scenario {
-    let mut sc = builtin(name).unwrap_or_else(|| panic!("no built-in scenario {name}"));
-    for g in &mut sc.groups {
-        g.scalar = ScalarType::Fixed;
-    }
-    sc.steps = ticks;
-    sc
-}
+use crate::scenario::{ScalarType, builtin_names};
 
 /// Every insect's words, in id order: its state, its last decision, the corrections and the
 /// truncation of the last tick.

@@ -95,15 +95,28 @@ impl<T> PerScalar<T> {
 /// The built-in scenario `name` over `S`, shortened to `steps` steps (its events at the same
 /// fraction of the shortened run).
 pub(crate) fn shortened<S: TestScalar>(name: &str, steps: u32) -> Scenario {
-    let mut sc = builtin(name).unwrap_or_else(|| panic!("no built-in scenario {name}"));
-    for g in &mut sc.groups {
-        g.scalar = S::TYPE;
-    }
-    for e in &mut sc.events {
-        e.step = (u64::from(e.step) * u64::from(steps) / u64::from(sc.steps)) as u32;
-    }
-    sc.steps = steps;
-    sc
+    builtin(name)
+        .unwrap_or_else(|| panic!("no built-in scenario {name}"))
+        .in_scalar(S::TYPE)
+        .squeezed(steps)
+}
+
+/// The built-in scenario `name` in fixed point, shortened to `steps` steps ([`shortened`]).
+pub(crate) fn fixed(name: &str, steps: u32) -> Scenario {
+    shortened::<Fx>(name, steps)
+}
+
+/// The steps a comparison of the scenario `name` (of `agents` agents) runs: `agent_steps`
+/// agent-steps between `min` and `max` steps, so that a large swarm costs the GPU no more
+/// than a small one (on lavapipe a GPU agent-step costs several CPU ones). The environment's
+/// `SWARM_GPU_AGENT_STEPS` raises the budget (`SWARM_GPU_AGENT_STEPS=1e12`: every comparison
+/// `max` steps long).
+pub(crate) fn comparison_steps(agents: u64, agent_steps: u64, min: u32, max: u32) -> u32 {
+    let budget = std::env::var("SWARM_GPU_AGENT_STEPS")
+        .ok()
+        .and_then(|v| v.parse::<f64>().ok())
+        .map_or(agent_steps, |v| (v as u64).max(agent_steps));
+    (budget / agents.max(1)).clamp(u64::from(min), u64::from(max)) as u32
 }
 
 /// Each agent's parameters, by id `0..agents`: those of its group in `groups` (all over `S`),

@@ -11,24 +11,12 @@ use super::engine::{GpuWangSim, modules};
 use super::layout::{self, FIELDS, WGSL_CONSTANTS, status_error, status_of};
 use crate::engine::{Engine, apply_due_events};
 use crate::gpu::shaders::{WANG_STEP, WANG_TICK};
+use crate::gpu::tests::harness::fixed;
 use crate::gpu::tests::harness::{StatusWords, assert_constants, assert_valid_wgsl};
 use crate::gpu::{break_two_inverted, same_refusal, test_gpu};
 use crate::scalar::ByScalar;
-use crate::scenario::{ScalarType, Scenario, builtin};
+use crate::scenario::{ScalarType, Scenario};
 use crate::wang::{WangGroup, WangSim, bench_wang_world};
-
-/// Scenario `name` in fixed point, its events moved into its first `ticks` ticks.
-fn fixed(name: &str, ticks: u32) -> Scenario {
-    let mut sc = builtin(name).unwrap_or_else(|| panic!("no built-in scenario {name}"));
-    for g in &mut sc.groups {
-        g.scalar = ScalarType::Fixed;
-    }
-    for e in &mut sc.events {
-        e.step = (u64::from(e.step) * u64::from(ticks) / u64::from(sc.steps)) as u32;
-    }
-    sc.steps = ticks;
-    sc
-}
 
 /// Every insect's words, in id order: its state, the corrections and the pushes of the last
 /// tick. (Its replies are compared in the exchanges: after a tick the CPU's buffers of them
