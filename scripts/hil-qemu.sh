@@ -14,9 +14,10 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 command -v qemu-system-arm >/dev/null 2>&1 \
     || { echo "hil-qemu.sh: error: qemu-system-arm not found (apt-get install qemu-system-arm)" >&2; exit 1; }
-# The test suite's profile (Cargo.toml), so that after `scripts/test.sh`'s cargo test this links
-# only the binary.
-cargo build --profile ci -q -p swarm-hil || exit 1
+# The test suite's build (the same command as `scripts/test.sh`'s cargo test, so the same
+# features of every dependency): after it nothing is built again. (`cargo build -p swarm-hil`
+# unifies features over swarm-hil alone and built wgpu and the simulator a second time.)
+cargo test --workspace --profile ci -q --no-run || exit 1
 HIL=target/ci/swarm-hil
 OUT=target/hil-qemu
 mkdir -p "$OUT"

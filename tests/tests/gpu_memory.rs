@@ -26,11 +26,11 @@ fn resident_mib() -> f64 {
     kib / 1024.0
 }
 
-/// One lifetime: model `name`'s GPU benchmark world of 1,000 agents built on the process's
+/// One lifetime: model `name`'s GPU benchmark world of 250 agents built on the process's
 /// device, ticked, read back, dropped. (What leaked was per engine, whatever its size: the
 /// kernels compiled and the driver's pools of a device each, 2-22 MiB a lifetime.)
 fn lifetime(name: &str, seed: u32) {
-    let mut engine = models::bench_engine(name, 1_000, seed, ScalarType::Fixed, Backend::Gpu)
+    let mut engine = models::bench_engine(name, 250, seed, ScalarType::Fixed, Backend::Gpu)
         .unwrap_or_else(|e| panic!("{name} on the GPU: {e}"));
     for _ in 0..4 {
         engine.tick().unwrap_or_else(|e| panic!("{name}: {e}"));
