@@ -143,9 +143,9 @@ fn locked(path: &Path) -> std::collections::BTreeSet<(String, String)> {
 }
 
 /// The Python module (`python/`, a workspace of its own for maturin) pins the workspace's
-/// version of every package the two share (in one semver series), so that `scripts/python-test.sh` builds it on what
-/// `cargo test` built (the same versions, profile and target folder) instead of building every
-/// dependency again. After `cargo update`: `cp Cargo.lock python/ && cargo tree --manifest-path
+/// version of every package the two share (in one semver series), so that
+/// `scripts/python-test.sh` builds it on what `cargo test` built (the same versions, profile
+/// and target folder) instead of building every dependency again. After `cargo update`: `cp Cargo.lock python/ && cargo tree --manifest-path
 /// python/Cargo.toml`.
 #[test]
 fn the_python_module_pins_the_workspaces_versions() {

@@ -25,11 +25,7 @@ const AGENT_STEPS: u64 = 50_000;
 
 /// The ticks a fixed-point comparison of `sc` runs ([`AGENT_STEPS`]).
 fn steps_of(sc: &Scenario) -> u32 {
-    let budget = std::env::var("SWARM_GPU_AGENT_STEPS")
-        .ok()
-        .and_then(|v| v.parse::<f64>().ok())
-        .map_or(AGENT_STEPS, |v| (v as u64).max(AGENT_STEPS));
-    (budget / sc.agents().max(1)).clamp(50, 500) as u32
+    swarm_sim::gpu::comparison_steps(sc.agents(), AGENT_STEPS, 50, 500)
 }
 
 /// The files compared byte for byte (the summary separately, normalised).

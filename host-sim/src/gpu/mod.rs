@@ -79,3 +79,17 @@ pub(crate) fn break_two_inverted<T>(
     break_one(&mut states[b]);
     ids[b]
 }
+
+/// The steps a GPU-against-CPU comparison of a swarm of `agents` runs in the test suites:
+/// `agent_steps` agent-steps, between `min` and `max` steps, so that a large swarm costs the GPU
+/// no more than a small one (on lavapipe a GPU agent-step costs several CPU ones; docs/gpu.md,
+/// "How long the comparisons run"). The environment's `SWARM_GPU_AGENT_STEPS` raises the budget
+/// (`SWARM_GPU_AGENT_STEPS=1e12`: every comparison `max` steps long).
+#[doc(hidden)]
+pub fn comparison_steps(agents: u64, agent_steps: u64, min: u32, max: u32) -> u32 {
+    let budget = std::env::var("SWARM_GPU_AGENT_STEPS")
+        .ok()
+        .and_then(|v| v.parse::<f64>().ok())
+        .map_or(agent_steps, |v| (v as u64).max(agent_steps));
+    (budget / agents.max(1)).clamp(u64::from(min), u64::from(max)) as u32
+}

@@ -18,11 +18,8 @@ use super::layout::{self, FIELDS, WGSL_CONSTANTS, status_error, status_of};
 use crate::engine::{Engine, apply_due_events};
 use crate::fly::{FlyGroup, FlySim, bench_fly_world};
 use crate::gpu::shaders::{FLY_STEP, FLY_TICK};
-use crate::gpu::tests::harness::fixed;
-use crate::gpu::tests::harness::{
-    StatusWords, assert_constants, assert_valid_wgsl, comparison_steps,
-};
-use crate::gpu::{break_two_inverted, same_refusal, test_gpu};
+use crate::gpu::tests::harness::{StatusWords, assert_constants, assert_valid_wgsl, fixed};
+use crate::gpu::{break_two_inverted, comparison_steps, same_refusal, test_gpu};
 use crate::scalar::ByScalar;
 use crate::scenario::{ScalarType, Scenario, builtin, builtin_names};
 

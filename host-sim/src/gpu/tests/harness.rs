@@ -106,19 +106,6 @@ pub(crate) fn fixed(name: &str, steps: u32) -> Scenario {
     shortened::<Fx>(name, steps)
 }
 
-/// The steps a comparison of the scenario `name` (of `agents` agents) runs: `agent_steps`
-/// agent-steps between `min` and `max` steps, so that a large swarm costs the GPU no more
-/// than a small one (on lavapipe a GPU agent-step costs several CPU ones). The environment's
-/// `SWARM_GPU_AGENT_STEPS` raises the budget (`SWARM_GPU_AGENT_STEPS=1e12`: every comparison
-/// `max` steps long).
-pub(crate) fn comparison_steps(agents: u64, agent_steps: u64, min: u32, max: u32) -> u32 {
-    let budget = std::env::var("SWARM_GPU_AGENT_STEPS")
-        .ok()
-        .and_then(|v| v.parse::<f64>().ok())
-        .map_or(agent_steps, |v| (v as u64).max(agent_steps));
-    (budget / agents.max(1)).clamp(u64::from(min), u64::from(max)) as u32
-}
-
 /// Each agent's parameters, by id `0..agents`: those of its group in `groups` (all over `S`),
 /// `of` giving a group's ids and parameters.
 pub(crate) fn params_by_id<S: TestScalar, G: Family, P: Copy>(
