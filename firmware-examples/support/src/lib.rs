@@ -42,16 +42,16 @@ pub const IRQS: usize = 48;
 compile_error!("fw-support: enable a board feature, `lm3s6965evb` or `mps2-an386`");
 
 unsafe extern "C" {
-    /// cortex-m-rt's default handler (it loops; the images enable no interrupt).
+    /// cortex-m-rt's default handler (it loops; the images take no interrupt).
     fn DefaultHandler();
 }
 
-/// Entries in the device part of the vector table. The images enable no device interrupt (the
-/// UARTs are polled), so they carry only the one entry cortex-m-rt's linker script insists on
-/// instead of all [`IRQS`]: 4 bytes of flash instead of 320 (lm3s6965evb) or 192 (mps2-an386).
-/// No interrupt line is enabled in the NVIC, so no other entry is ever read. An image that
-/// enables device interrupt `n` needs `n + 1` entries here (a peripheral access crate
-/// provides the whole table, with named handlers).
+/// Entries in the device part of the vector table. The images take no device interrupt (the
+/// UARTs are polled; their receive line only wakes `WFI`, with PRIMASK set, see [`uart`]), so
+/// they carry only the one entry cortex-m-rt's linker script insists on instead of all
+/// [`IRQS`]: 4 bytes of flash instead of 320 (lm3s6965evb) or 192 (mps2-an386). No other entry
+/// is ever read. An image that takes device interrupt `n` needs `n + 1` entries here (a
+/// peripheral access crate provides the whole table, with named handlers).
 pub const VECTORS: usize = 1;
 const _: () = assert!(VECTORS >= 1 && VECTORS <= IRQS);
 

@@ -17,11 +17,15 @@
 //!   batch, or a retransmission) is followed by a small [`Ping`] probe whose answer shows its
 //!   fate one round trip later: on a noisy line that is alive, losses are repaired at the pace
 //!   of round trips, not timeouts;
-//! * otherwise a request is sent again when its timer runs out: the timer of a request starts
-//!   when it was sent or when the previous answer came, whichever is later (a pipelined request
-//!   waits for those before it), and lasts the retransmission timeout, which doubles on every
-//!   expiry until an unambiguous round trip is measured again (Karn's rule: never from a
-//!   request sent more than once);
+//! * otherwise a request is sent again when its timer runs out. One timer runs, the oldest
+//!   transmission's (request or probe) still waiting: those behind it wait for it, since the
+//!   device answers in order. It starts when that was sent, when the last answer came or when
+//!   the last timer ran out, whichever is latest, and lasts the retransmission timeout, which
+//!   doubles on every expiry until an unambiguous round trip is measured again (Karn's rule:
+//!   never from a request sent more than once). A slow answer thus costs one retransmission,
+//!   not the window's;
+//! * an answer to a request sent more than once may be any send's: it marks lost only what
+//!   was sent before the first send;
 //! * a CRC-valid answer that is not a valid answer (wrong kind, payload that does not decode)
 //!   is damage that passed the CRC: counted, and the request is sent again at once;
 //! * the link is declared dead when nothing intact came for [`ClientOptions::dead_after`]
@@ -172,6 +176,8 @@ struct InFlight {
     sent: Duration,
     /// Transmission number of the last send: what "sent before" compares.
     order: u64,
+    /// Transmission number of the first send.
+    first_order: u64,
     /// Times sent again.
     tries: u32,
     /// Known lost: send again at the next poll.
@@ -205,6 +211,8 @@ pub struct Machine {
     /// When the last answer to something in flight came: a pipelined request's timer starts
     /// no earlier.
     progress: Duration,
+    /// When the last timer ran out: the next one starts no earlier.
+    expired: Duration,
     outbox: VecDeque<Vec<u8>>,
     done: VecDeque<Completion>,
     report: LinkReport,
@@ -227,6 +235,7 @@ impl Machine {
             probe: None,
             heard: Duration::ZERO,
             progress: Duration::ZERO,
+            expired: Duration::ZERO,
             outbox: VecDeque::new(),
             done: VecDeque::new(),
             report: LinkReport::default(),
@@ -358,7 +367,9 @@ impl Machine {
             self.latencies_us
                 .push(micros(now.saturating_sub(p.first_sent)));
             self.progress = now;
-            self.lost_before(p.order);
+            // An answer after a retry may be the first send's (Karn): only what was sent
+            // before that one is surely lost.
+            self.lost_before(if p.tries == 0 { p.order } else { p.first_order });
             self.done.push_back(Completion { job: p.id, answer });
         } else if let Some(q) = self.probe.filter(|q| q.seq == seq) {
             self.probe = None;
@@ -415,27 +426,35 @@ impl Machine {
         self.probe_if_due(now)
     }
 
-    /// Runs the timers of the requests and the probe.
+    /// The one timer (see the module documentation): the oldest transmission still waiting
+    /// (`None`: the probe) and when its timer runs out.
+    fn timer(&self) -> Option<(Option<usize>, Duration)> {
+        let requests = self.flight.iter().enumerate().filter(|(_, p)| !p.lost);
+        let (oldest, _, sent) = requests
+            .map(|(i, p)| (Some(i), p.order, p.sent))
+            .chain(self.probe.map(|q| (None, q.order, q.sent)))
+            .min_by_key(|t| t.1)?;
+        let start = sent.max(self.progress).max(self.expired);
+        Some((oldest, start.saturating_add(self.rto())))
+    }
+
+    /// Runs the timer: the oldest request (or probe) waiting past it is taken as lost.
     fn expire(&mut self, now: Duration) {
-        let rto = self.rto();
-        let start = self.progress;
-        let mut expired = false;
-        for p in self.flight.iter_mut().filter(|p| !p.lost) {
-            if now >= p.sent.max(start).saturating_add(rto) {
-                p.lost = true;
+        let Some((oldest, deadline)) = self.timer() else {
+            return;
+        };
+        if now < deadline {
+            return;
+        }
+        match oldest {
+            Some(i) => {
+                self.flight[i].lost = true;
                 self.report.timeouts += 1;
-                expired = true;
             }
+            None => self.probe = None,
         }
-        if let Some(q) = self.probe
-            && now >= q.sent.max(start).saturating_add(rto)
-        {
-            self.probe = None;
-            expired = true;
-        }
-        if expired {
-            self.rto.back_off();
-        }
+        self.expired = now;
+        self.rto.back_off();
     }
 
     /// Sends the lost requests again, oldest first.
@@ -444,6 +463,10 @@ impl Machine {
             .filter(|&i| self.flight[i].lost)
             .collect();
         lost.sort_by_key(|&i| self.flight[i].order);
+        if !lost.is_empty() {
+            // The probe that follows the retransmissions replaces one sent before them.
+            self.probe = None;
+        }
         for i in lost {
             let order = self.take_order();
             let p = &mut self.flight[i];
@@ -495,6 +518,7 @@ impl Machine {
                 first_sent: now,
                 sent: now,
                 order,
+                first_order: order,
                 tries: 0,
                 lost: false,
             });
@@ -543,17 +567,8 @@ impl Machine {
         if self.flight.iter().any(|p| p.lost) || !self.outbox.is_empty() {
             return Some(Duration::ZERO);
         }
-        let rto = self.rto();
-        let start = self.progress;
-        self.flight
-            .iter()
-            .map(|p| p.sent)
-            .chain(self.probe.map(|q| q.sent))
-            .map(|sent| sent.max(start).saturating_add(rto))
-            .chain(std::iter::once(
-                self.heard.saturating_add(self.opts.dead_after),
-            ))
-            .min()
+        let silence = self.heard.saturating_add(self.opts.dead_after);
+        Some(self.timer().map_or(silence, |(_, at)| at.min(silence)))
     }
 
     fn send(&mut self, frame: Vec<u8>) {

@@ -2,7 +2,9 @@
 //!
 //! Registers (ARM DDI0479, "APB UART"; QEMU `hw/char/cmsdk-apb-uart.c`): `DATA` 0x00,
 //! `STATE` 0x04 (TXFULL bit 0, RXFULL bit 1, TX/RX overrun bits 2/3, write 1 to clear),
-//! `CTRL` 0x08 (TX enable bit 0, RX enable bit 1), `BAUDDIV` 0x10 (`pclk / baud`, at least 16).
+//! `CTRL` 0x08 (TX enable bit 0, RX enable bit 1, RX interrupt enable bit 3), `INTSTATUS` 0x0C
+//! (RX bit 1, write 1 to clear), `BAUDDIV` 0x10 (`pclk / baud`, at least 16). The receive
+//! interrupt is NVIC line 0 (AN386 application note, "Interrupt map"; QEMU `mps2.c`).
 //! One byte of buffer each way, no FIFO, always 8N1. PCLK is the 25 MHz system clock of the
 //! MPS2 FPGA images. The UART is inside the FPGA image: no pin multiplexing to set up.
 //!
@@ -17,6 +19,7 @@ const BASE: usize = 0x4000_4000;
 const DATA: usize = BASE;
 const STATE: usize = BASE + 0x04;
 const CTRL: usize = BASE + 0x08;
+const INTSTATUS: usize = BASE + 0x0C;
 const BAUDDIV: usize = BASE + 0x10;
 
 const STATE_TXFULL: u32 = 1 << 0;
@@ -24,6 +27,8 @@ const STATE_RXFULL: u32 = 1 << 1;
 const STATE_OVERRUNS: u32 = 0b11 << 2;
 const CTRL_TX_EN: u32 = 1 << 0;
 const CTRL_RX_EN: u32 = 1 << 1;
+const CTRL_RX_INT_EN: u32 = 1 << 3;
+const INTSTATUS_RX: u32 = 1 << 1;
 
 /// The MPS2 FPGA images' peripheral clock (QEMU `mps2.c`: `SYSCLK_FRQ`).
 pub const PCLK_HZ: u32 = 25_000_000;
@@ -43,12 +48,19 @@ impl CmsdkUart0 {
         wr(CTRL, 0);
         wr(BAUDDIV, (PCLK_HZ / baud.max(1)).max(16));
         wr(STATE, STATE_OVERRUNS);
-        wr(CTRL, CTRL_TX_EN | CTRL_RX_EN);
+        wr(CTRL, CTRL_TX_EN | CTRL_RX_EN | CTRL_RX_INT_EN);
+        super::enable_rx_wakeup(Self::RX_IRQ);
         Some(CmsdkUart0 { _private: () })
     }
 }
 
 impl Polled for CmsdkUart0 {
+    const RX_IRQ: u16 = 0;
+
+    fn rx_irq_clear() {
+        wr(INTSTATUS, INTSTATUS_RX);
+    }
+
     fn rx_ready() -> bool {
         rd(STATE) & STATE_RXFULL != 0
     }

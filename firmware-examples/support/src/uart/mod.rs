@@ -7,9 +7,14 @@
 //! * `CmsdkUart0` (feature `mps2-an386`): ARM CMSDK APB UART0 of the MPS2 AN386 FPGA image at
 //!   `0x4000_4000` (QEMU `info mtree`; `0x4020_0000` on that board is the LAN9118 Ethernet).
 //!
-//! Both are polled (no interrupt, no DMA) and 8N1. `read` blocks until one byte is there, then
-//! returns every byte the receiver already holds (up to the buffer); `write` blocks until each
-//! byte is in the transmitter. Line errors (framing, parity, break, overrun) are not reported:
+//! Both are polled (no interrupt handler, no DMA) and 8N1. `read` blocks until one byte is
+//! there, then returns every byte the receiver already holds (up to the buffer); `write` blocks
+//! until each byte is in the transmitter. While `read` waits the core sleeps (`WFI`): `take`
+//! masks every interrupt (PRIMASK) and enables the receiver's interrupt line in the NVIC, so a
+//! received byte wakes the core without any handler running (`sleep_until_rx`). A real board
+//! draws less current; QEMU stops executing the guest instead of spinning on the status
+//! register (a spinning guest takes QEMU's device lock for every poll and starves the thread
+//! that feeds the UART from the host: 5-10 times fewer requests per second). Line errors (framing, parity, break, overrun) are not reported:
 //! `Error = Infallible`. A damaged byte damages its frame, which the endpoint then drops on its
 //! COBS/CRC check (and counts in `DeviceStats.link`); the host retries.
 //!
@@ -74,6 +79,45 @@ trait Polled {
     fn tx(byte: u8);
     /// True while the transmitter still holds bytes to send (`flush` waits for false).
     fn tx_busy() -> bool;
+    /// The receive interrupt's line in the NVIC.
+    const RX_IRQ: u16;
+    /// Clears the receive interrupt the UART latched, if it latches one (so that it asserts
+    /// its line again for the next byte).
+    fn rx_irq_clear() {}
+}
+
+/// An NVIC line by number (the boards have no peripheral access crate to name them).
+#[derive(Clone, Copy)]
+struct Line(u16);
+
+// SAFETY: the lines used are the boards' receive interrupts, below their `IRQS`.
+unsafe impl cortex_m::interrupt::InterruptNumber for Line {
+    fn number(self) -> u16 {
+        self.0
+    }
+}
+
+/// Lets a received byte wake `WFI` without being taken: masks every configurable interrupt
+/// (PRIMASK stays set: the images run no handler, and the vector table has a single entry)
+/// and enables the receive line in the NVIC. A pending enabled interrupt wakes `WFI` whatever
+/// PRIMASK says (ARMv7-M ARM, B1.5.19). Called by `take` after the UART raises the line on
+/// receipt.
+fn enable_rx_wakeup(line: u16) {
+    cortex_m::interrupt::disable();
+    // SAFETY: with PRIMASK set the interrupt is never taken, so no handler runs and no
+    // critical section (all of them are PRIMASK-based on these single-core parts) is broken.
+    unsafe { cortex_m::peripheral::NVIC::unmask(Line(line)) };
+}
+
+/// Sleeps until the receiver may hold a byte: clears the latched interrupt (UART and NVIC),
+/// then sleeps unless a byte came meanwhile. A byte arriving after the check pends the line,
+/// which wakes the `WFI` (or keeps it from sleeping): none is missed. The caller checks again.
+fn sleep_until_rx<P: Polled>() {
+    P::rx_irq_clear();
+    cortex_m::peripheral::NVIC::unpend(Line(P::RX_IRQ));
+    if !P::rx_ready() {
+        cortex_m::asm::wfi();
+    }
 }
 
 /// `embedded_io::{ErrorType, Read, ReadReady, Write}` for a [`Polled`] driver (a macro: the
@@ -89,7 +133,9 @@ macro_rules! polled_io {
                 if buf.is_empty() {
                     return Ok(0);
                 }
-                while !<$uart as Polled>::rx_ready() {}
+                while !<$uart as Polled>::rx_ready() {
+                    sleep_until_rx::<$uart>();
+                }
                 let mut n = 0;
                 for slot in buf.iter_mut() {
                     if !<$uart as Polled>::rx_ready() {

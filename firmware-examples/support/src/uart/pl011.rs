@@ -9,7 +9,9 @@
 //! Clocks and pins: `RCGC1` bit 0 (UART0) and `RCGC2` bit 0 (GPIO port A) of the system
 //! control block at `0x400F_E000`; PA0/PA1 to their alternate function (`GPIOAFSEL` 0x420) and
 //! digital enable (`GPIODEN` 0x51C) of port A at `0x4000_4000`. QEMU accepts and ignores these;
-//! a real LM3S6965 needs them.
+//! a real LM3S6965 needs them. Receive interrupts: `IM` 0x038 (RXIM bit 4: FIFO at its trigger
+//! level, RTIM bit 6: bytes waiting below it), `ICR` 0x044 (write 1 to clear); UART0 is NVIC
+//! line 5 (data sheet, "Interrupts" table).
 //!
 //! QEMU notes: the PL011 receives from reset, before `CTL` enables it (one byte without FIFO);
 //! changing `LCRH.FEN` resets the receive FIFO, so at most one byte that arrived before
@@ -26,6 +28,8 @@ const IBRD: usize = BASE + 0x24;
 const FBRD: usize = BASE + 0x28;
 const LCRH: usize = BASE + 0x2C;
 const CTL: usize = BASE + 0x30;
+const IM: usize = BASE + 0x38;
+const ICR: usize = BASE + 0x44;
 
 const FR_BUSY: u32 = 1 << 3;
 const FR_RXFE: u32 = 1 << 4;
@@ -35,6 +39,8 @@ const LCRH_WLEN_8: u32 = 0b11 << 5;
 const CTL_UARTEN: u32 = 1 << 0;
 const CTL_TXE: u32 = 1 << 8;
 const CTL_RXE: u32 = 1 << 9;
+/// Receive (FIFO at its trigger level) and receive-timeout interrupts.
+const INT_RX_RT: u32 = (1 << 4) | (1 << 6);
 
 const SYSCTL_RCGC1: usize = 0x400F_E104;
 const SYSCTL_RCGC2: usize = 0x400F_E108;
@@ -78,11 +84,19 @@ impl Lm3sUart0 {
         wr(FBRD, div & 0x3f);
         wr(LCRH, LCRH_WLEN_8 | LCRH_FEN);
         wr(CTL, CTL_UARTEN | CTL_TXE | CTL_RXE);
+        wr(IM, INT_RX_RT);
+        super::enable_rx_wakeup(Self::RX_IRQ);
         Some(Lm3sUart0 { _private: () })
     }
 }
 
 impl Polled for Lm3sUart0 {
+    const RX_IRQ: u16 = 5;
+
+    fn rx_irq_clear() {
+        wr(ICR, INT_RX_RT);
+    }
+
     fn rx_ready() -> bool {
         rd(FR) & FR_RXFE == 0
     }

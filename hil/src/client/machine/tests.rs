@@ -59,7 +59,13 @@ struct World {
     device_frames: u64,
     /// A hook that rewrites the device's answer to a request (kind, seq, reply frame).
     tamper: Option<Tamper>,
+    /// A hook that makes the device take this long instead of `service` for a request (kind,
+    /// seq).
+    slow: Option<Slow>,
 }
+
+/// Service time of a request (kind, seq) that differs from the world's.
+type Slow = Box<dyn FnMut(u8, u16) -> Option<Duration>>;
 
 fn deliver() -> Script {
     Box::new(|_, _, _| Fate::Deliver)
@@ -91,6 +97,7 @@ impl World {
             max_flight: 0,
             device_frames: 0,
             tamper: None,
+            slow: None,
         }
     }
 
@@ -199,7 +206,8 @@ impl World {
                 if let Some(t) = self.tamper.as_mut() {
                     reply = t(k, s, reply);
                 }
-                let done = at.max(self.device_free) + self.service;
+                let service = self.slow.as_mut().and_then(|f| f(k, s));
+                let done = at.max(self.device_free) + service.unwrap_or(self.service);
                 self.device_free = done;
                 let (rk, rs) = Self::header(&reply);
                 let n = self.seen_down.entry((rk, rs)).or_default();
@@ -344,7 +352,8 @@ fn duplicated_replies_are_discarded() {
 fn a_reordered_reply_still_answers_its_own_request() {
     let mut w = pty();
     // Seq 3's reply comes 1 ms late, after 4's: 3 is sent again, the retry's reply answers it
-    // (Karn: no round trip sampled) and the late one is stale.
+    // (Karn: no round trip sampled) and the late one is stale; so is the answer to the tail
+    // probe, which the probe after the retry replaced.
     w.down = only(
         |k, s, n| k == kind::CONFIGURED && s == 3 && n == 0,
         Fate::Delay(ms(1)),
@@ -352,7 +361,7 @@ fn a_reordered_reply_still_answers_its_own_request() {
     w.serve_all(10, ms(100));
     w.flush();
     let r = w.m.report();
-    assert_eq!((r.retries, r.stale_replies), (1, 1), "{r:?}");
+    assert_eq!((r.retries, r.stale_replies, r.probes), (1, 2, 2), "{r:?}");
 }
 
 #[test]
@@ -483,6 +492,30 @@ fn a_slow_device_with_a_94_ms_round_trip_is_never_asked_twice() {
     assert_eq!(
         w.device_frames, 201,
         "every request once, and the tail probe"
+    );
+}
+
+#[test]
+fn a_slow_answer_costs_a_retry_or_two_not_the_windows() {
+    // A device that takes ten times as long over every tenth request (a QEMU guest
+    // descheduled on a busy host): the answer outlives the timeout. Only the oldest request
+    // runs a timer (the seven behind it wait for it), so each slow answer costs a retry or
+    // two (the next request's timer, backed off, may run out before the slow answer comes),
+    // not the window's eight.
+    let mut w = World::new(ClientOptions::default(), us(20), ms(1));
+    let mut served = std::collections::BTreeSet::new();
+    w.slow = Some(Box::new(move |k, s| {
+        (k == kind::CONFIGURE && s % 10 == 0 && served.insert(s)).then_some(ms(10))
+    }));
+    w.serve_all(200, ms(60_000));
+    let r = w.m.report();
+    assert!(
+        r.timeouts >= 20,
+        "the slow answers outlive the timeout: {r:?}"
+    );
+    assert!(
+        r.retries <= 40,
+        "two retries per slow answer at most: {r:?}"
     );
 }
 
