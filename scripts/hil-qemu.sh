@@ -17,7 +17,8 @@ command -v qemu-system-arm >/dev/null 2>&1 \
 # The test suite's build (the same command as `scripts/test.sh`'s cargo test, so the same
 # features of every dependency): after it nothing is built again. (`cargo build -p swarm-hil`
 # unifies features over swarm-hil alone and built wgpu and the simulator a second time.)
-cargo test --workspace --profile ci -q --no-run || exit 1
+source scripts/lib/workspace-tests.sh
+cargo test "${WORKSPACE_TESTS[@]}" -q --no-run || exit 1
 HIL=target/ci/swarm-hil
 OUT=target/hil-qemu
 mkdir -p "$OUT"

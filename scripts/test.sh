@@ -14,6 +14,7 @@
 # installed, the stages that need them are skipped with a loud warning.
 set -uo pipefail
 cd "$(dirname "$0")/.."
+source scripts/lib/workspace-tests.sh
 
 QUICK=0
 [[ "${1:-}" == "--quick" ]] && QUICK=1
@@ -139,7 +140,7 @@ stage "swarm-core builds without std, every backend" bash -c '
 stage "cargo doc (warnings are errors)" env RUSTDOCFLAGS="-D warnings" cargo doc -q --workspace --no-deps
 stage "docs/protocol.md: the Python reference appendices run and every assertion holds" python3 scripts/protocol-reference.py
 stage "cargo test --workspace (unit, property, integration, doc tests; each test process within ${MAX_TEST_PROCESS_GIB} GiB)" \
-    cargo_test_within_memory cargo test --workspace --profile ci
+    cargo_test_within_memory cargo test "${WORKSPACE_TESTS[@]}"
 # After the workspace's tests: their build of swarm-core's dependencies serves this one.
 stage "swarm-core with feature small (the ant node's size options) passes its unit tests" \
     cargo test -q -p swarm-core --profile ci --features small --lib
