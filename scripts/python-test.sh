@@ -4,6 +4,8 @@
 # missing), then runs its pytest suite against it.
 #
 #   scripts/python-test.sh [pytest arguments]
+#   scripts/python-test.sh --prepare     only the virtual environment and its packages
+#                                        (scripts/test.sh downloads them while Rust builds)
 #
 # Needs python3 with venv (scripts/test.sh installs python3-venv when missing) and the Python
 # package index, or a pip mirror, for numpy, pytest, ray, cma and maturin (pip's build of
@@ -19,6 +21,7 @@ if [[ ! -x $venv/bin/python ]]; then
 fi
 py="$venv/bin/python"
 "$py" -m pip install -q --disable-pip-version-check "numpy>=1.21" "pytest>=7" "ray>=2.9" "cma>=3.2"
+[[ "${1:-}" == "--prepare" ]] && exit 0
 # The README's install command; maturin builds the wheel with the `ci` profile.
 MATURIN_PEP517_ARGS="--profile ci" "$py" -m pip install -q --disable-pip-version-check \
     --force-reinstall --no-deps ./python

@@ -131,6 +131,20 @@ if ((${#need_pkgs[@]} > 0)); then
 fi
 
 # --- stages ----------------------------------------------------------------------------
+# The Python stage's packages (numpy, ray, ...: mostly download) install in the background
+# while the Rust stages compile; the Python stage waits for them.
+python_prepare_log="$peaks/python-prepare.log"
+scripts/python-test.sh --prepare >"$python_prepare_log" 2>&1 &
+python_prepare=$!
+python_tests() {
+    if ! wait "$python_prepare"; then
+        cat "$python_prepare_log" >&2
+        warn "the Python packages did not install (log above)"
+        return 1
+    fi
+    python3 scripts/lib/peak-rss.py "$peaks/stage" scripts/python-test.sh
+}
+
 stage "cargo fmt --check" cargo fmt --all -- --check
 stage "cargo clippy (warnings are errors)" cargo clippy --workspace --all-targets -- -D warnings
 stage "swarm-core builds without std, every backend" bash -c '
@@ -144,7 +158,7 @@ stage "cargo test --workspace (unit, property, integration, doc tests; each test
 # After the workspace's tests: their build of swarm-core's dependencies serves this one.
 stage "swarm-core with feature small (the ant node's size options) passes its unit tests" \
     cargo test -q -p swarm-core --profile ci --features small --lib
-stage "python: the swarm package (pip install ./python into a venv, pytest on a 2-worker Ray cluster)" scripts/python-test.sh
+stage "python: the swarm package (pip install ./python into a venv, pytest on a 2-worker Ray cluster)" python_tests
 
 if ((QUICK == 1)); then
     warn "--quick: SKIPPING the firmware build and QEMU tests"
