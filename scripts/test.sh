@@ -65,12 +65,15 @@ cargo_test_within_memory() {
         env "CARGO_TARGET_${host}_RUNNER=$PWD/scripts/lib/peak-rss.py $log" "$@" || status=$?
     [[ -s $log ]] || { warn "no test process reported its memory"; return 1; }
     printf 'peak resident memory of the largest test processes:\n'
-    sort -rn "$log" | head -5 | while read -r kib bin secs; do
+    sort -rn "$log" | head -5 | while read -r kib bin secs cpu; do
         printf '  %6s GiB  %5s s  %s\n' "$(gib "$kib")" "$secs" "$bin"
     done
-    printf 'the longest test processes:\n'
-    sort -k3 -rn "$log" | head -8 | while read -r kib bin secs; do
-        printf '  %5s s  %6s GiB  %s\n' "$secs" "$(gib "$kib")" "$bin"
+    # Cores: CPU seconds over wall seconds (2 on CI's machine when a process keeps both busy).
+    printf 'the longest test processes (wall, cores used, peak):\n'
+    sort -k3 -rn "$log" | head -12 | while read -r kib bin secs cpu; do
+        printf '  %5s s  %4s cores  %6s GiB  %s\n' "$secs" \
+            "$(awk -v c="$cpu" -v s="$secs" 'BEGIN { printf "%.1f", s > 0 ? c / s : 0 }')" \
+            "$(gib "$kib")" "$bin"
     done
     local over
     over=$(awk -v max=$((MAX_TEST_PROCESS_GIB * 1048576)) '$1 > max { print $2 }' "$log")

@@ -19,6 +19,8 @@ struct Sim<S: Scalar> {
     neighbor_dist: S,
     walls: Vec<Surface<S>>,
     infeasible: usize,
+    /// Infeasible frames answered with a zero velocity.
+    stopped: usize,
     /// Use RVO2-3D's kd-tree search (f32 only) instead of the brute-force sort.
     kd: bool,
 }
@@ -39,6 +41,7 @@ impl<S: Scalar> Sim<S> {
             neighbor_dist: S::from_f32(15.0),
             walls: Vec::new(),
             infeasible: 0,
+            stopped: 0,
             kd: false,
         }
     }
@@ -110,6 +113,7 @@ impl<S: Scalar> Sim<S> {
                 )
                 .unwrap();
                 self.infeasible += usize::from(out.infeasible);
+                self.stopped += usize::from(out.infeasible && out.velocity == Vec3::zero());
                 out.velocity
             })
             .collect();
@@ -221,35 +225,38 @@ fn ring_swap_is_collision_free() {
     assert!(arrived_at.is_some(), "not all arrived");
 }
 
-/// The same ring with the paper's zero-velocity fallback: collision-free as well; the
-/// infeasible frames are counted (R-T8 reports them).
+/// The paper's zero-velocity fallback (an infeasible program stops the insect) on rings of
+/// 20-28 agents swapping sides, dense enough that programs become infeasible: the fallback
+/// acts (infeasible frames counted, each answered with a zero velocity) and overlaps stay
+/// shallow: within 10 % of the radii's sum (measured 2.8-7.0 %). It is not collision-free: a
+/// stopped agent takes no share of the avoidance that ORCA's reciprocity gives it, so an
+/// agent heading at it avoids only its own half (docs/models.md, "ORCA's infeasible
+/// fallback"); LP4 is (the test above).
 #[test]
-fn ring_swap_zero_fallback_is_collision_free() {
-    let n = 12;
-    let starts: Vec<Vec3<f32>> = (0..n)
-        .map(|k| {
-            let a = k as f32 * core::f32::consts::TAU / n as f32;
-            Vec3::new(6.0 * a.cos(), 0.02 * (3.0 * a).sin(), 6.0 * a.sin())
-        })
-        .collect();
-    let goals: Vec<Vec3<f32>> = starts.iter().map(|&p| -p).collect();
-    let mut sim = Sim::new(
-        &starts,
-        &goals,
-        0.5,
-        params(2.0, 0.1, 1.0, Fallback::ZeroVelocity),
-    );
-    for step in 0..400 {
-        sim.step();
-        let d = sim.min_distance();
-        assert!(d >= 1.0 * (1.0 - 1e-3), "step {step}: overlap {d}");
+fn ring_swap_zero_fallback_acts_and_overlaps_stay_shallow() {
+    for n in [20, 24, 28] {
+        let starts: Vec<Vec3<f32>> = (0..n)
+            .map(|k| {
+                let a = k as f32 * core::f32::consts::TAU / n as f32;
+                Vec3::new(5.0 * a.cos(), 0.02 * (3.0 * a).sin(), 5.0 * a.sin())
+            })
+            .collect();
+        let goals: Vec<Vec3<f32>> = starts.iter().map(|&p| -p).collect();
+        let mut sim = Sim::new(
+            &starts,
+            &goals,
+            0.5,
+            params(2.0, 0.1, 1.0, Fallback::ZeroVelocity),
+        );
+        let mut closest = f32::INFINITY;
+        for _ in 0..400 {
+            sim.step();
+            closest = closest.min(sim.min_distance());
+        }
+        assert!(sim.infeasible > 0, "n {n}: the fallback never acted");
+        assert_eq!(sim.stopped, sim.infeasible, "n {n}: an infeasible agent moved");
+        assert!(closest >= 0.9, "n {n}: overlap to {closest} of the radii's sum");
     }
-    // (A share, not a bound: R-T8 reports it.)
-    std::println!(
-        "zero-velocity fallback: {} infeasible of {} frames",
-        sim.infeasible,
-        400 * n
-    );
 }
 
 /// R-T7: without neighbours v_new = v_pref, clamped to the speed sphere.
