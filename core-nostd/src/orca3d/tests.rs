@@ -254,8 +254,14 @@ fn ring_swap_zero_fallback_acts_and_overlaps_stay_shallow() {
             closest = closest.min(sim.min_distance());
         }
         assert!(sim.infeasible > 0, "n {n}: the fallback never acted");
-        assert_eq!(sim.stopped, sim.infeasible, "n {n}: an infeasible agent moved");
-        assert!(closest >= 0.9, "n {n}: overlap to {closest} of the radii's sum");
+        assert_eq!(
+            sim.stopped, sim.infeasible,
+            "n {n}: an infeasible agent moved"
+        );
+        assert!(
+            closest >= 0.9,
+            "n {n}: overlap to {closest} of the radii's sum"
+        );
     }
 }
 
