@@ -72,7 +72,7 @@ cargo_test_within_memory() {
     printf 'the longest test processes (wall, cores used, peak):\n'
     sort -k3 -rn "$log" | head -12 | while read -r kib bin secs cpu; do
         printf '  %5s s  %4s cores  %6s GiB  %s\n' "$secs" \
-            "$(awk -v c="$cpu" -v s="$secs" 'BEGIN { printf "%.1f", s > 0 ? c / s : 0 }')" \
+            "$(awk -v c="$cpu" -v s="$secs" 'BEGIN { printf "%.1f", (s > 0 ? c / s : 0) }')" \
             "$(gib "$kib")" "$bin"
     done
     local over
