@@ -193,18 +193,24 @@ fn exact_head_on_stays_finite() {
     }
 }
 
+/// `n` agents on a ring of radius `r` (a small out-of-plane offset), each heading for the
+/// antipodal point: the starts and the goals.
+fn ring(n: usize, r: f32) -> (Vec<Vec3<f32>>, Vec<Vec3<f32>>) {
+    let starts: Vec<Vec3<f32>> = (0..n)
+        .map(|k| {
+            let a = k as f32 * core::f32::consts::TAU / n as f32;
+            Vec3::new(r * a.cos(), 0.02 * (3.0 * a).sin(), r * a.sin())
+        })
+        .collect();
+    let goals = starts.iter().map(|&p| -p).collect();
+    (starts, goals)
+}
+
 /// R-T8: 16 agents on a ring swapping to antipodal points (a small out-of-plane offset),
 /// LP4 fallback: no overlap after any step, all arrive.
 #[test]
 fn ring_swap_is_collision_free() {
-    let n = 16;
-    let starts: Vec<Vec3<f32>> = (0..n)
-        .map(|k| {
-            let a = k as f32 * core::f32::consts::TAU / n as f32;
-            Vec3::new(8.0 * a.cos(), 0.02 * (3.0 * a).sin(), 8.0 * a.sin())
-        })
-        .collect();
-    let goals: Vec<Vec3<f32>> = starts.iter().map(|&p| -p).collect();
+    let (starts, goals) = ring(16, 8.0);
     let mut sim = Sim::new(&starts, &goals, 0.5, params(2.0, 0.1, 1.0, Fallback::Lp4));
     sim.params.max_neighbors = 15;
     let mut arrived_at = None;
@@ -235,13 +241,7 @@ fn ring_swap_is_collision_free() {
 #[test]
 fn ring_swap_zero_fallback_acts_and_overlaps_stay_shallow() {
     for n in [20, 24, 28] {
-        let starts: Vec<Vec3<f32>> = (0..n)
-            .map(|k| {
-                let a = k as f32 * core::f32::consts::TAU / n as f32;
-                Vec3::new(5.0 * a.cos(), 0.02 * (3.0 * a).sin(), 5.0 * a.sin())
-            })
-            .collect();
-        let goals: Vec<Vec3<f32>> = starts.iter().map(|&p| -p).collect();
+        let (starts, goals) = ring(n, 5.0);
         let mut sim = Sim::new(
             &starts,
             &goals,
